@@ -39,7 +39,10 @@ def newton(system, z0: np.ndarray, row: np.ndarray, c: float, *, tol: float, ste
 
     Converged when the max-norm of ``G`` is ≤ ``tol`` and the last update is
     ≤ ``sqrt(step_tol)·(1 + |z|)``: under Newton's quadratic convergence the error left is
-    then of order ``step_tol`` (the next update would be about the square of the last).
+    then of order ``step_tol`` (the next update would be about the square of the last); or,
+    whatever the residual, when the update is ≤ ``step_tol·(1 + |z|)`` (AUTO's test:
+    residuals with large terms, such as finite differences on fine grids, cannot get below
+    ``tol`` in floating point).
     """
     z = z0.copy()
     g = system.residual(z) if g0 is None else g0
@@ -50,8 +53,7 @@ def newton(system, z0: np.ndarray, row: np.ndarray, c: float, *, tol: float, ste
     rhs = np.empty(m + 1)
     lu = None
     sq_step_tol = math.sqrt(step_tol) * (1.0 + _norm(z))
-    eps_tol = 8 * np.finfo(float).eps * (1.0 + _norm(z))
-    sq_tol = math.sqrt(tol)
+    rel_step_tol = step_tol * (1.0 + _norm(z))
     for k in range(1, max_iter + 1):
         try:
             lu = factor(system.bordered_jacobian(z, row))
@@ -68,8 +70,9 @@ def newton(system, z0: np.ndarray, row: np.ndarray, c: float, *, tol: float, ste
             return NewtonResult(z, False, k, rn_new, lu, "nonfinite")
         if rn_new <= tol and sn <= sq_step_tol:
             return NewtonResult(z, True, k, rn_new, lu)
-        # stagnation at rounding level: the update no longer changes z
-        if sn <= eps_tol and rn_new <= sq_tol:
+        # the relative update is below step_tol (AUTO's test): the residual is then at the
+        # rounding level of its own terms, which for badly scaled residuals exceeds tol
+        if sn <= rel_step_tol:
             return NewtonResult(z, True, k, rn_new, lu)
         if k >= 3 and rn_new > 1e3 * max(rn, tol):
             return NewtonResult(z, False, k, rn_new, lu, "diverging")
@@ -100,6 +103,8 @@ def damped_newton(system, z0: np.ndarray, row: np.ndarray, c: float, *, tol: flo
         rhs[:m] = -g
         rhs[m] = c - row @ z
         dz = lu.solve(rhs)
+        if _norm(dz) <= step_tol * (1.0 + _norm(z)):
+            return NewtonResult(z + dz, True, k, _norm(g), lu)
         lam = 1.0
         while lam > 1e-6:
             zt = z + lam * dz

@@ -97,4 +97,9 @@ class ContinuationOptions:
             raise OptionsError(
                 f"unknown option(s) {sorted(unknown)}; allowed: {sorted(f.name for f in fields(self))}"
             )
+        if "ds" not in changes:  # keep the default initial step inside new bounds
+            lo = changes.get("ds_min", self.ds_min)
+            hi = changes.get("ds_max", self.ds_max)
+            if isinstance(lo, (int, float)) and isinstance(hi, (int, float)) and lo <= hi:
+                changes["ds"] = min(max(self.ds, lo), hi)
         return replace(self, **changes)

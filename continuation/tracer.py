@@ -25,6 +25,7 @@ from .errors import (
     ConvergenceError,
     NonFiniteResidualError,
     ProblemDefinitionError,
+    SingularMatrixError,
 )
 from .events import Event
 from .locate import (
@@ -132,7 +133,10 @@ class _Test:
             ref = tracer.bordered_det(br.z_a, br.row)
 
             def f(z):
-                sgn, logdet = tracer.bordered_det(z, br.row)
+                try:
+                    sgn, logdet = tracer.bordered_det(z, br.row)
+                except SingularMatrixError:  # landed exactly on the branch point
+                    return 0.0
                 return sgn * math.exp(min(logdet - ref[1], 700.0))
 
             fa = ref[0]
@@ -361,7 +365,9 @@ class Tracer:
             iters = 0
         self.system.refresh(z0)
         sdet = None if skip_bp else self._sdet(z0, t0)
-        tests = tuple(None if (t.kind == "branch_point" and sdet is None)
+        # starting on a special point, the test functions vanish there up to rounding: their
+        # signs are taken after the first step instead
+        tests = tuple(None if (skip_bp and t.kind in ("branch_point", "fold"))
                       else t.value(self, z0, t0, sdet) for t in self.tests)
         first = _Point(z0, t0, 0.0, iters, 0, residual, o.ds,
                        (("endpoint", start_label, None, "converged", None, {}),), None)
@@ -505,7 +511,7 @@ class Tracer:
                                else f"terminal event {tt.label!r} occurred")
                     if tt.kind != "bound":
                         records.append(("endpoint", tt.label, tt.wrt, loc.status, None, {}))
-                tan = tangent_at(system, loc.z, br.row, W)
+                tan = tangent_at(system, loc.z, br.row, W, br)
                 prev = _Point(loc.z, tan, last.s + loc.sigma, loc.iterations, 0,
                               float(np.max(np.abs(system.residual(loc.z)))), 0.0,
                               tuple(records), prev)
@@ -534,7 +540,7 @@ class Tracer:
         if tt.kind == "bound":
             return ("endpoint", tt.label, tt.wrt, loc.status, interval, details)
         if tt.kind == "branch_point":
-            tan = tangent_at(self.system, loc.z, br.row, self.weights)
+            tan = tangent_at(self.system, loc.z, br.row, self.weights, br)
             details.update(branch_point_directions(self.system, loc.z, tan, self.weights))
             details["names"] = tuple(self.system.names)
         return (tt.kind, tt.label, tt.wrt, loc.status, interval, details)
