@@ -33,6 +33,11 @@ def _norm(x: np.ndarray) -> float:
     return m if math.isfinite(m) else math.nan
 
 
+def _singular_reason(a) -> str:
+    data = a.data if hasattr(a, "tocsr") else a
+    return "singular" if np.all(np.isfinite(data)) else "nonfinite"
+
+
 def newton(system, z0: np.ndarray, row: np.ndarray, c: float, *, tol: float, step_tol: float,
            max_iter: int, g0: np.ndarray | None = None) -> NewtonResult:
     """Solve ``G(z) = 0``, ``row·z = c`` by Newton's method from ``z0``.
@@ -55,10 +60,11 @@ def newton(system, z0: np.ndarray, row: np.ndarray, c: float, *, tol: float, ste
     sq_step_tol = math.sqrt(step_tol) * (1.0 + _norm(z))
     rel_step_tol = step_tol * (1.0 + _norm(z))
     for k in range(1, max_iter + 1):
+        a = system.bordered_jacobian(z, row)
         try:
-            lu = factor(system.bordered_jacobian(z, row))
+            lu = factor(a)
         except SingularMatrixError:
-            return NewtonResult(z, False, k, rn, None, "singular")
+            return NewtonResult(z, False, k, rn, None, _singular_reason(a))
         rhs[:m] = -g
         rhs[m] = c - row @ z
         dz = lu.solve(rhs)
@@ -96,10 +102,11 @@ def damped_newton(system, z0: np.ndarray, row: np.ndarray, c: float, *, tol: flo
     phi = merit(z, g)
     lu = None
     for k in range(1, max_iter + 1):
+        a = system.bordered_jacobian(z, row)
         try:
-            lu = factor(system.bordered_jacobian(z, row))
+            lu = factor(a)
         except SingularMatrixError:
-            return NewtonResult(z, False, k, _norm(g), None, "singular")
+            return NewtonResult(z, False, k, _norm(g), None, _singular_reason(a))
         rhs[:m] = -g
         rhs[m] = c - row @ z
         dz = lu.solve(rhs)

@@ -94,9 +94,8 @@ class ContinuationOptions:
         """A copy with some fields changed (validated again)."""
         unknown = set(changes) - {f.name for f in fields(self)}
         if unknown:
-            raise OptionsError(
-                f"unknown option(s) {sorted(unknown)}; allowed: {sorted(f.name for f in fields(self))}"
-            )
+            allowed = sorted(f.name for f in fields(self))
+            raise OptionsError(f"unknown option(s) {sorted(unknown)}; allowed: {allowed}")
         if "ds" not in changes:  # keep the default initial step inside new bounds
             lo = changes.get("ds_min", self.ds_min)
             hi = changes.get("ds_max", self.ds_max)

@@ -28,6 +28,7 @@ from .errors import (
     SingularMatrixError,
 )
 from .events import Event
+from .linalg import bordered, factor
 from .locate import (
     Bracket,
     Located,
@@ -37,7 +38,6 @@ from .locate import (
     locate_on_arc,
     tangent_at,
 )
-from .linalg import bordered, factor
 from .options import ContinuationOptions
 from .problem import as_problem
 from .system import BranchSystem
@@ -74,7 +74,7 @@ class TracerState(NamedTuple):
     n_points: int = 1
 
 
-# ----------------------------------------------------------------------------- test functions
+# --- --- test functions
 
 
 @dataclass(frozen=True)
@@ -152,7 +152,7 @@ class _Test:
         return locate_on_arc(br, fe, f_a, f_b)
 
 
-# ----------------------------------------------------------------------------- the tracer
+# --- --- the tracer
 
 
 class Tracer:
@@ -503,7 +503,7 @@ class Tracer:
                 found.append((loc.sigma, tt, loc))
             found.sort(key=lambda item: item[0] * math.copysign(1.0, br.h))
             prev = last
-            for sigma, tt, loc in found:
+            for _sigma, tt, loc in found:
                 records = [self._record(tt, loc, br, last.s)]
                 if tt.terminal:
                     status = "bound" if tt.kind == "bound" else "terminal_event"
