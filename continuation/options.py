@@ -48,7 +48,7 @@ class ContinuationOptions:
     ``[0.5, growth]``): it grows while Newton needs fewer iterations, shrinks when more."""
     max_angle: float = 30.0
     """Degrees: a step whose tangent turns further is rejected (guard against branch jumping)."""
-    target_angle: float = 10.0
+    target_angle: float = 15.0
     """Degrees: the step size is adapted to aim at this tangent turn per step."""
     growth: float = 2.0
     """Largest factor by which ds may grow in one step."""
