@@ -7,14 +7,15 @@ edges), and ``sigma`` (the length scale used to split infinite intervals).
 
 The algebraic end-point behaviour (z − h)^k is put into QUADPACK's QAWS weight, so the
 integrands that QAGS/QAGI see are as smooth as Φ itself. All integrals are of nonnegative
-integrands, so the relative accuracy requested (1.2e-14, QUADPACK's floor) is what QUADPACK aims for; where it
-cannot reach it, it returns its best estimate (the message is suppressed, not ignored: the
-returned error estimate is checked and a loose one raises).
+integrands, so the relative accuracy requested (1.2e-14, QUADPACK's floor) is what it aims
+for; where it cannot, it returns its best estimate (the message is suppressed, not ignored:
+the returned error estimate is checked and a loose one raises).
 """
 
 from __future__ import annotations
 
 import math
+from itertools import pairwise
 
 import numpy as np
 from scipy import integrate
@@ -61,7 +62,7 @@ def _weighted(surface, k: float, h: float, a: float, b: float) -> float:
         )
     pts = _segments(surface, a, b)
     total = 0.0
-    for i, (u, v) in enumerate(zip(pts[:-1], pts[1:])):
+    for i, (u, v) in enumerate(pairwise(pts)):
         if i == 0 and u == h and k != 0.0:
             total += _quad(pdf, u, v, weight="alg", wvar=(k, 0.0))
         else:
@@ -86,7 +87,7 @@ def slip_integral(surface, h: np.ndarray, g: np.ndarray) -> np.ndarray:
     """S = ∫_h^{h+g} (z − h)^{3/2} Φ dz elementwise [µm^{3/2}]."""
     lo, hi = surface.support
     out = np.empty(h.shape)
-    for i, (x, y) in enumerate(zip(h.ravel(), g.ravel())):
+    for i, (x, y) in enumerate(zip(h.ravel(), g.ravel(), strict=True)):
         a, b = max(x, lo), min(x + y, hi)
         out.flat[i] = _weighted(surface, 1.5, x, a, b) if y > 0.0 else 0.0
     return out
@@ -115,7 +116,7 @@ def _stick_scalar(surface, h: float, g: float) -> float:
     else:
         pts = _segments(surface, a, hi)
         total = 0.0
-    for u, v in zip(pts[:-1], pts[1:]):
+    for u, v in pairwise(pts):
         total += _quad(f, u, v)
     return total
 
@@ -123,7 +124,7 @@ def _stick_scalar(surface, h: float, g: float) -> float:
 def stick_integral(surface, h: np.ndarray, g: np.ndarray) -> np.ndarray:
     """T = ∫_{h+g}^∞ [(z − h)^{3/2} − (z − h − g)^{3/2}] Φ dz elementwise [µm^{3/2}]."""
     out = np.empty(h.shape)
-    for i, (x, y) in enumerate(zip(h.ravel(), g.ravel())):
+    for i, (x, y) in enumerate(zip(h.ravel(), g.ravel(), strict=True)):
         out.flat[i] = _stick_scalar(surface, float(x), float(y)) if y > 0.0 else 0.0
     return out
 
@@ -139,6 +140,6 @@ def integrate_pdf(pdf, support, breakpoints, sigma) -> float:
         total += _quad(pdf, -math.inf, finite_lo)
     if not math.isfinite(hi):
         total += _quad(pdf, finite_hi, math.inf)
-    for u, v in zip(pts[:-1], pts[1:]):
+    for u, v in pairwise(pts):
         total += _quad(pdf, u, v)
     return total

@@ -1,4 +1,4 @@
-"""Rough surface with Gaussian summit heights, Φ(z) = φ(z/σ*)/σ* (paper Sec. 2, Greenwood–Williamson).
+"""Rough surface with Gaussian summit heights, Φ(z) = φ(z/σ*)/σ* (Sec. 2; Greenwood–Williamson).
 
 J(h) = σ*^{3/2} F_{3/2}(h/σ*), A(h) = σ* F_1(h/σ*), ∫_h^∞ Φ = F_0(h/σ*), with the GW integrals
 of :mod:`models.gw` (≤ 1e-14 relative). J(d) − J(d0) uses ``gw_difference`` (no cancellation

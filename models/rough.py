@@ -264,8 +264,7 @@ class RoughSurface:
             return -self.log_load_integral(h)
 
         c0 = self._center()
-        lo, hi = expand_bracket(f, -log_j_target, c0 - self.sigma, c0 + self.sigma,
-                                step=self.sigma)
+        lo, hi = expand_bracket(f, -log_j_target, c0 - self.sigma, c0 + self.sigma, step=self.sigma)
         return monotone_root(f, -log_j_target, lo, hi)
 
     def _center(self) -> float:
@@ -366,8 +365,9 @@ class RoughSurface:
         def f(g, idx):
             return -self.log_load_integral(d[idx] + g)
 
-        lo, hi = expand_bracket(f, target, np.zeros_like(d), np.full_like(d, self.sigma),
-                                step=self.sigma)
+        lo, hi = expand_bracket(
+            f, target, np.zeros_like(d), np.full_like(d, self.sigma), step=self.sigma
+        )
         return monotone_root(f, target, lo, hi)
 
     # ---------------------------------------------------------------- stick ratios
