@@ -55,10 +55,12 @@ def monotone_root(f, target, lo, hi, *, maxiter: int = 200, xtol: float = 0.0) -
     (use :func:`expand_bracket`). Illinois regula falsi, with a bisection every third step so
     the bracket at least halves; stops when the bracket is a few ulp wide.
     """
-    target, lo, hi = (np.array(a, dtype=float) for a in np.broadcast_arrays(target, lo, hi))
-    everything = np.arange(lo.size).reshape(lo.shape)
-    flo = f(lo, everything) - target
-    fhi = f(hi, everything) - target
+    target, lo, hi = np.broadcast_arrays(target, lo, hi)
+    shape = lo.shape
+    target, lo, hi = (np.array(a, dtype=float).ravel() for a in (target, lo, hi))
+    everything = np.arange(lo.size)
+    flo = np.asarray(f(lo, everything), dtype=float).ravel() - target
+    fhi = np.asarray(f(hi, everything), dtype=float).ravel() - target
     x = np.where(np.abs(flo) <= np.abs(fhi), lo, hi)
     done = (flo == 0.0) | (fhi == 0.0)
     x = np.where(flo == 0.0, lo, np.where(fhi == 0.0, hi, x))
@@ -73,7 +75,7 @@ def monotone_root(f, target, lo, hi, *, maxiter: int = 200, xtol: float = 0.0) -
         mid = a + 0.5 * (b - a)
         bad = ~np.isfinite(xs) | (xs <= a) | (xs >= b)
         xn = np.where(bad | (it % 3 == 2), mid, xs)
-        fx = f(xn, everything[active]) - target[active]
+        fx = np.asarray(f(xn, everything[active]), dtype=float).ravel() - target[active]
         left = fx < 0.0  # root to the right of xn
         # Illinois: halve the stale end's function value
         new_lo = np.where(left, xn, a)
@@ -83,19 +85,21 @@ def monotone_root(f, target, lo, hi, *, maxiter: int = 200, xtol: float = 0.0) -
         lo[active], hi[active], flo[active], fhi[active] = new_lo, new_hi, new_flo, new_fhi
         x[active] = xn
         done[active] = fx == 0.0
-    return x
+    return x.reshape(shape)
 
 
 def expand_bracket(f, target, lo, hi, *, step: float = 1.0, maxiter: int = 200):
     """Grow [lo, hi] until an increasing f brackets target (f(lo) ≤ target ≤ f(hi))."""
-    target, lo, hi = (np.array(a, dtype=float) for a in np.broadcast_arrays(target, lo, hi))
-    everything = np.arange(lo.size).reshape(lo.shape)
+    target, lo, hi = np.broadcast_arrays(target, lo, hi)
+    shape = lo.shape
+    target, lo, hi = (np.array(a, dtype=float).ravel() for a in (target, lo, hi))
+    everything = np.arange(lo.size)
     s = np.full(lo.shape, float(step))
     for _ in range(maxiter):
-        below = f(lo, everything) > target
-        above = f(hi, everything) < target
+        below = np.asarray(f(lo, everything)).ravel() > target
+        above = np.asarray(f(hi, everything)).ravel() < target
         if not (np.any(below) or np.any(above)):
-            return lo, hi
+            return lo.reshape(shape), hi.reshape(shape)
         lo = np.where(below, lo - s, lo)
         hi = np.where(above, hi + s, hi)
         s = np.where(below | above, 2.0 * s, s)
