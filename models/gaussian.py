@@ -67,6 +67,16 @@ class GaussianRoughSurface(RoughSurface):
         return self.sigma**1.5 * gw_difference(1.5, h / self.sigma, g / self.sigma)
 
     def slip_load_integral(self, h, g):
-        """S = J(h) − J(h + g) − T  [µm^{3/2}] (T by quadrature; S ≥ 0)."""
+        """S = ∫_h^{h+g} (z − h)^{3/2} Φ dz  [µm^{3/2}].
+
+        S = [J(h) − J(h + g)] − T where T ≤ half of the difference (no cancellation there),
+        otherwise by quadrature with the (z − h)^{3/2} weight.
+        """
         h, g = self._hg(h, g)
-        return np.maximum(self.load_integral_difference(h, g) - self.stick_load_integral(h, g), 0)
+        diff = self.load_integral_difference(h, g)
+        stick = self.stick_load_integral(h, g)
+        out = np.maximum(diff - stick, 0.0)
+        direct = stick > 0.5 * diff
+        if np.any(direct):
+            out[direct] = super().slip_load_integral(h[direct], g[direct])
+        return out
