@@ -120,10 +120,10 @@ class HeightDensity:
         """(mean, standard deviation) [µm] by quadrature."""
         from ._quadrature import integrate_pdf
 
-        m = integrate_pdf(lambda z: z * self.pdf(z), self.support, self.breakpoints, self.scale)
-        m2 = integrate_pdf(
-            lambda z: (z - m) ** 2 * self.pdf(z), self.support, self.breakpoints, self.scale
-        )
+        args = (self.support, self.breakpoints, self.scale)
+        tol = 1e-14 * self.scale
+        m = integrate_pdf(lambda z: z * self.pdf(z), *args, epsabs=tol)
+        m2 = integrate_pdf(lambda z: (z - m) ** 2 * self.pdf(z), *args, epsabs=tol * self.scale)
         return m, math.sqrt(m2)
 
     def __repr__(self) -> str:

@@ -5,7 +5,7 @@ Everything is closed form. With x := g_N0/σ* = g_T/(μλ):
 * J(h) = Γ(5/2) σ*^{3/2} e^{−h/σ*}, A(h) = σ* e^{−h/σ*}, ∫_h^∞ Φ = e^{−h/σ*};
 * F̂_T = 1 − e^{−x}                      (Eq 9), so x = −log1p(−F̂_T);
 * F̂_ST = F̂_T − P(5/2, x) = Q(5/2, x) − e^{−x}  (Eq 12; P, Q regularised incomplete gamma);
-* Â_ST = e^{−x}(1 + x)                    (Eq 15).
+* Â_ST = e^{−x}(1 + x) = Q(2, x)           (Eq 15).
 
 None of these depends on the load level, so ratios and the loading curve need no load scale;
 A_r ∝ F_N. Numerics: the erf form of P printed in the paper cancels for small x (and
@@ -108,11 +108,15 @@ class ExponentialRoughSurface(RoughSurface):
         return _stick_force_ratio(F, x, 1.0 - F)
 
     def stick_area_ratio(self, FT_hat, normal_load=None, *, separation=None):
-        """Â_ST(F̂_T) = (1 − F̂_T)(1 − ln(1 − F̂_T))  (Eq 15); 0 at F̂_T = 1."""
+        """Â_ST(F̂_T) = (1 − F̂_T)(1 − ln(1 − F̂_T)) = Q(2, x)  (Eq 15); 0 at F̂_T = 1.
+
+        Below F̂_T = 1/2 it is 1 − P(2, x) (monotone after rounding: 1 − x²/2 + …); above,
+        (1 − F̂_T)(1 + x) with 1 − F̂_T exact.
+        """
         F = check_ratio(FT_hat)
         with np.errstate(divide="ignore", invalid="ignore"):
             x = -np.log1p(-F)
-            out = (1.0 - F) * (1.0 + x)
+            out = np.where(F <= 0.5, 1.0 - sc.gammainc(2.0, x), (1.0 - F) * (1.0 + x))
         return np.where(F == 1.0, 0.0, out)
 
 

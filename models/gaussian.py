@@ -2,8 +2,9 @@
 
 J(h) = σ*^{3/2} F_{3/2}(h/σ*), A(h) = σ* F_1(h/σ*), ∫_h^∞ Φ = F_0(h/σ*), with the GW integrals
 of :mod:`models.gw` (≤ 1e-14 relative). J(d) − J(d0) uses ``gw_difference`` (no cancellation
-for tiny slips). The stick part T (Eq 7) has no GW closed form: it is integrated by adaptive
-quadrature (:mod:`models._quadrature`), with its bracket written without cancellation.
+for tiny slips). The slip and stick parts S, T (Eqs 10, 7) have no GW closed form: S is
+integrated by adaptive quadrature (:mod:`models._quadrature`), and T = [J(d) − J(d0)] − S
+while S is the smaller part, by direct quadrature of its cancellation-free bracket otherwise.
 
 Here the stick/slip split depends on the load level (through t = d/σ*), so the ratio methods
 take ``normal_load`` [N] (needs the load scale E, radius, density, nominal_area) or the mean
@@ -67,16 +68,18 @@ class GaussianRoughSurface(RoughSurface):
         return self.sigma**1.5 * gw_difference(1.5, h / self.sigma, g / self.sigma)
 
     def slip_load_integral(self, h, g):
-        """S = ∫_h^{h+g} (z − h)^{3/2} Φ dz  [µm^{3/2}].
+        """S = ∫_h^{h+g} (z − h)^{3/2} Φ dz  [µm^{3/2}], by quadrature with the (z − h)^{3/2}
+        end-point weight (QAWS)."""
+        return super().slip_load_integral(h, g)
 
-        S = [J(h) − J(h + g)] − T where T ≤ half of the difference (no cancellation there),
-        otherwise by quadrature with the (z − h)^{3/2} weight.
-        """
+    def stick_load_integral(self, h, g):
+        """T (Eq 7) [µm^{3/2}]: [J(h) − J(h + g)] − S while S is at most half the difference
+        (no cancellation, and T ≤ J(h) − J(h + g) exactly), else by direct quadrature."""
         h, g = self._hg(h, g)
         diff = self.load_integral_difference(h, g)
-        stick = self.stick_load_integral(h, g)
-        out = np.maximum(diff - stick, 0.0)
-        direct = stick > 0.5 * diff
+        slip = super().slip_load_integral(h, g)
+        out = diff - slip
+        direct = slip > 0.5 * diff
         if np.any(direct):
-            out[direct] = super().slip_load_integral(h[direct], g[direct])
+            out[direct] = super().stick_load_integral(h[direct], g[direct])
         return out

@@ -390,7 +390,8 @@ class RoughSurface:
         if np.any(ok):
             dd, gg = d[ok], g[ok]
             out[ok] = self.stick_load_integral(dd, gg) / self.load_integral(dd)
-        return out
+        # F̂_ST ≤ F̂_T holds exactly; guard against a last-ulp excess from the root solve
+        return np.minimum(out, F)
 
     def stick_area_ratio(self, FT_hat, normal_load=None, *, separation=None):
         """Â_ST = A_ST/A_r as a function of F̂_T ∈ [0, 1] (Eq 15 in general form)."""
@@ -405,7 +406,8 @@ class RoughSurface:
             d0 = dd + gg
             a_st = self.area_integral(d0) + gg * self.tail_probability(d0)
             out[ok] = a_st / self.area_integral(dd)
-        return out
+        # A_ST ≤ A_r exactly; guard against a last-ulp excess at tiny slips
+        return np.minimum(out, 1.0)
 
     def __repr__(self) -> str:
         keys = ["sigma", "nu", "mu", *_LOAD_SCALE_KEYS]
