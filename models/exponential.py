@@ -92,16 +92,19 @@ class ExponentialRoughSurface(RoughSurface):
     # ---------------------------------------------------------------- ratios (load independent)
     def force_ratio(self, g_T, normal_load=None, *, separation=None):
         """F̂_T = 1 − exp(−g_T/(μλ))  (Eq 9); independent of the load."""
+        _check_unused_load(normal_load, separation)
         return -np.expm1(-self.stick_threshold(g_T) / self.sigma)
 
     def stick_gap(self, FT_hat, normal_load=None, *, separation=None):
         """g_N0 = −σ* log(1 − F̂_T)  [µm] (inverse of Eq 9); inf at F̂_T = 1."""
+        _check_unused_load(normal_load, separation)
         F = check_ratio(FT_hat)
         with np.errstate(divide="ignore"):
             return -self.sigma * np.log1p(-F)
 
     def stick_force_ratio(self, FT_hat, normal_load=None, *, separation=None):
         """F̂_ST(F̂_T) = F̂_T − P(5/2, x), x = −ln(1 − F̂_T)  (Eq 12); exact to ~1e-15."""
+        _check_unused_load(normal_load, separation)
         F = check_ratio(FT_hat)
         with np.errstate(divide="ignore"):
             x = -np.log1p(-F)
@@ -113,11 +116,22 @@ class ExponentialRoughSurface(RoughSurface):
         Below F̂_T = 1/2 it is 1 − P(2, x) (monotone after rounding: 1 − x²/2 + …); above,
         (1 − F̂_T)(1 + x) with 1 − F̂_T exact.
         """
+        _check_unused_load(normal_load, separation)
         F = check_ratio(FT_hat)
         with np.errstate(divide="ignore", invalid="ignore"):
             x = -np.log1p(-F)
             out = np.where(F <= 0.5, 1.0 - sc.gammainc(2.0, x), (1.0 - F) * (1.0 + x))
         return np.where(F == 1.0, 0.0, out)
+
+
+def _check_unused_load(normal_load, separation) -> None:
+    """The exponential ratios do not depend on the load; still reject nonsense if given."""
+    if normal_load is not None:
+        F_N = check_finite_array("normal_load", normal_load, unit="N")
+        if np.any(F_N <= 0.0):
+            raise ModelParameterError(f"normal_load must be > 0 [N], got {normal_load!r}")
+    if separation is not None:
+        check_finite_array("separation", separation, unit="µm")
 
 
 def _stick_force_ratio(F: np.ndarray, x: np.ndarray, m: np.ndarray) -> np.ndarray:

@@ -58,6 +58,16 @@ def _check_order(n: float, allowed=(0, 0.5, 1, 1.5)) -> float:
     return float(n)
 
 
+def _finite(t) -> np.ndarray:
+    t = np.asarray(t, dtype=float)
+    if not np.all(np.isfinite(t)):
+        from .errors import ModelParameterError
+
+        bad = t[~np.isfinite(t)].ravel()[0] if t.ndim else t
+        raise ModelParameterError(f"t must be finite, got {bad!r}")
+    return t
+
+
 def _exp_minus_half_square(t: np.ndarray) -> np.ndarray:
     """exp(−t²/2) with t² = hi + lo split exactly (Veltkamp/Dekker)."""
     hi = t * t
@@ -117,7 +127,7 @@ def _g1(t: np.ndarray, g0: np.ndarray) -> np.ndarray:
 def log_gw_integral(n: float, t) -> np.ndarray:
     """log F_n(t) for n ∈ {0, 1/2, 1, 3/2}; finite for every finite t (no underflow)."""
     n = _check_order(n)
-    t = np.asarray(t, dtype=float)
+    t = _finite(t)
     if n == 0:
         return sc.log_ndtr(-t)
     t1 = np.atleast_1d(t)
@@ -137,7 +147,7 @@ def log_gw_integral(n: float, t) -> np.ndarray:
 def gw_integral(n: float, t) -> np.ndarray:
     """F_n(t) = ∫_t^∞ (s − t)^n φ(s) ds for n ∈ {0, 1/2, 1, 3/2} (dimensionless)."""
     n = _check_order(n)
-    t = np.asarray(t, dtype=float)
+    t = _finite(t)
     t1 = np.atleast_1d(t)
     if n == 0:
         scaled = _exp_minus_half_square(t1) * (_INV_SQRT_2PI * _SQRT_PI_2)
@@ -161,7 +171,11 @@ def gw_difference(n: float, t, delta) -> np.ndarray:
     otherwise F_n(t + δ) is well below F_n(t) and the plain difference loses < 1 digit.
     """
     n = _check_order(n, (0.5, 1.5))
-    t, delta = np.broadcast_arrays(np.asarray(t, dtype=float), np.asarray(delta, dtype=float))
+    t, delta = np.broadcast_arrays(_finite(t), _finite(delta))
+    if np.any(delta < 0):
+        from .errors import ModelParameterError
+
+        raise ModelParameterError(f"delta must be >= 0, got {delta[delta < 0].ravel()[0]!r}")
     t1, d1 = np.atleast_1d(t).astype(float), np.atleast_1d(delta).astype(float)
     small = d1 * (np.maximum(t1, 0.0) + d1 + 1.0) <= 4.0
     out = np.empty(t1.shape)

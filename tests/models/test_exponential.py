@@ -154,3 +154,12 @@ def test_loading_curve_oracle_of_fig6():
     g1 = s.tangential_slip(F_T1, F_N1)
     assert g1 == pytest.approx(g_A + s.mu * s.lam * math.log(F_N1 / F_N0), rel=1e-13)
     np.testing.assert_allclose(s.mu * F_N1 - F_T1, s.mu * F_N0 - F_A, rtol=1e-14)
+
+
+def test_load_arguments_are_optional_but_checked():
+    s = surface()
+    assert s.stick_force_ratio(0.5, normal_load=10.0) == s.stick_force_ratio(0.5)
+    with pytest.raises(ModelParameterError, match="normal_load must be > 0"):
+        s.stick_force_ratio(0.5, normal_load=-1.0)
+    with pytest.raises(ModelParameterError, match="separation must be finite"):
+        s.stick_area_ratio(0.5, separation=float("nan"))

@@ -86,3 +86,11 @@ def test_shapes_and_scalars():
 def test_bad_order():
     with pytest.raises(ModelParameterError, match="n must be one of"):
         gw_integral(2, 0.0)
+
+
+@pytest.mark.parametrize("bad", [float("nan"), float("inf"), [0.0, -float("inf")]])
+def test_non_finite_t_is_an_error(bad):
+    with pytest.raises(ModelParameterError, match="t must be finite"):
+        gw_integral(1.5, bad)
+    with pytest.raises(ModelParameterError, match="t must be finite"):
+        log_gw_integral(0.5, bad)
