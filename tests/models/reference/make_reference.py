@@ -62,12 +62,40 @@ GAUSS_LOADING = [
 ]
 
 
+PROVENANCE = {
+    "generator": (
+        "tests/models/reference/make_reference.py (mpmath; functions in mp_reference.py)"
+    ),
+    "inputs": (
+        "every F_hat_T / delta is stored as float.hex: the exact binary value the code receives"
+    ),
+    "bodies": (
+        "[F.hex(), stick_force_ratio, stick_area_ratio]: mp_reference.<body>(F), dps >= "
+        "50 (50 + |log10 F| for sphere/cylinder so k = c/a keeps 50 digits); defining "
+        "integrals: exponential Eq 7/Eq 11 and Eq 14/Eq 13 over e^-v, sphere and cylinder"
+        " Mindlin stick traction integrated over the stick zone, flat Eqs 30-31"
+    ),
+    "gaussian": (
+        "[t = d/sigma*, F.hex(), stick_force_ratio, stick_area_ratio]: "
+        "mp_reference.gaussian(t, F), dps 40, bisection of J(t+delta) = (1-F) J(t)"
+    ),
+    "gaussian_loading": (
+        "[t, delta.hex() (= g_N0/sigma*), F_hat_T]: mp_reference.gaussian_force_ratio(t, "
+        "delta), dps 40"
+    ),
+    "gaussian_JA": (
+        "[t, J(t), A(t)] in units of sigma*: mp_reference.gaussian_J/gaussian_A, dps 40"
+    ),
+}
+
+
 def s(x):
     return ref.mp.nstr(x, 30)
 
 
 def main() -> None:
-    out = {"bodies": {}, "gaussian": [], "gaussian_loading": [], "gaussian_JA": []}
+    out = {"provenance": PROVENANCE, "bodies": {}, "gaussian": [], "gaussian_loading": []}
+    out["gaussian_JA"] = []
     grid = sorted(set(float(f) for f in EXTREMES + DENSE))
     for name, fn in ref.BODIES.items():
         rows = []
