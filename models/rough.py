@@ -77,11 +77,11 @@ def monotone_root(f, target, lo, hi, *, maxiter: int = 200, xtol: float = 0.0) -
         xn = np.where(bad | (it % 3 == 2), mid, xs)
         fx = np.asarray(f(xn, everything[active]), dtype=float).ravel() - target[active]
         left = fx < 0.0  # root to the right of xn
-        # Illinois: halve the stale end's function value
+        # Illinois-type: halve the function value kept at the end that did not move
         new_lo = np.where(left, xn, a)
         new_hi = np.where(left, b, xn)
-        new_flo = np.where(left, fx, fa * np.where(left, 1.0, 0.5))
-        new_fhi = np.where(left, fb * 0.5, fx)
+        new_flo = np.where(left, fx, 0.5 * fa)
+        new_fhi = np.where(left, 0.5 * fb, fx)
         lo[active], hi[active], flo[active], fhi[active] = new_lo, new_hi, new_flo, new_fhi
         x[active] = xn
         done[active] = fx == 0.0
