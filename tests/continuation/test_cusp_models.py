@@ -183,8 +183,8 @@ def test_co_fold_curve_cusp(derivatives):
 
 @pytest.mark.xfail(strict=True, reason=(
     "solver defect: with central-difference Jacobians the cusp coefficient <w, D2F[v,v]> is a "
-    "difference of differences (noise ~1e-6), Newton on [F; g; a] cannot reach locate_tol and "
-    "the Illinois fallback reports 'converged' with the state off by ~1.6e-7"))
+    "difference of differences (noise ~2e-8 at the cusp), Newton on [F; g; a] cannot reach "
+    "locate_tol and the Illinois fallback reports 'converged' with the state off by ~1.6e-7"))
 def test_co_fold_curve_cusp_central_differences():
     prob = co_problem("central")
     fc = fold_curve(prob, co_folds(prob)[0], free=("q2", "k"), bounds={"k": (0.0, 2.2)},
