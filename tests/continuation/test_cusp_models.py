@@ -181,10 +181,9 @@ def test_co_fold_curve_cusp(derivatives):
         assert np.max(np.abs(val) / scale(*args)) < 1e-10
 
 
-@pytest.mark.xfail(strict=True, reason=(
-    "solver defect: with central-difference Jacobians the cusp coefficient <w, D2F[v,v]> is a "
-    "difference of differences (noise ~2e-8 at the cusp), Newton on [F; g; a] cannot reach "
-    "locate_tol and the Illinois fallback reports 'converged' with the state off by ~1.6e-7"))
+# Regression: with central-difference Jacobians the cusp coefficient used to be a difference of
+# differences (noise ~2e-8 at the cusp) and the state came out ~1.6e-7 off; it is now a second
+# difference of w·F along v (noise ~1e-10).
 def test_co_fold_curve_cusp_central_differences():
     prob = co_problem("central")
     fc = fold_curve(prob, co_folds(prob)[0], free=("q2", "k"), bounds={"k": (0.0, 2.2)},
