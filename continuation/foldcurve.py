@@ -61,6 +61,7 @@ class FoldSystem(CurveSystem):
         self._keep = keep  # columns of ∂F/∂(u, p1) forming M
         self.b = None
         self.c = None
+        self._cache = None
         # differences of the Jacobian are reliable only if the Jacobian itself is exact
         self._exact_jacobian = getattr(problem, "has_jacobian", True) or getattr(
             problem, "derivatives", "") == "complex"
@@ -96,7 +97,18 @@ class FoldSystem(CurveSystem):
         return df[:, cols]
 
     def bordered_solve(self, z, df=None):
-        """``g``, right and left null vectors ``v`` (in M's columns), ``w``, the LU and df."""
+        """``g``, right and left null vectors ``v`` (in M's columns), ``w``, the LU and df.
+
+        The last result is cached: the corrector asks for the residual and the Jacobian at
+        the same point, and every test function asks again at each accepted point."""
+        key = z.tobytes()
+        if df is None and self._cache is not None and self._cache[0] == key:
+            return self._cache[1]
+        out = self._bordered_solve(z, df)
+        self._cache = (key, out)
+        return out
+
+    def _bordered_solve(self, z, df=None):
         df = self.df(z) if df is None else df
         lu = factor(bordered_square(self.m_matrix(df), self.b, self.c))
         e = np.zeros(self.n + 1)
@@ -118,8 +130,9 @@ class FoldSystem(CurveSystem):
         self.b /= np.linalg.norm(self.b)
         self.c /= np.linalg.norm(self.c)
         for _ in range(2):
-            _, v, w, _, _ = self.bordered_solve(z)
+            _, v, w, _, _ = self._bordered_solve(z)
             self.b, self.c = w / np.linalg.norm(w), v / np.linalg.norm(v)
+        self._cache = None
 
     # -- CurveSystem interface
     def residual(self, z):
@@ -146,6 +159,7 @@ class FoldSystem(CurveSystem):
     def refresh(self, z) -> None:
         _, v, w, _, _ = self.bordered_solve(z)
         self.b, self.c = w / np.linalg.norm(w), v / np.linalg.norm(v)
+        self._cache = None
 
     def fixed_values(self):
         return {k: v for k, v in self.params.items() if k not in (self.p1, self.p2)}
