@@ -1,0 +1,111 @@
+"""Results: a :class:`Branch` of column arrays with a list of :class:`SpecialPoint` records."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+#: statuses that count as a normal end of a branch
+SUCCESS_STATUSES = frozenset({"bound", "max_steps", "terminal_event", "closed_loop", "completed"})
+
+
+@dataclass(frozen=True)
+class SpecialPoint:
+    """A located point of interest on a branch.
+
+    ``kind``: ``"fold"`` (a turning point with respect to ``with_respect_to``),
+    ``"branch_point"``, ``"cusp"``, ``"event"``, ``"target"`` or ``"endpoint"``.
+    ``index``: its row in the branch arrays. ``values``: every unknown and parameter.
+    ``status``: ``"converged"`` (located to tolerance) or ``"guess"`` (only bracketed: the
+    ``interval`` of arclength holds it). ``details``: kind-specific data (test-function values,
+    null vectors, Newton iterations, ...).
+    """
+
+    kind: str
+    index: int
+    values: dict[str, float]
+    tangent: np.ndarray
+    status: str = "converged"
+    label: str = ""
+    with_respect_to: str | None = None
+    s: float = float("nan")
+    interval: tuple[float, float] | None = None
+    details: dict[str, Any] = field(default_factory=dict)
+
+    def __repr__(self) -> str:
+        vals = ", ".join(f"{k}={v:.10g}" for k, v in list(self.values.items())[:6])
+        wrt = f" wrt {self.with_respect_to}" if self.with_respect_to else ""
+        lab = f" {self.label!r}" if self.label else ""
+        return f"<SpecialPoint {self.kind}{wrt}{lab} #{self.index} [{self.status}]: {vals}>"
+
+
+class Branch:
+    """A traced curve: ``branch[name]`` is the array of an unknown or parameter along it.
+
+    Attributes: ``s`` (arclength), ``tangents`` (rows, in the order of ``variables``),
+    ``special_points``, ``status`` (``"bound"``, ``"max_steps"``, ``"terminal_event"``,
+    ``"closed_loop"``, ``"convergence_failure"``, ``"nonfinite_residual"``, ...), ``success``,
+    ``message`` (a sentence), ``stats`` (per-point arrays ``newton_iterations``,
+    ``rejected_steps``, ``residual_norm``, ``ds``), ``variables`` (the names of the traced
+    components, i.e. the unknowns and the free parameter(s)).
+    """
+
+    def __init__(self, columns: dict[str, np.ndarray], *, variables: tuple[str, ...],
+                 s: np.ndarray, tangents: np.ndarray, special_points: list[SpecialPoint],
+                 status: str, message: str, stats: dict[str, np.ndarray],
+                 info: dict[str, Any] | None = None) -> None:
+        self._columns = columns
+        self.variables = variables
+        self.s = s
+        self.tangents = tangents
+        self.special_points = special_points
+        self.status = status
+        self.message = message
+        self.stats = stats
+        self.info = dict(info or {})
+
+    @property
+    def success(self) -> bool:
+        return self.status in SUCCESS_STATUSES
+
+    def __getitem__(self, name: str) -> np.ndarray:
+        try:
+            return self._columns[name]
+        except KeyError:
+            raise KeyError(f"{name!r} is not on this branch; columns are "
+                           f"{sorted(self._columns)}") from None
+
+    def __contains__(self, name: str) -> bool:
+        return name in self._columns
+
+    def __len__(self) -> int:
+        return self.s.size
+
+    def keys(self):
+        return self._columns.keys()
+
+    def point(self, i: int) -> dict[str, float]:
+        """All values at row ``i``."""
+        return {k: float(v[i]) for k, v in self._columns.items()}
+
+    def special(self, kind: str | None = None, **match) -> list[SpecialPoint]:
+        """Special points of a kind (``with_respect_to=...``, ``label=...`` filter further)."""
+        out = [sp for sp in self.special_points if kind is None or sp.kind == kind]
+        for key, value in match.items():
+            out = [sp for sp in out if getattr(sp, key) == value]
+        return out
+
+    def __repr__(self) -> str:
+        kinds: dict[str, int] = {}
+        for sp in self.special_points:
+            kinds[sp.kind] = kinds.get(sp.kind, 0) + 1
+        return (f"<Branch {len(self)} points, status={self.status!r}, "
+                f"special points {kinds}>")
+
+    def plot(self, x: str, y: str, ax=None, *, special: bool = True, **kwargs):
+        """Plot column ``y`` against ``x`` (matplotlib imported lazily); returns the Axes."""
+        from .plotting import plot_branch
+
+        return plot_branch(self, x, y, ax=ax, special=special, **kwargs)

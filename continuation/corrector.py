@@ -1,0 +1,118 @@
+"""Newton correctors on the bordered system ``[G(z); r·z − c] = 0``."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from .errors import SingularMatrixError
+from .linalg import factor
+
+
+@dataclass
+class NewtonResult:
+    z: np.ndarray
+    converged: bool
+    iterations: int
+    residual_norm: float
+    lu: object | None  # factorization of the last bordered matrix (at z minus the last update)
+    reason: str = ""
+
+
+def _norm(x: np.ndarray) -> float:
+    """Max-norm; NaN if any entry is NaN or infinite (cheap for the tiny arrays of most
+    problems, which would otherwise spend more time in numpy's reductions than in algebra)."""
+    if x.size <= 32:
+        vals = x.tolist()
+        total = sum(map(abs, vals)) if vals else 0.0
+        return max(map(abs, vals)) if math.isfinite(total) and vals else (
+            0.0 if not vals else math.nan)
+    m = float(np.abs(x).max())
+    return m if math.isfinite(m) else math.nan
+
+
+def newton(system, z0: np.ndarray, row: np.ndarray, c: float, *, tol: float, step_tol: float,
+           max_iter: int, g0: np.ndarray | None = None) -> NewtonResult:
+    """Solve ``G(z) = 0``, ``row·z = c`` by Newton's method from ``z0``.
+
+    Converged when the max-norm of ``G`` is ≤ ``tol`` and the last update is
+    ≤ ``sqrt(step_tol)·(1 + |z|)``: under Newton's quadratic convergence the error left is
+    then of order ``step_tol`` (the next update would be about the square of the last).
+    """
+    z = z0.copy()
+    g = system.residual(z) if g0 is None else g0
+    rn = _norm(g)
+    if rn != rn:
+        return NewtonResult(z, False, 0, rn, None, "nonfinite")
+    m = g.size
+    rhs = np.empty(m + 1)
+    lu = None
+    sq_step_tol = math.sqrt(step_tol) * (1.0 + _norm(z))
+    eps_tol = 8 * np.finfo(float).eps * (1.0 + _norm(z))
+    sq_tol = math.sqrt(tol)
+    for k in range(1, max_iter + 1):
+        try:
+            lu = factor(system.bordered_jacobian(z, row))
+        except SingularMatrixError:
+            return NewtonResult(z, False, k, rn, None, "singular")
+        rhs[:m] = -g
+        rhs[m] = c - row @ z
+        dz = lu.solve(rhs)
+        z = z + dz
+        g = system.residual(z)
+        rn_new = _norm(g)
+        sn = _norm(dz)
+        if rn_new != rn_new or sn != sn:
+            return NewtonResult(z, False, k, rn_new, lu, "nonfinite")
+        if rn_new <= tol and sn <= sq_step_tol:
+            return NewtonResult(z, True, k, rn_new, lu)
+        # stagnation at rounding level: the update no longer changes z
+        if sn <= eps_tol and rn_new <= sq_tol:
+            return NewtonResult(z, True, k, rn_new, lu)
+        if k >= 3 and rn_new > 1e3 * max(rn, tol):
+            return NewtonResult(z, False, k, rn_new, lu, "diverging")
+        rn = rn_new
+    return NewtonResult(z, False, max_iter, rn, lu, "max_iterations")
+
+
+def damped_newton(system, z0: np.ndarray, row: np.ndarray, c: float, *, tol: float,
+                  step_tol: float, max_iter: int) -> NewtonResult:
+    """Fallback corrector: Newton with Armijo backtracking on ``||[G; r·z − c]||²``."""
+    z = z0.copy()
+    g = system.residual(z)
+    if not np.all(np.isfinite(g)):
+        return NewtonResult(z, False, 0, float("inf"), None, "nonfinite")
+    m = g.size
+    rhs = np.empty(m + 1)
+
+    def merit(zz, gg):
+        return float(gg @ gg + (row @ zz - c) ** 2)
+
+    phi = merit(z, g)
+    lu = None
+    for k in range(1, max_iter + 1):
+        try:
+            lu = factor(system.bordered_jacobian(z, row))
+        except SingularMatrixError:
+            return NewtonResult(z, False, k, _norm(g), None, "singular")
+        rhs[:m] = -g
+        rhs[m] = c - row @ z
+        dz = lu.solve(rhs)
+        lam = 1.0
+        while lam > 1e-6:
+            zt = z + lam * dz
+            gt = system.residual(zt)
+            if np.all(np.isfinite(gt)):
+                phit = merit(zt, gt)
+                if phit <= (1.0 - 1e-4 * lam) * phi or phit == 0.0:
+                    break
+            lam *= 0.5
+        else:
+            return NewtonResult(z, False, k, _norm(g), lu, "line_search")
+        z, g, phi = zt, gt, phit
+        rn = _norm(g)
+        if rn <= tol and _norm(lam * dz) <= step_tol * (1.0 + _norm(z)):
+            return NewtonResult(z, True, k, rn, lu)
+    return NewtonResult(z, False, max_iter, _norm(g), lu, "max_iterations")

@@ -1,0 +1,188 @@
+"""Derivative strategies: finite differences (forward, central), complex step, and a check
+of user-supplied Jacobians against finite differences."""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass, field
+
+import numpy as np
+import scipy.sparse as sp
+
+STRATEGIES = ("forward", "central", "complex")
+
+_EPS = np.finfo(float).eps
+_H_FORWARD = np.sqrt(_EPS)
+_H_CENTRAL = _EPS ** (1.0 / 3.0)
+_H_COMPLEX = 1e-30
+
+
+def _steps(x: np.ndarray, rel: float) -> np.ndarray:
+    h = rel * np.maximum(1.0, np.abs(x))
+    # make x + h exactly representable so the divided difference uses the true step
+    return (x + h) - x
+
+
+def column_groups(pattern) -> list[np.ndarray]:
+    """Greedy grouping of structurally orthogonal columns of a sparse pattern (CPR / Curtis–
+    Powell–Reid), so one residual evaluation per group gives all columns of the group."""
+    pat = sp.csc_matrix(pattern)
+    pat.data[:] = 1
+    n = pat.shape[1]
+    rows_of = [pat.indices[pat.indptr[j]:pat.indptr[j + 1]] for j in range(n)]
+    groups: list[list[int]] = []
+    used: list[np.ndarray] = []
+    for j in range(n):
+        for g, mask in enumerate(used):
+            if not mask[rows_of[j]].any():
+                groups[g].append(j)
+                mask[rows_of[j]] = True
+                break
+        else:
+            mask = np.zeros(pat.shape[0], dtype=bool)
+            mask[rows_of[j]] = True
+            groups.append([j])
+            used.append(mask)
+    return [np.asarray(g) for g in groups]
+
+
+def fd_jacobian(
+    f: Callable[[np.ndarray], np.ndarray],
+    x: np.ndarray,
+    *,
+    method: str = "central",
+    f0: np.ndarray | None = None,
+    sparsity=None,
+    groups: list[np.ndarray] | None = None,
+):
+    """Jacobian of ``f`` at ``x`` by finite differences or complex step.
+
+    With ``sparsity`` (a matrix whose nonzeros mark possible nonzeros of the Jacobian) the
+    columns are grouped so the cost is one (forward, complex) or two (central) evaluations
+    per group, and a CSR matrix is returned.
+    """
+    x = np.asarray(x, dtype=float)
+    n = x.size
+    if method == "forward":
+        if f0 is None:
+            f0 = np.asarray(f(x), dtype=float)
+        h = _steps(x, _H_FORWARD)
+    elif method == "central":
+        h = _steps(x, _H_CENTRAL)
+    elif method == "complex":
+        h = np.full(n, _H_COMPLEX)
+    else:
+        raise ValueError(f"derivative method must be one of {STRATEGIES}, got {method!r}")
+
+    def directional(d: np.ndarray) -> np.ndarray:
+        if method == "forward":
+            return np.asarray(f(x + d), dtype=float) - f0
+        if method == "central":
+            return (np.asarray(f(x + d), dtype=float) - np.asarray(f(x - d), dtype=float)) * 0.5
+        return np.imag(np.asarray(f(x + 1j * d), dtype=complex))
+
+    if sparsity is None:
+        cols = []
+        for j in range(n):
+            d = np.zeros(n)
+            d[j] = h[j]
+            cols.append(directional(d) / h[j])
+        return np.column_stack(cols) if cols else np.zeros((0, 0))
+
+    pat = sp.csc_matrix(sparsity)
+    if groups is None:
+        groups = column_groups(pat)
+    rows_list, cols_list, vals_list = [], [], []
+    for g in groups:
+        d = np.zeros(n)
+        d[g] = h[g]
+        df = directional(d)
+        for j in g:
+            rows = pat.indices[pat.indptr[j]:pat.indptr[j + 1]]
+            rows_list.append(rows)
+            cols_list.append(np.full(rows.size, j))
+            vals_list.append(df[rows] / h[j])
+    m = pat.shape[0]
+    if not rows_list:
+        return sp.csr_matrix((m, n))
+    return sp.csr_matrix(
+        (np.concatenate(vals_list), (np.concatenate(rows_list), np.concatenate(cols_list))),
+        shape=(m, n),
+    )
+
+
+def fd_derivative(f: Callable[[float], np.ndarray], x: float, *, method: str = "central"):
+    """Derivative of a vector function of one real variable."""
+    if method == "complex":
+        return np.imag(np.asarray(f(x + 1j * _H_COMPLEX), dtype=complex)) / _H_COMPLEX
+    if method == "forward":
+        h = (x + _H_FORWARD * max(1.0, abs(x))) - x
+        return (np.asarray(f(x + h), dtype=float) - np.asarray(f(x), dtype=float)) / h
+    h = (x + _H_CENTRAL * max(1.0, abs(x))) - x
+    return (np.asarray(f(x + h), dtype=float) - np.asarray(f(x - h), dtype=float)) / (2 * h)
+
+
+@dataclass(frozen=True)
+class JacobianCheck:
+    """Result of :func:`check_jacobian`.
+
+    ``ok`` is True when every entry agrees with central differences within the tolerance;
+    ``worst`` lists (row, column name, supplied, finite-difference) for the worst entries.
+    """
+
+    ok: bool
+    max_error: float
+    worst: list[tuple[int, str, float, float]] = field(default_factory=list)
+    message: str = ""
+
+    def __bool__(self) -> bool:
+        return self.ok
+
+    def __str__(self) -> str:
+        return self.message
+
+
+def check_jacobian(problem, u, p=None, *, rtol: float = 1e-6, atol: float = 1e-8,
+                   show: int = 5) -> JacobianCheck:
+    """Compare a problem's Jacobian and parameter derivatives with central differences.
+
+    The error of an entry is ``|supplied − fd| / (atol + rtol·max(|fd|, scale))`` with
+    ``scale`` the largest magnitude in the column; an entry fails when that exceeds 1.
+    """
+    u = np.asarray(u, dtype=float)
+    p = dict(problem.params if p is None else p)
+    names = list(problem.unknowns) + list(p)
+    supplied = problem.jacobian(u, p)
+    supplied = supplied.toarray() if sp.issparse(supplied) else np.asarray(supplied, float)
+    cols = [supplied]
+    fd_cols = [fd_jacobian(lambda v: np.asarray(problem.residual(v, p), float), u,
+                           method="central")]
+    for name in p:
+        cols.append(np.asarray(problem.param_jacobian(u, p, name), float)[:, None])
+
+        def fp(val, name=name):
+            q = dict(p)
+            q[name] = val
+            return np.asarray(problem.residual(u, q), float)
+
+        fd_cols.append(np.asarray(fd_derivative(fp, float(p[name])), float)[:, None])
+    a = np.hstack(cols)
+    b = np.hstack(fd_cols)
+    scale = np.maximum(np.abs(b), np.abs(b).max(axis=0, keepdims=True))
+    err = np.abs(a - b) / (atol + rtol * scale)
+    max_error = float(err.max()) if err.size else 0.0
+    order = np.argsort(err, axis=None)[::-1][:show]
+    worst = []
+    for flat in order:
+        i, j = np.unravel_index(flat, err.shape)
+        if err[i, j] > 1.0:
+            worst.append((int(i), names[j], float(a[i, j]), float(b[i, j])))
+    ok = max_error <= 1.0
+    if ok:
+        message = f"Jacobian agrees with central differences (max scaled error {max_error:.3g})"
+    else:
+        lines = [f"row {i}, d/d{n}: supplied {x:.10g}, finite differences {y:.10g}"
+                 for i, n, x, y in worst]
+        message = (f"Jacobian disagrees with central differences (max scaled error "
+                   f"{max_error:.3g} with rtol={rtol}, atol={atol}):\n  " + "\n  ".join(lines))
+    return JacobianCheck(ok=ok, max_error=max_error, worst=worst, message=message)

@@ -1,0 +1,69 @@
+"""Exceptions raised by the continuation package.
+
+Bad input raises subclasses of :class:`ValueError`; numerical failure raises subclasses of
+:class:`ContinuationError` that carry the state at which the failure happened.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+
+
+class OptionsError(ValueError):
+    """An option has a value outside its allowed range (the message names field and value)."""
+
+
+class ProblemDefinitionError(ValueError):
+    """A problem, starting point or call argument is malformed."""
+
+
+class ContinuationError(RuntimeError):
+    """Base class of numerical failures during continuation."""
+
+    def __init__(self, message: str, *, values: Mapping[str, float] | None = None) -> None:
+        super().__init__(message)
+        self.values = dict(values or {})
+
+
+def _format_values(values: Mapping[str, float], limit: int = 6) -> str:
+    items = list(values.items())
+    text = ", ".join(f"{k}={v:.10g}" for k, v in items[:limit])
+    if len(items) > limit:
+        text += f", ... ({len(items) - limit} more)"
+    return text
+
+
+class ConvergenceError(ContinuationError):
+    """Newton's method (and the fallback corrector) failed to converge.
+
+    Attributes: ``values`` (unknowns and parameters at the last good point), ``ds`` (the step
+    size at which the corrector gave up), ``iterations``, ``residual_norm`` and ``remedy``.
+    """
+
+    def __init__(
+        self,
+        what: str,
+        *,
+        values: Mapping[str, float],
+        ds: float,
+        iterations: int,
+        residual_norm: float,
+        remedy: str,
+    ) -> None:
+        self.ds = float(ds)
+        self.iterations = int(iterations)
+        self.residual_norm = float(residual_norm)
+        self.remedy = remedy
+        message = (
+            f"{what} at {_format_values(values)} with ds={ds:.3g}: {iterations} iterations, "
+            f"residual norm {residual_norm:.3g}. {remedy}"
+        )
+        super().__init__(message, values=values)
+
+
+class NonFiniteResidualError(ContinuationError):
+    """The residual (or its Jacobian) returned NaN or infinity."""
+
+
+class SingularMatrixError(ContinuationError):
+    """A linear system that must be regular was exactly singular."""

@@ -1,0 +1,123 @@
+"""Factorizations of the square (bordered) systems of continuation, dense or sparse.
+
+Dense systems call LAPACK's getrf/getrs directly: for the tiny systems of most problems the
+wrappers of numpy/scipy cost several times the factorization itself.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import scipy.sparse as sp
+import scipy.sparse.linalg as spla
+from scipy.linalg import lapack
+
+from .errors import SingularMatrixError
+
+_getrf = lapack.dgetrf
+_getrs = lapack.dgetrs
+
+
+def permutation_parity(perm: np.ndarray) -> int:
+    """+1 for an even permutation, −1 for an odd one (vectorised cycle count)."""
+    perm = np.asarray(perm)
+    n = perm.size
+    label = np.minimum(np.arange(n), perm)
+    nxt = perm.copy()
+    # pointer jumping: after k rounds label[i] = min over 2^k successors; log2(n) rounds
+    for _ in range(max(1, int(np.ceil(np.log2(max(n, 2))))) + 1):
+        label = np.minimum(label, label[nxt])
+        nxt = nxt[nxt]
+    cycles = int(np.count_nonzero(label == np.arange(n)))
+    return 1 if (n - cycles) % 2 == 0 else -1
+
+
+class DenseLU:
+    __slots__ = ("lu", "piv", "n")
+
+    def __init__(self, a: np.ndarray) -> None:
+        lu, piv, info = _getrf(a)
+        if info > 0 or not np.isfinite(lu[-1, -1]):
+            raise SingularMatrixError(f"matrix is singular (zero pivot {info})")
+        self.lu, self.piv, self.n = lu, piv, a.shape[0]
+
+    def solve(self, b: np.ndarray, trans: bool = False) -> np.ndarray:
+        x, _ = _getrs(self.lu, self.piv, b, trans=1 if trans else 0)
+        return x
+
+    def sign_det(self) -> float:
+        if self.n <= 16:
+            d = np.diagonal(self.lu).tolist()
+            odd = sum(1 for x in d if x < 0)
+            odd += sum(1 for i, q in enumerate(self.piv.tolist()) if i != q)
+        else:
+            odd = np.count_nonzero(np.diagonal(self.lu) < 0)
+            odd += np.count_nonzero(self.piv != np.arange(self.n))
+        return -1.0 if odd % 2 else 1.0
+
+    def log_abs_det(self) -> float:
+        return float(np.sum(np.log(np.abs(np.diagonal(self.lu)))))
+
+
+class SparseLU:
+    __slots__ = ("lu", "n")
+
+    def __init__(self, a) -> None:
+        try:
+            self.lu = spla.splu(sp.csc_matrix(a))
+        except RuntimeError as exc:  # SuperLU reports exact singularity this way
+            raise SingularMatrixError(f"matrix is singular ({exc})") from None
+        self.n = a.shape[0]
+
+    def solve(self, b: np.ndarray, trans: bool = False) -> np.ndarray:
+        return self.lu.solve(np.asarray(b, dtype=float), trans="T" if trans else "N")
+
+    def sign_det(self) -> float:
+        d = self.lu.U.diagonal()
+        s = float(np.prod(np.sign(d)))
+        return s * permutation_parity(self.lu.perm_r) * permutation_parity(self.lu.perm_c)
+
+    def log_abs_det(self) -> float:
+        return float(np.sum(np.log(np.abs(self.lu.U.diagonal()))))
+
+
+def factor(a):
+    """LU factorization of a square dense array or sparse matrix."""
+    return DenseLU(a) if type(a) is np.ndarray else (SparseLU(a) if sp.issparse(a) else
+                                                      DenseLU(np.asarray(a, dtype=float)))
+
+
+def bordered(dg, row: np.ndarray):
+    """The square matrix ``[dg; row]`` (``dg`` is m × (m+1), dense or sparse)."""
+    if sp.issparse(dg):
+        return sp.vstack([dg, sp.csr_matrix(row[None, :])], format="csc")
+    m, k = dg.shape
+    a = np.empty((m + 1, k))
+    a[:m] = dg
+    a[m] = row
+    return a
+
+
+def delete_column(dg, k: int):
+    if sp.issparse(dg):
+        keep = np.ones(dg.shape[1], dtype=bool)
+        keep[k] = False
+        return sp.csc_matrix(dg)[:, np.flatnonzero(keep)]
+    return np.delete(dg, k, axis=1)
+
+
+def bordered_square(m, b: np.ndarray, c: np.ndarray):
+    """``[[m, b], [c^T, 0]]`` for a square ``m``."""
+    if sp.issparse(m):
+        return sp.bmat([[m, sp.csc_matrix(b[:, None])], [sp.csr_matrix(c[None, :]), None]],
+                       format="csc")
+    n = m.shape[0]
+    a = np.zeros((n + 1, n + 1))
+    a[:n, :n] = m
+    a[:n, n] = b
+    a[n, :n] = c
+    return a
+
+
+def matvec_t(dg, w: np.ndarray) -> np.ndarray:
+    """``dg^T w`` for dense or sparse ``dg``."""
+    return dg.T @ w

@@ -1,0 +1,262 @@
+"""Locating special points inside an accepted step ``z_a -> z_b``.
+
+- folds (turning points of any component ``z_k``): Newton on the minimally augmented system
+  ``[G(z); g_k(z)] = 0``, with ``g_k`` from the bordered system of ``∂G/∂z`` without column
+  ``k`` (Govaerts, *Numerical methods for bifurcations of dynamical equilibria*, 2000) —
+  quadratic convergence, bordering vectors updated every iteration;
+- component targets and bounds: the corrector with the constraint ``z_k = value`` (exact);
+- events and branch points: the Illinois variant of regula falsi on the pseudo-arclength,
+  each evaluation a corrected point on the curve.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from .corrector import newton
+from .errors import SingularMatrixError
+from .linalg import bordered, bordered_square, delete_column, factor, matvec_t
+
+_EPS = np.finfo(float).eps
+
+
+@dataclass
+class Bracket:
+    """An accepted step: end points, unit tangents and the pseudo-arclength ``h`` of ``z_b``."""
+
+    system: object
+    z_a: np.ndarray
+    t_a: np.ndarray
+    z_b: np.ndarray
+    t_b: np.ndarray
+    weights: np.ndarray
+    options: object
+    row: np.ndarray = field(init=False)
+    h: float = field(init=False)
+
+    def __post_init__(self) -> None:
+        self.row = self.weights * self.t_a
+        self.h = float(self.row @ (self.z_b - self.z_a))
+
+    def sigma(self, z: np.ndarray) -> float:
+        return float(self.row @ (z - self.z_a))
+
+    def guess(self, theta: float) -> np.ndarray:
+        """Cubic Hermite interpolation between the end points (θ ∈ [0, 1])."""
+        s = theta
+        h00 = 2 * s**3 - 3 * s**2 + 1
+        h10 = s**3 - 2 * s**2 + s
+        h01 = -2 * s**3 + 3 * s**2
+        h11 = s**3 - s**2
+        return (h00 * self.z_a + h10 * self.h * self.t_a + h01 * self.z_b
+                + h11 * self.h * self.t_b)
+
+    def guess_derivative(self, theta: float) -> np.ndarray:
+        s = theta
+        d00 = 6 * s**2 - 6 * s
+        d10 = 3 * s**2 - 4 * s + 1
+        d01 = -6 * s**2 + 6 * s
+        d11 = 3 * s**2 - 2 * s
+        return (d00 * self.z_a / self.h + d10 * self.t_a + d01 * self.z_b / self.h
+                + d11 * self.t_b)
+
+    def point_at(self, sigma: float):
+        """The curve point whose pseudo-arclength from ``z_a`` (along ``t_a``) is ``sigma``."""
+        o = self.options
+        theta = sigma / self.h if self.h != 0 else 0.0
+        return newton(self.system, self.guess(theta), self.row, self.row @ self.z_a + sigma,
+                      tol=o.tol, step_tol=o.step_tol, max_iter=2 * o.max_newton_iterations)
+
+
+@dataclass
+class Located:
+    z: np.ndarray
+    sigma: float
+    status: str
+    iterations: int
+    details: dict = field(default_factory=dict)
+
+
+def tangent_at(system, z: np.ndarray, row: np.ndarray, weights: np.ndarray) -> np.ndarray:
+    """Unit tangent at ``z`` oriented so that ``row·t > 0``."""
+    lu = factor(bordered(system.jacobian(z), row))
+    e = np.zeros(z.size)
+    e[-1] = 1.0
+    t = lu.solve(e)
+    return t / np.sqrt(t @ (weights * t))
+
+
+def second_derivative_row(system, z: np.ndarray, v: np.ndarray, w: np.ndarray) -> np.ndarray:
+    """``∇_z (w·∂G/∂z(z) v) = w·D²G(z)[v, ·]`` by central differences of the Jacobian along
+    ``v`` (exact in exact arithmetic for quadratic G; error O(h²) otherwise)."""
+    vmax = float(np.max(np.abs(v)))
+    if vmax == 0.0:
+        return np.zeros(z.size)
+    h = _EPS ** (1.0 / 3.0) * max(1.0, float(np.max(np.abs(z)))) / vmax
+    return (matvec_t(system.jacobian(z + h * v), w) - matvec_t(system.jacobian(z - h * v), w)) / (
+        2.0 * h)
+
+
+def minimally_augmented(system, z: np.ndarray, k: int, b: np.ndarray, c: np.ndarray):
+    """Test function ``g`` of the fold in component ``k``, its right/left null vectors and the
+    Jacobian ``dg`` of G at ``z``: ``[[M, b], [c^T, 0]] [v; g] = [0; 1]`` with ``M = ∂G/∂z``
+    without column ``k``."""
+    dg = system.jacobian(z)
+    lu = factor(bordered_square(delete_column(dg, k), b, c))
+    e = np.zeros(b.size + 1)
+    e[-1] = 1.0
+    x = lu.solve(e)
+    y = lu.solve(e, trans=True)
+    return x[-1], x[:-1], y[:-1], dg
+
+
+def locate_fold(br: Bracket, k: int) -> Located | None:
+    """Newton on ``[G(z); g_k(z)] = 0`` started from the Hermite interpolant of the bracket."""
+    o = br.options
+    system = br.system
+    ta, tb = br.t_a[k], br.t_b[k]
+    theta = float(np.clip(ta / (ta - tb), 0.0, 1.0)) if ta != tb else 0.5
+    z = br.guess(theta)
+    keep = np.arange(z.size) != k
+    v0 = br.guess_derivative(theta)[keep]
+    v0 /= np.linalg.norm(v0)
+    b = c = v0
+    rhs_len = z.size
+    converged = False
+    it = 0
+    for it in range(1, o.max_locate_iterations + 1):
+        try:
+            g, v, w, dg = minimally_augmented(system, z, k, b, c)
+        except SingularMatrixError:
+            return None
+        G = system.residual(z)
+        vt = np.zeros(z.size)
+        vt[keep] = v
+        grad = -second_derivative_row(system, z, vt, w)
+        rhs = np.empty(rhs_len)
+        rhs[:-1] = -G
+        rhs[-1] = -g
+        try:
+            dz = factor(bordered(dg, grad)).solve(rhs)
+        except SingularMatrixError:
+            return None
+        z = z + dz
+        if not np.all(np.isfinite(z)):
+            return None
+        nb, nc = np.linalg.norm(w), np.linalg.norm(v)
+        if nb > 0 and nc > 0:
+            b, c = w / nb, v / nc
+        if np.max(np.abs(dz)) <= o.locate_tol * (1.0 + np.max(np.abs(z))):
+            converged = True
+            break
+    if not converged:
+        return None
+    res = system.residual(z)
+    if not np.all(np.isfinite(res)) or np.max(np.abs(res)) > max(o.tol, 1e3 * _EPS):
+        return None
+    sigma = br.sigma(z)
+    if not (-0.05 * abs(br.h) <= sigma * np.sign(br.h) <= 1.05 * abs(br.h)):
+        return None  # converged to a fold outside this step
+    return Located(z, sigma, "converged", it, {"method": "minimally augmented Newton",
+                                                "test_function": float(g)})
+
+
+def locate_component(br: Bracket, k: int, value: float) -> Located | None:
+    """The curve point with ``z_k = value`` exactly (corrector with constraint row ``e_k``)."""
+    o = br.options
+    za, zb = br.z_a[k], br.z_b[k]
+    theta = float(np.clip((value - za) / (zb - za), 0.0, 1.0)) if zb != za else 0.5
+    row = np.zeros(br.z_a.size)
+    row[k] = 1.0
+    res = newton(br.system, br.guess(theta), row, value, tol=o.tol, step_tol=o.step_tol,
+                 max_iter=2 * o.max_newton_iterations)
+    if not res.converged:
+        return None
+    z = res.z
+    z[k] = value  # the constraint is linear: snap away the last rounding
+    return Located(z, br.sigma(z), "converged", res.iterations,
+                   {"method": "Newton with the component fixed"})
+
+
+def locate_on_arc(br: Bracket, f, f_a: float, f_b: float) -> Located:
+    """Zero of ``f(z)`` along the arc by Illinois regula falsi on the pseudo-arclength."""
+    o = br.options
+    lo, hi, flo, fhi = 0.0, br.h, f_a, f_b
+    xtol = o.locate_tol * abs(br.h) + 4 * _EPS * abs(br.h)
+    side = 0
+    best = None
+    it = 0
+    for it in range(1, o.max_locate_iterations + 1):
+        sigma = (lo * fhi - hi * flo) / (fhi - flo)
+        res = br.point_at(sigma)
+        if not res.converged:
+            break
+        fz = f(res.z)
+        best = (res.z, sigma)
+        if fz == 0.0:
+            return Located(res.z, sigma, "converged", it, {"method": "Illinois"})
+        if np.sign(fz) == np.sign(flo):
+            lo, flo = sigma, fz
+            if side == -1:
+                fhi *= 0.5
+            side = -1
+        else:
+            hi, fhi = sigma, fz
+            if side == 1:
+                flo *= 0.5
+            side = 1
+        if abs(hi - lo) <= xtol:
+            return Located(res.z, sigma, "converged", it,
+                           {"method": "Illinois", "interval": (lo, hi)})
+    if best is None:
+        sigma = 0.5 * (lo + hi)
+        return Located(br.guess(sigma / br.h), sigma, "guess", it, {"interval": (lo, hi)})
+    return Located(best[0], best[1], "guess", it, {"method": "Illinois", "interval": (lo, hi)})
+
+
+def branch_point_directions(system, z: np.ndarray, t: np.ndarray, weights: np.ndarray,
+                            seed: int = 0) -> dict:
+    """Kernel of ``∂G/∂z`` at a simple branch point and the tangent of the other branch.
+
+    The kernel is spanned by the current tangent ``t`` and ``φ`` (found by inverse iteration
+    on the nearly singular ``[∂G/∂z; (Wt)^T]``); the left null vector ``ψ`` likewise. The
+    algebraic bifurcation equation ``ψ·D²G[αt + βφ]² = a11 α² + 2 a12 αβ + a22 β² = 0`` has
+    the root β = 0 (this branch) and ``(α, β) = (−a22, 2 a12)`` (the other branch).
+    """
+    rng = np.random.default_rng(seed)
+    dg = system.jacobian(z)
+    row = weights * t
+    try:
+        lu = factor(bordered(dg, row))
+        phi = rng.standard_normal(z.size)
+        psi = rng.standard_normal(z.size)
+        for _ in range(4):
+            phi = lu.solve(phi)
+            phi /= np.linalg.norm(phi)
+            psi = lu.solve(psi, trans=True)
+            psi /= np.linalg.norm(psi)
+        psi = psi[:-1]
+    except SingularMatrixError:
+        dense = dg.toarray() if hasattr(dg, "toarray") else dg
+        u_, s_, vt_ = np.linalg.svd(dense)
+        psi = u_[:, -1]
+        kernel = vt_[-2:]
+        phi = kernel[0] - (kernel[0] @ row) / (t @ row) * t
+        phi /= np.linalg.norm(phi)
+    phi = phi - (phi @ row) * t  # W-orthogonal to t
+    phi /= np.sqrt(phi @ (weights * phi))
+
+    def d2(v1, v2):
+        return second_derivative_row(system, z, v1, psi) @ v2
+
+    a11, a12, a22 = d2(t, t), d2(t, phi), d2(phi, phi)
+    scale = max(abs(a11), abs(a12), abs(a22), 1e-300)
+    if abs(a12) > 1e-8 * scale:
+        other = -a22 * t + 2.0 * a12 * phi
+    else:
+        other = phi  # degenerate bifurcation equation: fall back to the orthogonal direction
+    other /= np.sqrt(other @ (weights * other))
+    return {"null_vector": phi, "left_null_vector": psi, "other_tangent": other,
+            "abe_coefficients": (float(a11), float(a12), float(a22))}

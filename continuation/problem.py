@@ -1,0 +1,178 @@
+"""The problem protocol: residual R(u, p) = 0 with unknowns u and named parameters p."""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable, Mapping, Sequence
+from typing import Any, Protocol, runtime_checkable
+
+import numpy as np
+import scipy.sparse as sp
+
+from .derivatives import STRATEGIES, column_groups, fd_derivative, fd_jacobian
+from .errors import ProblemDefinitionError
+
+
+@runtime_checkable
+class ContinuationProblem(Protocol):
+    """What the solvers need from a problem.
+
+    ``residual`` is required; :class:`Problem` supplies ``jacobian`` and ``param_jacobian`` by
+    finite differences or complex step when the user does not.
+    """
+
+    unknowns: tuple[str, ...]
+    params: Mapping[str, float]
+
+    def residual(self, u: np.ndarray, p: Mapping[str, float]) -> np.ndarray: ...
+
+    def jacobian(self, u: np.ndarray, p: Mapping[str, float]) -> Any: ...
+
+    def param_jacobian(self, u: np.ndarray, p: Mapping[str, float], name: str) -> np.ndarray: ...
+
+
+class Problem:
+    """A system of ``n`` equations ``residual(u, p) = 0`` in ``n`` named unknowns.
+
+    Parameters
+    ----------
+    residual:
+        ``residual(u, p) -> array of n``; ``u`` is a float array (complex under the
+        ``"complex"`` strategy), ``p`` maps every parameter name to its value.
+    unknowns:
+        names of the unknowns, in the order of ``u``.
+    params:
+        parameter names and their values (the free parameter is chosen per computation).
+
+    Other parameters
+    ----------------
+    jacobian:
+        optional ``jacobian(u, p)`` returning the ``n × n`` matrix ``∂R/∂u``, dense or
+        ``scipy.sparse``.
+    param_jacobian:
+        optional ``param_jacobian(u, p, name)`` returning ``∂R/∂p[name]`` (length ``n``).
+    derivatives:
+        fallback for what is not supplied: ``"central"`` (default), ``"forward"`` or
+        ``"complex"`` (complex step; the residual must accept complex input).
+    sparsity:
+        the nonzero pattern of ``∂R/∂u`` (any sparse or dense matrix): finite differences then
+        use column grouping and return sparse Jacobians.
+    """
+
+    def __init__(
+        self,
+        residual: Callable[[np.ndarray, Mapping[str, float]], Any],
+        unknowns: Sequence[str],
+        params: Mapping[str, float],
+        *,
+        jacobian: Callable | None = None,
+        param_jacobian: Callable | None = None,
+        derivatives: str = "central",
+        sparsity=None,
+        name: str | None = None,
+    ) -> None:
+        if not callable(residual):
+            raise ProblemDefinitionError(f"residual must be callable, got {residual!r}")
+        if isinstance(unknowns, str):
+            unknowns = [unknowns]
+        unknowns = tuple(unknowns)
+        if not unknowns or not all(isinstance(x, str) and x for x in unknowns):
+            raise ProblemDefinitionError(
+                f"unknowns must be a non-empty sequence of names, got {unknowns!r}")
+        if len(set(unknowns)) != len(unknowns):
+            raise ProblemDefinitionError(f"unknowns has repeated names: {unknowns!r}")
+        if not isinstance(params, Mapping):
+            raise ProblemDefinitionError(
+                f"params must be a mapping name -> value, got {type(params).__name__}")
+        clean = {}
+        for key, value in params.items():
+            if not isinstance(key, str) or not key:
+                raise ProblemDefinitionError(f"parameter names must be strings, got {key!r}")
+            if key in unknowns:
+                raise ProblemDefinitionError(
+                    f"{key!r} is both an unknown and a parameter")
+            try:
+                value = float(value)
+            except (TypeError, ValueError):
+                raise ProblemDefinitionError(
+                    f"parameter {key!r} must be a real number, got {value!r}") from None
+            if not math.isfinite(value):
+                raise ProblemDefinitionError(f"parameter {key!r} must be finite, got {value!r}")
+            clean[key] = value
+        if derivatives not in STRATEGIES:
+            raise ProblemDefinitionError(
+                f"derivatives must be one of {STRATEGIES}, got {derivatives!r}")
+        for label, fn in (("jacobian", jacobian), ("param_jacobian", param_jacobian)):
+            if fn is not None and not callable(fn):
+                raise ProblemDefinitionError(f"{label} must be callable or None, got {fn!r}")
+        self._residual = residual
+        self._jacobian = jacobian
+        self._param_jacobian = param_jacobian
+        self.unknowns = unknowns
+        self.params = clean
+        self.derivatives = derivatives
+        self.name = name
+        self.sparsity = None if sparsity is None else sp.csc_matrix(sparsity)
+        if self.sparsity is not None and self.sparsity.shape != (len(unknowns),) * 2:
+            raise ProblemDefinitionError(
+                f"sparsity must be {len(unknowns)}×{len(unknowns)}, got {self.sparsity.shape}")
+        self._groups = None if self.sparsity is None else column_groups(self.sparsity)
+
+    @property
+    def n(self) -> int:
+        return len(self.unknowns)
+
+    @property
+    def has_jacobian(self) -> bool:
+        return self._jacobian is not None
+
+    def __repr__(self) -> str:
+        label = f" {self.name!r}" if self.name else ""
+        return f"<Problem{label}: unknowns={list(self.unknowns)}, params={self.params}>"
+
+    def with_params(self, **values: float) -> Problem:
+        """A copy with some parameter values changed."""
+        unknown = set(values) - set(self.params)
+        if unknown:
+            raise ProblemDefinitionError(
+                f"unknown parameter(s) {sorted(unknown)}; the problem has {sorted(self.params)}")
+        new = object.__new__(Problem)
+        new.__dict__.update(self.__dict__)
+        new.params = {**self.params, **{k: float(v) for k, v in values.items()}}
+        return new
+
+    def residual(self, u, p):
+        return np.asarray(self._residual(u, p))
+
+    def jacobian(self, u, p):
+        if self._jacobian is not None:
+            jac = self._jacobian(u, p)
+            if type(jac) is np.ndarray and jac.dtype == float:
+                return jac
+            return jac if sp.issparse(jac) else np.asarray(jac, dtype=float)
+        return fd_jacobian(lambda v: self._residual(v, p), u, method=self.derivatives,
+                           sparsity=self.sparsity, groups=self._groups)
+
+    def param_jacobian(self, u, p, name):
+        if self._param_jacobian is not None:
+            return np.asarray(self._param_jacobian(u, p, name), dtype=float)
+
+        def f(value):
+            q = dict(p)
+            q[name] = value
+            return self._residual(u, q)
+
+        return fd_derivative(f, float(p[name]), method=self.derivatives)
+
+
+def as_problem(obj) -> ContinuationProblem:
+    """Accept a :class:`Problem` or any object following :class:`ContinuationProblem`."""
+    if isinstance(obj, Problem):
+        return obj
+    if all(hasattr(obj, a) for a in ("unknowns", "params", "residual")):
+        if all(hasattr(obj, a) for a in ("jacobian", "param_jacobian")):
+            return obj
+        return Problem(obj.residual, obj.unknowns, obj.params)
+    raise ProblemDefinitionError(
+        f"expected a continuation.Problem (or an object with unknowns, params and residual), "
+        f"got {type(obj).__name__}")

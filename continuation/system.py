@@ -1,0 +1,136 @@
+"""Curve systems: an underdetermined system ``G(z) = 0``, ``G: R^{m+1} -> R^m``, whose
+solution set is the curve the tracer follows.
+
+For an ordinary branch ``z = (u, p_free)`` and ``G = R``. Fold curves and other augmented
+systems supply their own ``G`` with the same interface, so every special-point test, event,
+target and bound works on them unchanged.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+
+import numpy as np
+import scipy.sparse as sp
+
+from .errors import ProblemDefinitionError
+from .linalg import bordered
+
+
+class CurveSystem:
+    """Interface of what the tracer follows.
+
+    Attributes: ``names`` (one per component of z), ``dim`` (= m + 1), ``weights`` (of the
+    arclength inner product), ``problem``, ``fixed`` (values of parameters not in z).
+    """
+
+    names: tuple[str, ...]
+    dim: int
+    weights: np.ndarray
+
+    def residual(self, z: np.ndarray) -> np.ndarray:  # pragma: no cover - interface
+        raise NotImplementedError
+
+    def jacobian(self, z: np.ndarray):  # pragma: no cover - interface
+        raise NotImplementedError
+
+    def values(self, z: np.ndarray) -> dict[str, float]:  # pragma: no cover - interface
+        raise NotImplementedError
+
+    def index(self, name: str) -> int | None:
+        try:
+            return self.names.index(name)
+        except ValueError:
+            return None
+
+    def bordered_jacobian(self, z: np.ndarray, row: np.ndarray):
+        """The square matrix ``[∂G/∂z; row]``."""
+        return bordered(self.jacobian(z), row)
+
+    def refresh(self, z: np.ndarray) -> None:
+        """Called after each accepted point (augmented systems update their borders here)."""
+
+    def fixed_values(self) -> dict[str, float]:
+        """Parameters held fixed on this curve (reported as constant columns)."""
+        return {}
+
+
+def state_weights(n: int, n_params: int, state_weight: float | None) -> np.ndarray:
+    w = np.ones(n + n_params)
+    w[:n] = (1.0 / n) if state_weight is None else state_weight
+    return w
+
+
+class BranchSystem(CurveSystem):
+    """``G(u, p_free) = R(u, p)``: one free parameter, the others held at their values."""
+
+    def __init__(self, problem, free: str, params: Mapping[str, float] | None = None,
+                 state_weight: float | None = None) -> None:
+        self.problem = problem
+        params = dict(problem.params if params is None else params)
+        if free not in params:
+            raise ProblemDefinitionError(
+                f"free parameter {free!r} is not a parameter of the problem; "
+                f"parameters are {sorted(params)}")
+        self.free = free
+        self.params = params
+        self.n = len(problem.unknowns)
+        self.names = tuple(problem.unknowns) + (free,)
+        self.dim = self.n + 1
+        self.weights = state_weights(self.n, 1, state_weight)
+        self.sparse = None  # decided at the first Jacobian
+
+    def _p(self, z) -> dict[str, float]:
+        p = dict(self.params)
+        p[self.free] = z[-1]
+        return p
+
+    def residual(self, z):
+        r = self.problem.residual(z[:-1], self._p(z))
+        if r.shape != (self.n,):
+            raise ProblemDefinitionError(
+                f"residual must return {self.n} values (one per unknown), got shape {r.shape}")
+        return r
+
+    def _parts(self, z):
+        u = z[:-1]
+        p = self._p(z)
+        j = self.problem.jacobian(u, p)
+        fp = self.problem.param_jacobian(u, p, self.free)
+        if type(j) is not np.ndarray and sp.issparse(j):
+            return j, fp, True
+        if j.shape != (self.n, self.n) or fp.shape != (self.n,):
+            raise ProblemDefinitionError(
+                f"jacobian must be {self.n}×{self.n} and param_jacobian of length {self.n}, "
+                f"got shapes {j.shape} and {fp.shape}")
+        return j, fp, False
+
+    def jacobian(self, z):
+        j, fp, sparse = self._parts(z)
+        if sparse:
+            return sp.hstack([j, sp.csr_matrix(fp.reshape(-1, 1))], format="csr")
+        dg = np.empty((self.n, self.n + 1))
+        dg[:, :-1] = j
+        dg[:, -1] = fp
+        return dg
+
+    def bordered_jacobian(self, z, row):
+        j, fp, sparse = self._parts(z)
+        if sparse:
+            return sp.bmat([[j, sp.csc_matrix(fp.reshape(-1, 1))],
+                            [sp.csr_matrix(row[:-1][None, :]), row[-1]]], format="csc")
+        n = self.n
+        a = np.empty((n + 1, n + 1))
+        a[:n, :n] = j
+        a[:n, n] = fp
+        a[n] = row
+        return a
+
+    def fixed_values(self) -> dict[str, float]:
+        return {k: v for k, v in self.params.items() if k != self.free}
+
+    def values(self, z) -> dict[str, float]:
+        out = dict(zip(self.problem.unknowns, map(float, z[:-1])))
+        out.update(self.params)
+        out[self.free] = float(z[-1])
+        return out

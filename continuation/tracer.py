@@ -1,0 +1,634 @@
+"""Pseudo-arclength continuation: the step-level API (:class:`Tracer`) and :func:`trace`.
+
+A step: tangent (or secant) predictor, Newton corrector on the bordered system, acceptance
+tests (Newton convergence, tangent turn ≤ ``max_angle``, correction ≤ ds), step-size update
+from the Newton iteration count and the tangent turn, then the test functions of the special
+points: a sign change between the two ends of the step is located and inserted.
+
+The solver state is an immutable record replaced at every step; the branch so far is a
+linked list of points, so a step costs O(1) regardless of the branch length.
+"""
+
+from __future__ import annotations
+
+import logging
+import math
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
+from typing import Any, NamedTuple
+
+import numpy as np
+
+from .branch import Branch, SpecialPoint
+from .corrector import damped_newton, newton
+from .errors import (
+    ConvergenceError,
+    NonFiniteResidualError,
+    ProblemDefinitionError,
+)
+from .events import Event
+from .locate import (
+    Bracket,
+    Located,
+    branch_point_directions,
+    locate_component,
+    locate_fold,
+    locate_on_arc,
+    tangent_at,
+)
+from .linalg import bordered, factor
+from .options import ContinuationOptions
+from .problem import as_problem
+from .system import BranchSystem
+
+logger = logging.getLogger(__name__)
+
+_REMEDY = ("Try a smaller ds_min or ds_max, a better starting point, an analytic jacobian, or "
+           "check the residual for discontinuities; pass throw=False to keep the partial branch.")
+
+
+class _Point:
+    """One row of the branch (linked to the previous row)."""
+
+    __slots__ = ("z", "t", "s", "newton", "rejected", "residual", "ds", "special", "prev")
+
+    def __init__(self, z, t, s, newton, rejected, residual, ds, special, prev):
+        self.z, self.t, self.s = z, t, s
+        self.newton, self.rejected, self.residual, self.ds = newton, rejected, residual, ds
+        self.special = special  # tuple of (kind, label, wrt, status, interval, details)
+        self.prev = prev
+
+
+class TracerState(NamedTuple):
+    """Immutable solver state: the last point (with the branch behind it), the next step
+    size, the test-function values at the last point, the step count and, once finished,
+    the status and message."""
+
+    last: _Point
+    ds: float
+    tests: tuple
+    steps: int
+    status: str | None = None
+    message: str = ""
+    n_points: int = 1
+
+
+# ----------------------------------------------------------------------------- test functions
+
+
+@dataclass(frozen=True)
+class _Test:
+    kind: str
+    label: str = ""
+    wrt: str | None = None
+    k: int = -1  # component index (folds, targets, bounds)
+    value_at: float = 0.0  # target / bound value
+    direction: int = 0
+    terminal: bool = False
+    event: Event | None = None
+
+    def value(self, tracer: Tracer, z, t, sdet) -> float:
+        if self.kind == "fold":
+            return float(t[self.k])
+        if self.kind == "branch_point":
+            return sdet
+        if self.kind in ("target", "bound"):
+            return float(z[self.k] - self.value_at)
+        u, p = tracer.split(z)
+        val = float(self.event.function(u, p))
+        if not math.isfinite(val):
+            raise NonFiniteResidualError(
+                f"event {self.label!r} returned {val} at {tracer.system.values(z)}",
+                values=tracer.system.values(z))
+        return val
+
+    def crossed(self, old: float | None, new: float) -> bool:
+        if old is None or old == 0.0:
+            return False
+        if new == 0.0:
+            up = old < 0
+        elif (old < 0) == (new < 0):
+            return False
+        else:
+            up = new > 0
+        if self.direction == 0:
+            return True
+        return (self.direction > 0) == up
+
+    def locate(self, tracer: Tracer, br: Bracket, f_a: float, f_b: float) -> Located:
+        if self.kind == "fold":
+            found = locate_fold(br, self.k)
+            if found is None:  # Newton failed: fall back to regula falsi on the tangent
+                found = locate_on_arc(br, lambda z: tracer.tangent_through(z, br)[self.k],
+                                      f_a, f_b)
+                found.details["method"] = "Illinois on the tangent component (Newton failed)"
+            return found
+        if self.kind in ("target", "bound"):
+            found = locate_component(br, self.k, self.value_at)
+            if found is not None:
+                return found
+            return locate_on_arc(br, lambda z: z[self.k] - self.value_at, f_a, f_b)
+        if self.kind == "branch_point":
+            ref = tracer.bordered_det(br.z_a, br.row)
+
+            def f(z):
+                sgn, logdet = tracer.bordered_det(z, br.row)
+                return sgn * math.exp(min(logdet - ref[1], 700.0))
+
+            fa = ref[0]
+            sb, lb = tracer.bordered_det(br.z_b, br.row)
+            fb = sb * math.exp(min(lb - ref[1], 700.0))
+            if fa * fb > 0:  # the sign change was seen with a different border: bisect on it
+                fb = -fa
+            return locate_on_arc(br, f, fa, fb)
+
+        def fe(z):
+            return self.value(tracer, z, None, None)
+
+        return locate_on_arc(br, fe, f_a, f_b)
+
+
+# ----------------------------------------------------------------------------- the tracer
+
+
+class Tracer:
+    """Step-level continuation of one branch.
+
+    >>> tracer = Tracer(problem, free="b", bounds={"b": (-1, 1)})   # doctest: +SKIP
+    >>> state = tracer.init([-1.3247])
+    >>> while not tracer.done(state):
+    ...     state = tracer.step(state)
+    >>> branch = tracer.result(state)
+
+    The arguments are those of :func:`trace`. The tracer holds only configuration; all that
+    changes lives in the :class:`TracerState` records.
+    """
+
+    def __init__(
+        self,
+        problem,
+        *,
+        free: str,
+        params: Mapping[str, float] | None = None,
+        bounds: Mapping[str, tuple[float, float]] | None = None,
+        targets: Mapping[str, Sequence[float]] | None = None,
+        events: Sequence[Event] = (),
+        monitor: Sequence[str] = (),
+        direction: int = 1,
+        options: ContinuationOptions | None = None,
+        throw: bool = True,
+        **overrides: Any,
+    ) -> None:
+        problem = as_problem(problem)
+        if not isinstance(free, str):
+            raise ProblemDefinitionError(f"free must be a parameter name, got {free!r}")
+        options = options or ContinuationOptions()
+        if overrides:
+            options = options.replace(**overrides)
+        system = BranchSystem(problem, free, params, options.state_weight)
+        self._configure(system, options, bounds=bounds, targets=targets, events=events,
+                        monitor=monitor, direction=direction, throw=throw,
+                        fold_components=(free,))
+        self.problem = problem
+
+    @classmethod
+    def for_system(cls, system, *, options: ContinuationOptions, fold_components=(),
+                   **kwargs) -> Tracer:
+        """A tracer for any curve system (used by augmented systems such as fold curves)."""
+        self = object.__new__(cls)
+        self.problem = getattr(system, "problem", None)
+        self._configure(system, options, fold_components=fold_components, **kwargs)
+        return self
+
+    def _configure(self, system, options, *, bounds=None, targets=None, events=(), monitor=(),
+                   direction=1, throw=True, fold_components=(), extra_tests=()) -> None:
+        self.system = system
+        self.options = options
+        self.throw = bool(throw)
+        if direction not in (1, -1):
+            raise ProblemDefinitionError(f"direction must be +1 or -1, got {direction!r}")
+        self.direction = direction
+        self.weights = system.weights
+        tests: list[_Test] = []
+        if options.detect_folds:
+            for name in fold_components:
+                tests.append(_Test("fold", label=f"fold in {name}", wrt=name,
+                                   k=self._component(name, "free parameter")))
+        for name in monitor or ():
+            k = self._component(name, "monitor")
+            if name not in fold_components:
+                tests.append(_Test("fold", label=f"fold in {name}", wrt=name, k=k))
+        if options.detect_branch_points:
+            tests.append(_Test("branch_point", label="branch point"))
+        for name, values in (targets or {}).items():
+            k = self._component(name, "targets")
+            for v in np.atleast_1d(np.asarray(values, dtype=float)):
+                if not math.isfinite(v):
+                    raise ProblemDefinitionError(f"targets[{name!r}] must be finite, got {v}")
+                tests.append(_Test("target", label=f"{name}={v:g}", wrt=name, k=k,
+                                   value_at=float(v)))
+        self.bounds = {}
+        for name, pair in (bounds or {}).items():
+            k = self._component(name, "bounds")
+            try:
+                lo, hi = (float(x) for x in pair)
+            except (TypeError, ValueError):
+                raise ProblemDefinitionError(
+                    f"bounds[{name!r}] must be a pair (low, high), got {pair!r}") from None
+            if not lo < hi or math.isnan(lo) or math.isnan(hi):
+                raise ProblemDefinitionError(
+                    f"bounds[{name!r}] must satisfy low < high, got ({lo}, {hi})")
+            self.bounds[name] = (lo, hi)
+            if math.isfinite(lo):
+                tests.append(_Test("bound", label=f"bound {name}={lo:g}", wrt=name, k=k,
+                                   value_at=lo, direction=-1, terminal=True))
+            if math.isfinite(hi):
+                tests.append(_Test("bound", label=f"bound {name}={hi:g}", wrt=name, k=k,
+                                   value_at=hi, direction=+1, terminal=True))
+        for ev in events or ():
+            if not isinstance(ev, Event):
+                raise ProblemDefinitionError(f"events must be Event objects, got {ev!r}")
+            tests.append(_Test("event", label=ev.label, direction=ev.direction,
+                               terminal=ev.terminal, event=ev))
+        tests.extend(extra_tests)
+        self.tests = tuple(tests)
+        self._has_bp = any(t.kind == "branch_point" for t in tests)
+        self._e_last = np.zeros(system.dim)
+        self._e_last[-1] = 1.0
+
+    def _component(self, name: str, what: str) -> int:
+        k = self.system.index(name)
+        if k is None:
+            raise ProblemDefinitionError(
+                f"{what} names {name!r}, which is not traced on this curve; it must be one of "
+                f"{list(self.system.names)} (fixed parameters cannot be bounded or monitored)")
+        return k
+
+    # ------------------------------------------------------------------ helpers
+
+    def split(self, z):
+        vals = self.system.values(z)
+        u = np.array([vals[name] for name in self.problem.unknowns]) if self.problem else z
+        return u, vals
+
+    def wnorm(self, x) -> float:
+        return math.sqrt(float(x @ (self.weights * x)))
+
+    def bordered_det(self, z, row):
+        lu = factor(bordered(self.system.jacobian(z), row))
+        return lu.sign_det(), lu.log_abs_det()
+
+    def tangent_through(self, z, br: Bracket):
+        return tangent_at(self.system, z, br.row, self.weights)
+
+    def _values(self, z):
+        return self.system.values(z)
+
+    def _fail(self, state: TracerState, status: str, message: str, exc: Exception):
+        if self.throw:
+            raise exc
+        logger.warning("continuation stopped: %s", message)
+        return state._replace(status=status, message=message)
+
+    # ------------------------------------------------------------------ init / step / done
+
+    def init(self, u0, *, tangent=None) -> TracerState:
+        """Correct the starting point and compute the first tangent.
+
+        ``u0``: initial guess of the unknowns (at the problem's parameter values), or a
+        :class:`SpecialPoint` (a ``"branch_point"`` starts on the other branch).
+        """
+        o = self.options
+        system = self.system
+        start_label = "start"
+        skip_bp = False
+        if isinstance(u0, SpecialPoint):
+            z0 = np.array([u0.values[name] for name in system.names], dtype=float)
+            if hasattr(system, "params"):
+                for key in system.params:
+                    if key in u0.values and key not in system.names:
+                        system.params[key] = u0.values[key]
+            if u0.kind == "branch_point" and tangent is None:
+                if "other_tangent" not in u0.details:
+                    raise ProblemDefinitionError("this branch point carries no switching data")
+                other = np.array(u0.details["other_tangent"], dtype=float)
+                names = u0.details.get("names", system.names)
+                if tuple(names) != tuple(system.names):
+                    raise ProblemDefinitionError(
+                        f"branch switching needs the same free parameter as the branch the "
+                        f"branch point came from ({names[-1]!r})")
+                k = int(np.argmax(np.abs(other)))
+                tangent = other * (np.sign(other[k]) * self.direction)
+                start_label = "start (branch switch)"
+                skip_bp = True
+            elif u0.kind == "fold":
+                skip_bp = True
+        else:
+            u = np.atleast_1d(np.asarray(u0, dtype=float))
+            n = len(self.problem.unknowns) if self.problem is not None else system.dim - 1
+            if u.shape != (n,):
+                raise ProblemDefinitionError(
+                    f"u0 must hold {n} values (one per unknown {list(system.names[:n])}), "
+                    f"got shape {u.shape}")
+            if not np.all(np.isfinite(u)):
+                raise ProblemDefinitionError(f"u0 must be finite, got {u}")
+            z0 = np.concatenate([u, [system.params[system.free]]])
+
+        k_free = system.dim - 1
+        row = np.zeros(system.dim)
+        row[k_free] = 1.0
+        g0 = system.residual(z0)
+        if not np.all(np.isfinite(g0)):
+            raise NonFiniteResidualError(
+                f"the residual is not finite at the starting point {system.values(z0)}",
+                values=system.values(z0))
+        if tangent is None:
+            res = newton(system, z0, row, z0[k_free], tol=o.tol, step_tol=o.step_tol,
+                         max_iter=4 * o.max_newton_iterations, g0=g0)
+            if not res.converged:
+                raise ConvergenceError(
+                    "the starting point did not converge", values=system.values(z0), ds=0.0,
+                    iterations=res.iterations, residual_norm=res.residual_norm,
+                    remedy="Give a better initial guess u0 for these parameter values.")
+            z0 = res.z
+            t0 = self._initial_tangent(z0, k_free)
+            residual = res.residual_norm
+            iters = res.iterations
+        else:
+            t0 = np.asarray(tangent, dtype=float)
+            t0 = t0 / self.wnorm(t0)
+            residual = float(np.max(np.abs(g0)))
+            iters = 0
+        self.system.refresh(z0)
+        sdet = None if skip_bp else self._sdet(z0, t0)
+        tests = tuple(None if (t.kind == "branch_point" and sdet is None)
+                      else t.value(self, z0, t0, sdet) for t in self.tests)
+        first = _Point(z0, t0, 0.0, iters, 0, residual, o.ds,
+                       (("endpoint", start_label, None, "converged", None, {}),), None)
+        self._check_start_in_bounds(z0)
+        return TracerState(first, o.ds, tests, 0)
+
+    def _check_start_in_bounds(self, z0) -> None:
+        for name, (lo, hi) in self.bounds.items():
+            v = z0[self.system.index(name)]
+            if not lo <= v <= hi:
+                raise ProblemDefinitionError(
+                    f"the starting point has {name}={v:.10g}, outside bounds[{name!r}] = "
+                    f"({lo:g}, {hi:g})")
+
+    def _initial_tangent(self, z0, k_free):
+        system = self.system
+        e = np.zeros(system.dim)
+        e[-1] = 1.0
+        dg = system.jacobian(z0)
+        row = np.zeros(system.dim)
+        row[k_free] = 1.0
+        try:
+            t = factor(bordered(dg, row)).solve(e)
+        except Exception:  # starting at a fold in the free parameter: use the kernel
+            dense = dg.toarray() if hasattr(dg, "toarray") else np.asarray(dg)
+            t = np.linalg.svd(dense)[2][-1]
+            k_free = int(np.argmax(np.abs(t)))
+        t = t / self.wnorm(t)
+        if t[k_free] * self.direction < 0:
+            t = -t
+        return t
+
+    def _sdet(self, z, t):
+        lu = factor(bordered(self.system.jacobian(z), self.weights * t))
+        return lu.sign_det()
+
+    def done(self, state: TracerState) -> bool:
+        return state.status is not None
+
+    def step(self, state: TracerState) -> TracerState:
+        """One accepted continuation step (with its special points), or the end."""
+        if state.status is not None:
+            return state
+        o = self.options
+        system = self.system
+        W = self.weights
+        last = state.last
+        z, t = last.z, last.t
+        ds = state.ds
+        rejected = 0
+        reason = ""
+        secant = None
+        if o.predictor == "secant" and last.prev is not None:
+            d = z - last.prev.z
+            nd = self.wnorm(d)
+            if nd > 0:
+                secant = d / nd
+        direction = t if secant is None else secant
+        used_fallback = False
+        while True:
+            z_pred = z + ds * direction
+            row = W * direction
+            res = newton(system, z_pred, row, float(row @ z_pred), tol=o.tol,
+                         step_tol=o.step_tol, max_iter=o.max_newton_iterations)
+            if not res.converged and ds <= o.ds_min:
+                res = damped_newton(system, z_pred, row, float(row @ z_pred), tol=o.tol,
+                                    step_tol=o.step_tol, max_iter=5 * o.max_newton_iterations)
+                used_fallback = True
+            if res.converged:
+                t_new = res.lu.solve(self._e_last)
+                t_new /= math.sqrt(t_new @ (W * t_new))
+                cosang = float(t_new @ (W * t))
+                angle = math.degrees(math.acos(max(-1.0, min(1.0, cosang))))
+                dc = res.z - z_pred
+                correction = math.sqrt(dc @ (W * dc))
+                if (angle > o.max_angle or correction > ds) and ds > o.ds_min:
+                    reason = (f"tangent turned {angle:.1f} degrees" if angle > o.max_angle
+                              else "correction larger than the step")
+                    ds = max(0.5 * ds, o.ds_min)
+                    rejected += 1
+                    continue
+                break
+            reason = res.reason
+            if ds <= o.ds_min:
+                values = system.values(z)
+                if reason == "nonfinite":
+                    msg = (f"the residual is not finite within ds_min={o.ds_min:g} of "
+                           f"{_fmt(values)}; the branch stops there")
+                    return self._fail(state, "nonfinite_residual", msg,
+                                      NonFiniteResidualError(msg, values=values))
+                exc = ConvergenceError(
+                    f"Newton's method and the damped fallback failed ({reason})",
+                    values=values, ds=ds, iterations=res.iterations,
+                    residual_norm=res.residual_norm, remedy=_REMEDY)
+                return self._fail(state, "convergence_failure", str(exc), exc)
+            ds = max(0.5 * ds, o.ds_min)
+            rejected += 1
+
+        z1 = res.z
+        sdet = None
+        if self._has_bp:
+            sdet = res.lu.sign_det() * (1.0 if float(row @ t_new) > 0 else -1.0)
+        # step-size update
+        k = max(res.iterations, 1)
+        f_newton = o.target_newton_iterations / k
+        f_angle = o.target_angle / max(angle, 1e-12)
+        factor_ = min(o.growth, max(0.5, min(f_newton, f_angle)))
+        if rejected:
+            factor_ = min(factor_, 1.0)
+        ds_next = min(o.ds_max, max(o.ds_min, ds * factor_))
+        h = float(row @ (z1 - z))
+        new_point = _Point(z1, t_new, last.s + h, res.iterations, rejected, res.residual_norm,
+                           ds, None, last)
+        if used_fallback:
+            logger.info("step accepted by the damped fallback corrector at ds=%g", ds)
+        system.refresh(z1)
+
+        # test functions
+        new_tests = []
+        for tt in self.tests:
+            new_tests.append(None if (tt.kind == "branch_point" and sdet is None)
+                             else tt.value(self, z1, t_new, sdet))
+        crossings = [(tt, old, new) for tt, old, new in zip(self.tests, state.tests, new_tests)
+                     if tt.crossed(old, new)]
+        status = None
+        message = ""
+        n_points = state.n_points
+        if crossings:
+            br = Bracket(system, z, t, z1, t_new, W, o)
+            found = []
+            for tt, old, new in crossings:
+                loc = tt.locate(self, br, old, new)
+                found.append((loc.sigma, tt, loc))
+            found.sort(key=lambda item: item[0] * math.copysign(1.0, br.h))
+            prev = last
+            for sigma, tt, loc in found:
+                records = [self._record(tt, loc, br, last.s)]
+                if tt.terminal:
+                    status = "bound" if tt.kind == "bound" else "terminal_event"
+                    message = (f"the branch reached {tt.label}" if tt.kind == "bound"
+                               else f"terminal event {tt.label!r} occurred")
+                    if tt.kind != "bound":
+                        records.append(("endpoint", tt.label, tt.wrt, loc.status, None, {}))
+                tan = tangent_at(system, loc.z, br.row, W)
+                prev = _Point(loc.z, tan, last.s + loc.sigma, loc.iterations, 0,
+                              float(np.max(np.abs(system.residual(loc.z)))), 0.0,
+                              tuple(records), prev)
+                n_points += 1
+                if tt.terminal:
+                    break
+            if status is None:
+                new_point.prev = prev
+            else:
+                new_point = prev
+                new_tests = state.tests  # irrelevant once finished
+        if status is None:
+            n_points += 1
+        steps = state.steps + 1
+        if status is None and steps >= o.max_steps:
+            status = "max_steps"
+            message = f"the branch ended after max_steps={o.max_steps} steps"
+            new_point.special = (("endpoint", "max_steps", None, "converged", None, {}),)
+        return TracerState(new_point, ds_next, tuple(new_tests), steps, status, message,
+                           n_points)
+
+    def _record(self, tt: _Test, loc: Located, br: Bracket, s_a: float):
+        details = dict(loc.details)
+        details["iterations"] = loc.iterations
+        interval = (s_a, s_a + br.h)
+        if tt.kind == "bound":
+            return ("endpoint", tt.label, tt.wrt, loc.status, interval, details)
+        if tt.kind == "branch_point":
+            tan = tangent_at(self.system, loc.z, br.row, self.weights)
+            details.update(branch_point_directions(self.system, loc.z, tan, self.weights))
+            details["names"] = tuple(self.system.names)
+        return (tt.kind, tt.label, tt.wrt, loc.status, interval, details)
+
+    # ------------------------------------------------------------------ result
+
+    def result(self, state: TracerState) -> Branch:
+        """Assemble the :class:`Branch` (column arrays and special points) from a state."""
+        points = []
+        p = state.last
+        while p is not None:
+            points.append(p)
+            p = p.prev
+        points.reverse()
+        system = self.system
+        Z = np.array([pt.z for pt in points])
+        T = np.array([pt.t for pt in points])
+        s = np.array([pt.s for pt in points])
+        columns = {name: Z[:, i].copy() for i, name in enumerate(system.names)}
+        for name, value in system.fixed_values().items():
+            columns.setdefault(name, np.full(len(points), float(value)))
+        extra = system.extra_columns(Z) if hasattr(system, "extra_columns") else {}
+        columns.update(extra)
+        specials = []
+        for i, pt in enumerate(points):
+            for kind, label, wrt, status, interval, details in (pt.special or ()):
+                specials.append(SpecialPoint(
+                    kind=kind, index=i, values={k: float(v[i]) for k, v in columns.items()},
+                    tangent=T[i].copy(), status=status, label=label, with_respect_to=wrt,
+                    s=float(s[i]), interval=interval, details=details))
+        status = state.status or "running"
+        if state.status is None:
+            message = "the branch is still being traced (result of an unfinished state)"
+        else:
+            message = state.message
+        if not any(sp.kind == "endpoint" and sp.index == len(points) - 1 for sp in specials):
+            specials.append(SpecialPoint(
+                kind="endpoint", index=len(points) - 1,
+                values={k: float(v[-1]) for k, v in columns.items()}, tangent=T[-1].copy(),
+                status="converged", label=status, s=float(s[-1])))
+        stats = {
+            "newton_iterations": np.array([pt.newton for pt in points]),
+            "rejected_steps": np.array([pt.rejected for pt in points]),
+            "residual_norm": np.array([pt.residual for pt in points]),
+            "ds": np.array([pt.ds for pt in points]),
+        }
+        return Branch(columns, variables=tuple(system.names), s=s, tangents=T,
+                      special_points=specials, status=status, message=message, stats=stats,
+                      info={"steps": state.steps, "direction": self.direction})
+
+
+def _fmt(values: Mapping[str, float], limit: int = 6) -> str:
+    items = list(values.items())
+    return ", ".join(f"{k}={v:.10g}" for k, v in items[:limit]) + (" ..." if len(items) > limit
+                                                                     else "")
+
+
+def trace(problem, u0, *, free: str, **kwargs: Any) -> Branch:
+    """Trace the branch of ``problem`` through ``u0`` with ``free`` as the continuation
+    parameter.
+
+    Parameters
+    ----------
+    problem:
+        a :class:`~continuation.Problem` (or any object following its protocol).
+    u0:
+        guess of the unknowns at the problem's parameter values (corrected by Newton), or a
+        :class:`SpecialPoint`; a ``"branch_point"`` starts on the other branch through it.
+    free:
+        name of the parameter that varies along the branch.
+
+    Other parameters
+    ----------------
+    params:
+        parameter values overriding ``problem.params`` for this computation.
+    bounds:
+        ``{name: (low, high)}`` for any unknown or the free parameter: the branch ends exactly
+        on the bound it meets.
+    targets:
+        ``{name: [values]}``: points located exactly at these values and inserted.
+    events:
+        :class:`Event` objects, located and inserted (terminal ones end the branch).
+    monitor:
+        unknowns whose turning points are reported as folds too (``with_respect_to`` names
+        them): a snap-back is a turning point of a controlled displacement.
+    direction:
+        +1 (default) or −1: the sign of the free parameter's initial change.
+    options:
+        a :class:`ContinuationOptions`; keyword arguments named like its fields override it.
+    throw:
+        if False, failures return the partial branch with a status instead of raising.
+    """
+    tracer = Tracer(problem, free=free, **kwargs)
+    state = tracer.init(u0)
+    while state.status is None:
+        state = tracer.step(state)
+    return tracer.result(state)
