@@ -97,7 +97,9 @@ def test_targets_land_exactly():
         assert sp.values["b"] in (0.1, 0.2)
         assert sp.label == f"b={sp.values['b']}"
         x = sp.values["x"]
-        assert abs(x**3 - x - sp.values["b"]) <= 1e-12
+        # on the branch to the corrector's tolerance (default tol = 1e-10, as in the other
+        # branch checks of this suite)
+        assert abs(x**3 - x - sp.values["b"]) <= 1e-10
     # on the three sheets: x1 < -1/sqrt3 < x2 < 1/sqrt3 < x3
     xs = sorted(sp.values["x"] for sp in tg if sp.values["b"] == 0.1)
     assert xs[0] < -0.58 < xs[1] < 0.57 < xs[2]
@@ -250,7 +252,9 @@ def test_check_jacobian_accepts_correct_and_flags_wrong():
                    param_jacobian=pjac)
     rep = check_jacobian(good, u, p)
     assert rep.ok
-    assert rep.max_error < 1e-6
+    # max_error is scaled so that 1 is the threshold (|a - fd| / (atol + rtol |fd|)); the
+    # exact Jacobian of this polynomial residual must sit far below it
+    assert rep.max_error < 1e-2
 
     def wrong(q, pp):
         J = jac(q, pp).copy()
@@ -263,7 +267,7 @@ def test_check_jacobian_accepts_correct_and_flags_wrong():
     assert not rep.ok
     assert rep.max_error > 0.1
     text = getattr(rep, "message", None) or str(rep)
-    assert re.search(r"\(1,\s*0\)|\[1,\s*0\]|row 1\D+col(umn)?\s*0|\bv\b.*\bu\b", text), text
+    assert re.search(r"\(1,\s*0\)|\[1,\s*0\]|row 1\D+col(umn)?\s*0|row 1\b.*d/du\b", text), text
 
 
 def test_check_jacobian_sparse():
