@@ -211,11 +211,13 @@ def test_bratu_fd_sparse_n99999_reaches_and_locates_its_fold():
 
     n = 99_999
     case = orc.bratu_problem(n, "analytic", sparse=True)
-    # What a user would do: the state has 1e5 O(1) components, so in any unweighted 2-norm the
-    # arclength to the fold is ~ sqrt(N) * 0.7 ~ 250; start with ds ~ 1 and allow long steps.
+    # What a user would do: the state has 1e5 O(1) components, which in an unweighted 2-norm
+    # would put the fold ~ sqrt(N) * 0.7 ~ 250 arclength units away; ContinuationOptions
+    # documents that the state enters the arclength as a root-mean-square (state_weight = 1/n)
+    # "so large discretisations take the same steps as small ones": keep the default ds.
     t0 = time.perf_counter()
     br = trace(case.problem, u0=np.zeros(n), free="lam", bounds={"u49999": (-1.0, 2.0)},
-               ds=1.0, ds_max=50.0, max_steps=400)
+               max_steps=400)
     elapsed = time.perf_counter() - t0
     assert br.success, (br.status, br.message)
     assert br["u49999"][-1] == 2.0
@@ -498,3 +500,39 @@ def test_cohesive_linear_softening_under_crack_opening_control():
         if sp.status == "converged":
             assert any(abs(sp.values["W"] - wk) < 1e-8 and abs(sp.values["U"] - uk) < 1e-8
                        for wk, uk in kinks), sp.values
+
+
+# ---------------------------------------------------------------------------------------------
+# Order of branch point and limit point on either side of the published thresholds
+# ---------------------------------------------------------------------------------------------
+
+@pytest.mark.parametrize("H, bp_first", [(1.5, False), (2.0, True), (3.0, True)])
+def test_truss_2dof_order_of_branch_and_limit_point(H, bp_first):
+    """The branch point y^2 = H^2 - 2L^2 precedes the limit point y^2 = H^2/3 iff H > sqrt 3 L
+    (here L = 1; H = 1.5 lies between sqrt 2 and sqrt 3: limit point first)."""
+    ref = orc.truss_2dof_references(1.0, 1.0, H)
+    case = orc.truss_2dof_problem("analytic", 1.0, 1.0, H)
+    v_end = max(ref["bp_v"], ref["lp_v"]) + 0.2
+    br = trace(case.problem, u0=[0.0, 0.0], free="P", bounds={"v": (-0.5, v_end)})
+    assert br.success, (br.status, br.message)
+    order = [sp.kind for sp in sorted(br.special_points, key=lambda s: s.index)
+             if sp.kind in ("fold", "branch_point")]
+    assert order == (["branch_point", "fold"] if bp_first else ["fold", "branch_point"]), order
+    bp, lp = special(br, "branch_point")[0], special(br, "fold")[0]
+    assert bp.values["P"] == pytest.approx(ref["bp_P"], rel=1e-10)
+    assert lp.values["P"] == pytest.approx(ref["lp_P"], rel=1e-12)
+
+
+@pytest.mark.parametrize("e, bp_first", [(4.5, False), (5.0, True), (6.0, True)])
+def test_arch_order_of_branch_and_limit_point(e, bp_first):
+    """The first branch point precedes the first limit point iff e > sqrt 22 = 4.690."""
+    ref = orc.arch_references(e)
+    case = orc.arch_problem(e)
+    x_end = max(ref["bp"][0][0], ref["lp"][0][0]) + 0.5
+    br = trace(case.problem, u0=[0.0, 0.0], free="p", bounds={"xi1": (-1.0, x_end)})
+    assert br.success, (br.status, br.message)
+    order = [sp.kind for sp in sorted(br.special_points, key=lambda s: s.index)
+             if sp.kind in ("fold", "branch_point")]
+    assert order == (["branch_point", "fold"] if bp_first else ["fold", "branch_point"]), order
+    assert special(br, "branch_point")[0].values["p"] == pytest.approx(ref["bp"][0][1], rel=1e-10)
+    assert special(br, "fold")[0].values["p"] == pytest.approx(ref["lp"][0][1], rel=1e-12)
