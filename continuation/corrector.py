@@ -33,13 +33,21 @@ def _norm(x: np.ndarray) -> float:
     return m if math.isfinite(m) else math.nan
 
 
+def _singular_reason(a) -> str:
+    data = a.data if hasattr(a, "tocsr") else a
+    return "singular" if np.all(np.isfinite(data)) else "nonfinite"
+
+
 def newton(system, z0: np.ndarray, row: np.ndarray, c: float, *, tol: float, step_tol: float,
            max_iter: int, g0: np.ndarray | None = None) -> NewtonResult:
     """Solve ``G(z) = 0``, ``row·z = c`` by Newton's method from ``z0``.
 
     Converged when the max-norm of ``G`` is ≤ ``tol`` and the last update is
     ≤ ``sqrt(step_tol)·(1 + |z|)``: under Newton's quadratic convergence the error left is
-    then of order ``step_tol`` (the next update would be about the square of the last).
+    then of order ``step_tol`` (the next update would be about the square of the last); or,
+    whatever the residual, when the update is ≤ ``step_tol·(1 + |z|)`` (AUTO's test:
+    residuals with large terms, such as finite differences on fine grids, cannot get below
+    ``tol`` in floating point).
     """
     z = z0.copy()
     g = system.residual(z) if g0 is None else g0
@@ -50,13 +58,13 @@ def newton(system, z0: np.ndarray, row: np.ndarray, c: float, *, tol: float, ste
     rhs = np.empty(m + 1)
     lu = None
     sq_step_tol = math.sqrt(step_tol) * (1.0 + _norm(z))
-    eps_tol = 8 * np.finfo(float).eps * (1.0 + _norm(z))
-    sq_tol = math.sqrt(tol)
+    rel_step_tol = step_tol * (1.0 + _norm(z))
     for k in range(1, max_iter + 1):
+        a = system.bordered_jacobian(z, row)
         try:
-            lu = factor(system.bordered_jacobian(z, row))
+            lu = factor(a)
         except SingularMatrixError:
-            return NewtonResult(z, False, k, rn, None, "singular")
+            return NewtonResult(z, False, k, rn, None, _singular_reason(a))
         rhs[:m] = -g
         rhs[m] = c - row @ z
         dz = lu.solve(rhs)
@@ -68,8 +76,9 @@ def newton(system, z0: np.ndarray, row: np.ndarray, c: float, *, tol: float, ste
             return NewtonResult(z, False, k, rn_new, lu, "nonfinite")
         if rn_new <= tol and sn <= sq_step_tol:
             return NewtonResult(z, True, k, rn_new, lu)
-        # stagnation at rounding level: the update no longer changes z
-        if sn <= eps_tol and rn_new <= sq_tol:
+        # the relative update is below step_tol (AUTO's test): the residual is then at the
+        # rounding level of its own terms, which for badly scaled residuals exceeds tol
+        if sn <= rel_step_tol:
             return NewtonResult(z, True, k, rn_new, lu)
         if k >= 3 and rn_new > 1e3 * max(rn, tol):
             return NewtonResult(z, False, k, rn_new, lu, "diverging")
@@ -93,13 +102,16 @@ def damped_newton(system, z0: np.ndarray, row: np.ndarray, c: float, *, tol: flo
     phi = merit(z, g)
     lu = None
     for k in range(1, max_iter + 1):
+        a = system.bordered_jacobian(z, row)
         try:
-            lu = factor(system.bordered_jacobian(z, row))
+            lu = factor(a)
         except SingularMatrixError:
-            return NewtonResult(z, False, k, _norm(g), None, "singular")
+            return NewtonResult(z, False, k, _norm(g), None, _singular_reason(a))
         rhs[:m] = -g
         rhs[m] = c - row @ z
         dz = lu.solve(rhs)
+        if _norm(dz) <= step_tol * (1.0 + _norm(z)):
+            return NewtonResult(z + dz, True, k, _norm(g), lu)
         lam = 1.0
         while lam > 1e-6:
             zt = z + lam * dz

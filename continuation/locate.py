@@ -79,12 +79,27 @@ class Located:
     details: dict = field(default_factory=dict)
 
 
-def tangent_at(system, z: np.ndarray, row: np.ndarray, weights: np.ndarray) -> np.ndarray:
-    """Unit tangent at ``z`` oriented so that ``row·t > 0``."""
-    lu = factor(bordered(system.jacobian(z), row))
+def residual_floor(dg, z: np.ndarray) -> float:
+    """Residual size attributable to rounding: 1e3·eps·‖∂G/∂z‖∞·(1 + ‖z‖∞)."""
+    norm = abs(dg).sum(axis=1).max() if hasattr(dg, "tocsr") else np.abs(dg).sum(axis=1).max()
+    return 1e3 * _EPS * float(norm) * (1.0 + float(np.max(np.abs(z))))
+
+
+def tangent_at(system, z: np.ndarray, row: np.ndarray, weights: np.ndarray,
+               br: Bracket | None = None) -> np.ndarray:
+    """Unit tangent at ``z`` oriented so that ``row·t > 0``.
+
+    Exactly at a branch point ``[∂G/∂z; row]`` is singular whatever the border: the tangent of
+    the branch is then the limit of its tangents, taken from the step's Hermite interpolant."""
+    dg = system.jacobian(z)
     e = np.zeros(z.size)
     e[-1] = 1.0
-    t = lu.solve(e)
+    try:
+        t = factor(bordered(dg, row)).solve(e)
+    except SingularMatrixError:
+        if br is None:
+            raise
+        t = br.guess_derivative(float(np.clip(br.sigma(z) / br.h, 0.0, 1.0)))
     return t / np.sqrt(t @ (weights * t))
 
 
@@ -126,6 +141,7 @@ def locate_fold(br: Bracket, k: int) -> Located | None:
     rhs_len = z.size
     converged = False
     it = 0
+    previous = np.inf
     for it in range(1, o.max_locate_iterations + 1):
         try:
             g, v, w, dg = minimally_augmented(system, z, k, b, c)
@@ -148,19 +164,28 @@ def locate_fold(br: Bracket, k: int) -> Located | None:
         nb, nc = np.linalg.norm(w), np.linalg.norm(v)
         if nb > 0 and nc > 0:
             b, c = w / nb, v / nc
-        if np.max(np.abs(dz)) <= o.locate_tol * (1.0 + np.max(np.abs(z))):
+        size = float(np.max(np.abs(dz)))
+        scale = 1.0 + float(np.max(np.abs(z)))
+        if size <= o.locate_tol * scale:
             converged = True
             break
+        # stagnation at the rounding level of an ill-conditioned system (cond ~ N² for
+        # discretised operators): the updates stop shrinking
+        if it >= 4 and size > 0.5 * previous and size <= 1e-9 * scale:
+            converged = True
+            break
+        previous = size
     if not converged:
         return None
     res = system.residual(z)
-    if not np.all(np.isfinite(res)) or np.max(np.abs(res)) > max(o.tol, 1e3 * _EPS):
+    if not np.all(np.isfinite(res)) or np.max(np.abs(res)) > max(o.tol, residual_floor(dg, z)):
         return None
     sigma = br.sigma(z)
     if not (-0.05 * abs(br.h) <= sigma * np.sign(br.h) <= 1.05 * abs(br.h)):
         return None  # converged to a fold outside this step
     return Located(z, sigma, "converged", it, {"method": "minimally augmented Newton",
-                                                "test_function": float(g)})
+                                                "test_function": float(g),
+                                                "last_update": size})
 
 
 def locate_component(br: Bracket, k: int, value: float) -> Located | None:

@@ -48,7 +48,7 @@ class ContinuationOptions:
     ``[0.5, growth]``): it grows while Newton needs fewer iterations, shrinks when more."""
     max_angle: float = 30.0
     """Degrees: a step whose tangent turns further is rejected (guard against branch jumping)."""
-    target_angle: float = 10.0
+    target_angle: float = 15.0
     """Degrees: the step size is adapted to aim at this tangent turn per step."""
     growth: float = 2.0
     """Largest factor by which ds may grow in one step."""
@@ -94,7 +94,11 @@ class ContinuationOptions:
         """A copy with some fields changed (validated again)."""
         unknown = set(changes) - {f.name for f in fields(self)}
         if unknown:
-            raise OptionsError(
-                f"unknown option(s) {sorted(unknown)}; allowed: {sorted(f.name for f in fields(self))}"
-            )
+            allowed = sorted(f.name for f in fields(self))
+            raise OptionsError(f"unknown option(s) {sorted(unknown)}; allowed: {allowed}")
+        if "ds" not in changes:  # keep the default initial step inside new bounds
+            lo = changes.get("ds_min", self.ds_min)
+            hi = changes.get("ds_max", self.ds_max)
+            if isinstance(lo, (int, float)) and isinstance(hi, (int, float)) and lo <= hi:
+                changes["ds"] = min(max(self.ds, lo), hi)
         return replace(self, **changes)

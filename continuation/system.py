@@ -108,7 +108,7 @@ class BranchSystem(CurveSystem):
     def jacobian(self, z):
         j, fp, sparse = self._parts(z)
         if sparse:
-            return sp.hstack([j, sp.csr_matrix(fp.reshape(-1, 1))], format="csr")
+            return _sparse_border(j, fp, None)
         dg = np.empty((self.n, self.n + 1))
         dg[:, :-1] = j
         dg[:, -1] = fp
@@ -117,8 +117,7 @@ class BranchSystem(CurveSystem):
     def bordered_jacobian(self, z, row):
         j, fp, sparse = self._parts(z)
         if sparse:
-            return sp.bmat([[j, sp.csc_matrix(fp.reshape(-1, 1))],
-                            [sp.csr_matrix(row[:-1][None, :]), row[-1]]], format="csc")
+            return _sparse_border(j, fp, row)
         n = self.n
         a = np.empty((n + 1, n + 1))
         a[:n, :n] = j
@@ -134,3 +133,21 @@ class BranchSystem(CurveSystem):
         out.update(self.params)
         out[self.free] = float(z[-1])
         return out
+
+
+def _sparse_border(j, col: np.ndarray, row: np.ndarray | None):
+    """``[j, col]`` (``row`` None) or ``[[j, col], [row]]`` as CSC, assembled in one pass."""
+    jc = j.tocoo()
+    n = jc.shape[0]
+    k = jc.shape[1]
+    parts_r = [jc.row, np.arange(n)]
+    parts_c = [jc.col, np.full(n, k)]
+    parts_d = [jc.data, col]
+    shape = (n, k + 1)
+    if row is not None:
+        parts_r.append(np.full(k + 1, n))
+        parts_c.append(np.arange(k + 1))
+        parts_d.append(row)
+        shape = (n + 1, k + 1)
+    return sp.csc_matrix((np.concatenate(parts_d),
+                          (np.concatenate(parts_r), np.concatenate(parts_c))), shape=shape)

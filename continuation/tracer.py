@@ -25,8 +25,10 @@ from .errors import (
     ConvergenceError,
     NonFiniteResidualError,
     ProblemDefinitionError,
+    SingularMatrixError,
 )
 from .events import Event
+from .linalg import bordered, factor
 from .locate import (
     Bracket,
     Located,
@@ -36,7 +38,6 @@ from .locate import (
     locate_on_arc,
     tangent_at,
 )
-from .linalg import bordered, factor
 from .options import ContinuationOptions
 from .problem import as_problem
 from .system import BranchSystem
@@ -73,7 +74,7 @@ class TracerState(NamedTuple):
     n_points: int = 1
 
 
-# ----------------------------------------------------------------------------- test functions
+# --- --- test functions
 
 
 @dataclass(frozen=True)
@@ -132,7 +133,10 @@ class _Test:
             ref = tracer.bordered_det(br.z_a, br.row)
 
             def f(z):
-                sgn, logdet = tracer.bordered_det(z, br.row)
+                try:
+                    sgn, logdet = tracer.bordered_det(z, br.row)
+                except SingularMatrixError:  # landed exactly on the branch point
+                    return 0.0
                 return sgn * math.exp(min(logdet - ref[1], 700.0))
 
             fa = ref[0]
@@ -148,7 +152,7 @@ class _Test:
         return locate_on_arc(br, fe, f_a, f_b)
 
 
-# ----------------------------------------------------------------------------- the tracer
+# --- --- the tracer
 
 
 class Tracer:
@@ -361,7 +365,9 @@ class Tracer:
             iters = 0
         self.system.refresh(z0)
         sdet = None if skip_bp else self._sdet(z0, t0)
-        tests = tuple(None if (t.kind == "branch_point" and sdet is None)
+        # starting on a special point, the test functions vanish there up to rounding: their
+        # signs are taken after the first step instead
+        tests = tuple(None if (skip_bp and t.kind in ("branch_point", "fold"))
                       else t.value(self, z0, t0, sdet) for t in self.tests)
         first = _Point(z0, t0, 0.0, iters, 0, residual, o.ds,
                        (("endpoint", start_label, None, "converged", None, {}),), None)
@@ -497,7 +503,7 @@ class Tracer:
                 found.append((loc.sigma, tt, loc))
             found.sort(key=lambda item: item[0] * math.copysign(1.0, br.h))
             prev = last
-            for sigma, tt, loc in found:
+            for _sigma, tt, loc in found:
                 records = [self._record(tt, loc, br, last.s)]
                 if tt.terminal:
                     status = "bound" if tt.kind == "bound" else "terminal_event"
@@ -505,7 +511,7 @@ class Tracer:
                                else f"terminal event {tt.label!r} occurred")
                     if tt.kind != "bound":
                         records.append(("endpoint", tt.label, tt.wrt, loc.status, None, {}))
-                tan = tangent_at(system, loc.z, br.row, W)
+                tan = tangent_at(system, loc.z, br.row, W, br)
                 prev = _Point(loc.z, tan, last.s + loc.sigma, loc.iterations, 0,
                               float(np.max(np.abs(system.residual(loc.z)))), 0.0,
                               tuple(records), prev)
@@ -534,7 +540,7 @@ class Tracer:
         if tt.kind == "bound":
             return ("endpoint", tt.label, tt.wrt, loc.status, interval, details)
         if tt.kind == "branch_point":
-            tan = tangent_at(self.system, loc.z, br.row, self.weights)
+            tan = tangent_at(self.system, loc.z, br.row, self.weights, br)
             details.update(branch_point_directions(self.system, loc.z, tan, self.weights))
             details["names"] = tuple(self.system.names)
         return (tt.kind, tt.label, tt.wrt, loc.status, interval, details)

@@ -1,0 +1,386 @@
+"""Unit tests of the continuation core: options, problems, derivatives, events, targets,
+bounds, failures, the step-level API and branch switching.
+
+The published benchmark problems (TEST-PROBLEMS.md) are in test_published.py.
+"""
+
+import math
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+import scipy.sparse as sp
+
+from continuation import (
+    ContinuationOptions,
+    ConvergenceError,
+    Event,
+    NonFiniteResidualError,
+    OptionsError,
+    Problem,
+    ProblemDefinitionError,
+    Tracer,
+    check_jacobian,
+    trace,
+)
+
+# cusp normal form x^3 - a x - b: folds at x = ±sqrt(a/3), b = ∓2 (a/3)^{3/2};
+# at a = 1: |b| = 2/(3√3) = 0.38490017945975050967... (mpmath: 2/(3*mp.sqrt(3)))
+B_FOLD = 2.0 / (3.0 * math.sqrt(3.0))
+X0 = -1.324717957244746  # real root of x^3 - x + 1 (the plastic number, negated)
+
+
+def cusp_problem(derivatives="central", analytic=False):
+    def res(u, p):
+        return np.array([u[0] ** 3 - p["a"] * u[0] - p["b"]])
+
+    kw = {}
+    if analytic:
+        kw = dict(jacobian=lambda u, p: np.array([[3 * u[0] ** 2 - p["a"]]]),
+                  param_jacobian=lambda u, p, n: np.array([-1.0]) if n == "b" else -u[:1])
+    return Problem(res, ["x"], {"a": 1.0, "b": -1.0}, derivatives=derivatives, **kw)
+
+
+def folds(br, wrt=None):
+    return [sp_ for sp_ in br.special_points if sp_.kind == "fold"
+            and (wrt is None or sp_.with_respect_to == wrt)]
+
+
+# --- --- options
+
+
+@pytest.mark.parametrize("field, value, fragment", [
+    ("ds", 0.0, "'ds' must be a finite number > 0"),
+    ("ds", float("nan"), "'ds'"),
+    ("ds_max", -1.0, "'ds_max'"),
+    ("tol", float("inf"), "'tol'"),
+    ("max_steps", 0, "'max_steps' must be an integer >= 1"),
+    ("max_steps", 2.5, "'max_steps'"),
+    ("predictor", "euler", "'predictor' must be one of"),
+    ("max_angle", 200.0, "'max_angle'"),
+])
+def test_options_validated_with_field_and_value(field, value, fragment):
+    with pytest.raises(OptionsError, match=fragment) as info:
+        ContinuationOptions(**{field: value})
+    assert repr(value) in str(info.value) or field in str(info.value)
+    assert isinstance(info.value, ValueError)
+
+
+def test_options_inconsistent_bounds():
+    with pytest.raises(OptionsError, match="ds_min"):
+        ContinuationOptions(ds_min=1.0, ds_max=0.1, ds=0.5)
+    with pytest.raises(OptionsError, match="unknown option"):
+        ContinuationOptions().replace(dsmax=1.0)
+    # overriding only ds_max keeps the default initial step inside it
+    assert ContinuationOptions().replace(ds_max=0.01).ds == 0.01
+
+
+def test_trace_rejects_unknown_keyword():
+    with pytest.raises(OptionsError, match="unknown option"):
+        trace(cusp_problem(), [X0], free="b", step_size=0.1)
+
+
+# --- --- problems
+
+
+def test_problem_validation_messages():
+    f = lambda u, p: u  # noqa: E731
+    with pytest.raises(ProblemDefinitionError, match="repeated"):
+        Problem(f, ["x", "x"], {"a": 1.0})
+    with pytest.raises(ProblemDefinitionError, match="'a' must be finite"):
+        Problem(f, ["x"], {"a": float("nan")})
+    with pytest.raises(ProblemDefinitionError, match="both an unknown and a parameter"):
+        Problem(f, ["x"], {"x": 1.0})
+    with pytest.raises(ProblemDefinitionError, match="derivatives must be one of"):
+        Problem(f, ["x"], {"a": 1.0}, derivatives="symbolic")
+    with pytest.raises(ProblemDefinitionError, match="free parameter 'c'"):
+        trace(cusp_problem(), [X0], free="c")
+    with pytest.raises(ProblemDefinitionError, match="u0 must hold 1 values"):
+        trace(cusp_problem(), [X0, 0.0], free="b")
+
+
+def test_wrong_residual_shape_is_reported():
+    prob = Problem(lambda u, p: np.array([u[0], u[0]]), ["x"], {"a": 1.0})
+    with pytest.raises(ProblemDefinitionError, match="must return 1 values"):
+        trace(prob, [0.0], free="a")
+
+
+def test_bounds_on_fixed_parameter_rejected():
+    with pytest.raises(ProblemDefinitionError, match="fixed parameters cannot be bounded"):
+        trace(cusp_problem(), [X0], free="b", bounds={"a": (0, 2)})
+
+
+def test_start_outside_bounds_rejected():
+    with pytest.raises(ProblemDefinitionError, match=r"outside bounds\['b'\]"):
+        trace(cusp_problem(), [X0], free="b", bounds={"b": (0.0, 1.0)})
+
+
+def test_start_not_converging_raises_with_remedy():
+    # x^2 + b^2 + 1 = 0 has no real solution
+    prob = Problem(lambda u, p: np.array([u[0] ** 2 + p["b"] ** 2 + 1.0]), ["x"], {"b": 0.0})
+    with pytest.raises(ConvergenceError) as info:
+        trace(prob, [0.3], free="b")
+    err = info.value
+    assert "better initial guess" in err.remedy
+    assert err.iterations > 0 and err.residual_norm > 0.5
+    assert "x=" in str(err) and "b=0" in str(err)
+
+
+# --- --- folds and derivatives
+
+
+@pytest.mark.parametrize("derivatives, analytic", [
+    ("central", True), ("central", False), ("forward", False), ("complex", False)])
+def test_cusp_folds_every_derivative_strategy(derivatives, analytic):
+    br = trace(cusp_problem(derivatives, analytic), [X0], free="b", bounds={"b": (-1.0, 1.0)})
+    assert br.status == "bound" and br.success
+    assert br["b"][-1] == 1.0  # ends exactly on the bound
+    f = folds(br, "b")
+    assert len(f) == 2 and all(sp_.status == "converged" for sp_ in f)
+    # the fold parameter is stationary: exact to rounding whatever the derivative strategy
+    assert f[0].values["b"] == pytest.approx(B_FOLD, rel=1e-12)
+    assert f[1].values["b"] == pytest.approx(-B_FOLD, rel=1e-12)
+    # the fold state is limited by the accuracy of the Jacobian (forward differences ~1e-8)
+    xtol = 1e-6 if derivatives == "forward" else 1e-9
+    assert f[0].values["x"] == pytest.approx(-1 / math.sqrt(3), abs=xtol)
+    # special points are inserted: branch arrays hold their values at their index
+    for sp_ in br.special_points:
+        assert br["x"][sp_.index] == sp_.values["x"]
+        assert br["b"][sp_.index] == sp_.values["b"]
+    assert np.all(np.diff(br.s) >= 0)
+
+
+def test_stats_are_per_point():
+    br = trace(cusp_problem(analytic=True), [X0], free="b", bounds={"b": (-1.0, 1.0)})
+    for key in ("newton_iterations", "rejected_steps", "residual_norm", "ds"):
+        assert br.stats[key].shape == (len(br),)
+    assert np.all(br.stats["residual_norm"] < 1e-9)
+
+
+def test_check_jacobian_finds_wrong_entry():
+    good = cusp_problem(analytic=True)
+    assert check_jacobian(good, [0.7], {"a": 1.0, "b": 0.2}).ok
+    bad = Problem(good._residual, ["x"], {"a": 1.0, "b": -1.0},
+                  jacobian=lambda u, p: np.array([[3 * u[0] ** 2 + p["a"]]]),  # sign error
+                  param_jacobian=good._param_jacobian)
+    report = check_jacobian(bad, [0.7], {"a": 1.0, "b": 0.2})
+    assert not report.ok
+    assert report.worst[0][:2] == (0, "x")
+    assert "row 0, d/dx" in report.message
+
+
+def test_from_sympy_gives_exact_derivatives():
+    sympy = pytest.importorskip("sympy")
+    from continuation import from_sympy
+
+    x, a, b = sympy.symbols("x a b")
+    prob = from_sympy([x**3 - a * x - b], [x], {a: 1.0, b: -1.0})
+    assert check_jacobian(prob, [0.3], {"a": 1.0, "b": 0.1}, rtol=1e-9).ok
+    br = trace(prob, [X0], free="b", bounds={"b": (-1.0, 1.0)})
+    assert sorted(sp_.values["b"] for sp_ in folds(br)) == pytest.approx(
+        [-B_FOLD, B_FOLD], rel=1e-13)
+    with pytest.raises(ProblemDefinitionError, match="neither unknowns"):
+        from_sympy([x - sympy.Symbol("c")], [x], {a: 1.0})
+
+
+def test_import_is_light():
+    code = ("import sys, continuation; "
+            "print(any(m.split('.')[0] in ('sympy', 'matplotlib') for m in sys.modules))")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                         check=True)
+    assert out.stdout.strip() == "False"
+
+
+# --- --- targets, events, bounds
+
+
+def test_targets_hit_exactly():
+    br = trace(cusp_problem(analytic=True), [X0], free="b", bounds={"b": (-1.0, 1.0)},
+               targets={"b": [0.1, 0.2], "x": [0.0]})
+    tb = [sp_ for sp_ in br.special_points if sp_.kind == "target" and sp_.with_respect_to == "b"]
+    # b = 0.1 and 0.2 are each crossed three times (the S-shaped branch)
+    assert sorted({sp_.values["b"] for sp_ in tb}) == [0.1, 0.2]
+    assert len(tb) == 6
+    tol = ContinuationOptions().tol  # the corrector's residual tolerance
+    for sp_ in tb:
+        x = sp_.values["x"]
+        assert abs(x**3 - x - sp_.values["b"]) < tol
+    tx = [sp_ for sp_ in br.special_points if sp_.with_respect_to == "x" and sp_.kind == "target"]
+    assert len(tx) == 1 and tx[0].values["x"] == 0.0 and abs(tx[0].values["b"]) < 1e-14
+
+
+def test_event_located_inserted_and_direction():
+    # x^2 - 0.25 vanishes at x = ±1/2 (b = ∓3/8): upward crossing at x = +1/2 only
+    ev_any = Event(lambda u, p: u[0] ** 2 - 0.25, label="x2")
+    ev_up = Event(lambda u, p: u[0] - 0.5, direction=+1, label="x up")
+    ev_down = Event(lambda u, p: u[0] - 0.5, direction=-1, label="x down")
+    br = trace(cusp_problem(analytic=True), [X0], free="b", bounds={"b": (-1.0, 1.0)},
+               events=[ev_any, ev_up, ev_down])
+    evs = br.special("event", label="x2")
+    assert [round(e.values["x"], 12) for e in evs] == [-0.5, 0.5]
+    for e in evs:
+        assert abs(e.values["x"] ** 2 - 0.25) < 1e-12
+        assert abs(e.values["x"] ** 3 - e.values["x"] - e.values["b"]) < ContinuationOptions().tol
+        assert br["x"][e.index] == e.values["x"]
+    assert len(br.special("event", label="x up")) == 1
+    assert br.special("event", label="x down") == []
+
+
+def test_terminal_event_ends_branch():
+    ev = Event(lambda u, p: u[0], terminal=True, label="x=0")
+    br = trace(cusp_problem(analytic=True), [X0], free="b", events=[ev])
+    assert br.status == "terminal_event" and br.success
+    assert abs(br["x"][-1]) < 1e-12 and abs(br["b"][-1]) < 1e-12
+    assert len(folds(br)) == 1
+
+
+def test_bound_on_unknown_is_exact():
+    br = trace(cusp_problem(analytic=True), [X0], free="b", bounds={"x": (-2.0, 0.25)})
+    assert br.status == "bound"
+    assert br["x"][-1] == 0.25
+    assert br.special_points[-1].kind == "endpoint"
+    assert br.special_points[-1].label == "bound x=0.25"
+
+
+def test_max_steps_is_a_normal_end():
+    br = trace(cusp_problem(analytic=True), [X0], free="b", max_steps=5)
+    assert br.status == "max_steps" and br.success
+    assert "max_steps=5" in br.message
+    assert br.info["steps"] == 5
+
+
+def test_direction_minus_one():
+    br = trace(cusp_problem(analytic=True), [X0], free="b", direction=-1,
+               bounds={"b": (-3.0, 1.0)})
+    assert br["b"][-1] == -3.0 and folds(br) == []
+
+
+# --- --- failures
+
+
+def nan_beyond(limit):
+    def res(u, p):
+        if p["b"] > limit:
+            return np.array([np.nan])
+        return np.array([u[0] ** 3 - u[0] - p["b"]])
+    return Problem(res, ["x"], {"b": -1.0})
+
+
+def test_nonfinite_residual_stops_with_status():
+    br = trace(nan_beyond(-0.5), [X0], free="b", throw=False)
+    assert br.status == "nonfinite_residual" and not br.success
+    assert "not finite" in br.message
+    # it stops where the central-difference stencil (h = eps^(1/3)·max(1,|b|) ≈ 6e-6) starts
+    # to reach into the region where the residual is NaN
+    h = np.finfo(float).eps ** (1 / 3)
+    assert -0.5 - 2 * h < br["b"][-1] <= -0.5
+    assert np.all(np.isfinite(br["x"]))
+
+
+def test_nonfinite_residual_raises_by_default():
+    with pytest.raises(NonFiniteResidualError, match="not finite"):
+        trace(nan_beyond(-0.5), [X0], free="b")
+
+
+def test_nonfinite_start_raises():
+    with pytest.raises(NonFiniteResidualError, match="starting point"):
+        trace(nan_beyond(-2.0), [X0], free="b")
+
+
+def test_convergence_failure_partial_branch():
+    # a jump in the residual at b = 0 that no corrector can cross
+    def res(u, p):
+        return np.array([u[0] - p["b"] + (1.0 if p["b"] > 0 else 0.0) * (1 + u[0] ** 2)])
+
+    prob = Problem(res, ["x"], {"b": -1.0})
+    br = trace(prob, [-1.0], free="b", throw=False, max_steps=500)
+    assert br.status in ("convergence_failure", "max_steps", "bound")
+    if br.status == "convergence_failure":
+        assert "ds=" in br.message and not br.success
+    with pytest.raises(ConvergenceError) as info:
+        trace(prob, [-1.0], free="b", max_steps=500)
+    assert info.value.ds <= ContinuationOptions().ds_min * 1.0001
+
+
+# --- --- step-level API
+
+
+def test_step_api_matches_trace():
+    prob = cusp_problem(analytic=True)
+    tracer = Tracer(prob, free="b", bounds={"b": (-1.0, 1.0)})
+    state = tracer.init([X0])
+    states = [state]
+    while not tracer.done(state):
+        state = tracer.step(state)
+        states.append(state)
+    assert states[0].steps == 0 and states[1].steps == 1  # records are replaced, not mutated
+    br = tracer.result(state)
+    ref = trace(prob, [X0], free="b", bounds={"b": (-1.0, 1.0)})
+    np.testing.assert_array_equal(br["b"], ref["b"])
+    # an intermediate state gives a partial branch that says so
+    partial = tracer.result(states[3])
+    assert partial.status == "running" and len(partial) < len(br)
+
+
+def test_secant_predictor():
+    br = trace(cusp_problem(analytic=True), [X0], free="b", bounds={"b": (-1.0, 1.0)},
+               predictor="secant")
+    assert [sp_.values["b"] for sp_ in folds(br)] == pytest.approx([B_FOLD, -B_FOLD], rel=1e-12)
+
+
+# --- --- sparse and branch switching
+
+
+def bratu(n, *, analytic=True):
+    h = 1.0 / (n + 1)
+
+    def res(u, p):
+        r = -2.0 * u
+        r[1:] += u[:-1]
+        r[:-1] += u[1:]
+        return r / h**2 + p["lam"] * np.exp(u)
+
+    kw = {}
+    if analytic:
+        kw["jacobian"] = lambda u, p: sp.diags(
+            [np.full(n - 1, 1 / h**2), -2 / h**2 + p["lam"] * np.exp(u),
+             np.full(n - 1, 1 / h**2)], [-1, 0, 1], format="csr")
+        kw["param_jacobian"] = lambda u, p, name: np.exp(u)
+    else:
+        kw["sparsity"] = sp.diags([np.ones(n - 1), np.ones(n), np.ones(n - 1)], [-1, 0, 1])
+    return Problem(res, [f"u{i}" for i in range(n)], {"lam": 0.0}, **kw)
+
+
+def test_sparse_fd_with_sparsity_pattern_matches_analytic():
+    n = 40
+    kw = dict(free="lam", bounds={"lam": (-0.1, 4.0), f"u{n // 2}": (-1.0, 2.0)})
+    a = trace(bratu(n), np.zeros(n), **kw)
+    b = trace(bratu(n, analytic=False), np.zeros(n), **kw)
+    fa, fb = folds(a, "lam"), folds(b, "lam")
+    assert len(fa) == len(fb) == 1
+    assert fb[0].values["lam"] == pytest.approx(fa[0].values["lam"], rel=1e-11)
+    assert sp.issparse(bratu(n, analytic=False).jacobian(np.zeros(n), {"lam": 1.0}))
+
+
+@pytest.mark.parametrize("kind", ["transcritical", "pitchfork"])
+def test_branch_switching_simple(kind):
+    # transcritical x (p - x): branches x = 0 and x = p (not orthogonal: needs the ABE);
+    # pitchfork x (p - x^2): branches x = 0 and p = x^2
+    if kind == "transcritical":
+        res = lambda u, p: np.array([u[0] * (p["p"] - u[0])])  # noqa: E731
+        on_other = lambda x, p: x - p  # noqa: E731
+    else:
+        res = lambda u, p: np.array([u[0] * (p["p"] - u[0] ** 2)])  # noqa: E731
+        on_other = lambda x, p: p - x**2  # noqa: E731
+    prob = Problem(res, ["x"], {"p": -1.0})
+    br = trace(prob, [0.0], free="p", bounds={"p": (-1.0, 1.0)})
+    bps = br.special("branch_point")
+    assert len(bps) == 1 and abs(bps[0].values["p"]) < 1e-10
+    assert folds(br) == []
+    for direction in (1, -1):
+        other = trace(prob, bps[0], free="p", direction=direction,
+                      bounds={"p": (-1.0, 1.0), "x": (-0.9, 0.9)})
+        assert other.success and len(other) > 3
+        assert np.max(np.abs(other["x"])) > 0.5  # really left the trivial branch
+        assert np.max(np.abs(on_other(other["x"], other["p"]))) < 1e-9
