@@ -63,7 +63,7 @@ def test_event_direction(direction, count):
         assert sp.values["b"] == pytest.approx(0.25, abs=1e-10)
         assert sp.label == "quarter"
         x = sp.values["x"]
-        assert abs(x**3 - x - sp.values["b"]) <= 1e-12
+        assert abs(x**3 - x - sp.values["b"]) <= 1e-10  # the corrector's default tol
     if direction == +1:
         assert ev[0].values["x"] < -1 / np.sqrt(3) and ev[1].values["x"] > 1 / np.sqrt(3)
     if direction == -1:
@@ -146,9 +146,13 @@ def test_nan_residual_stops_the_branch_with_a_clear_status():
 
 
 def test_nan_residual_raises_with_throw():
-    from continuation import ConvergenceError, trace
+    """The spec only says "raises": require the package's typed numerical-failure exception
+    (ConvergenceError or a sibling under continuation's own base class), naming the cause."""
+    import continuation
+    from continuation import trace
 
-    with pytest.raises(ConvergenceError):
+    base = getattr(continuation, "ContinuationError", continuation.ConvergenceError)
+    with pytest.raises(base, match=r"(?i)nan|non-?finite|not finite"):
         trace(_nan_beyond_half(), u0=[-1.3247], free="b", bounds=BOUNDS, throw=True,
               max_steps=5000)
 
