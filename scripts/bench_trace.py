@@ -5,7 +5,7 @@ Usage (from the repository root):
     python scripts/bench_trace.py [--repeat 7] [--out docs/benchmarks/trace.md]
 
 All three run in ONE process on the same problems, each timed timeit-style (autorange a loop
-count, then the best of `--repeat` repeats, per full branch):
+count, then the best of `--repeat` rounds, per full branch; rounds interleaved across tools):
 
 * cusp normal form x^3 - x - b = 0, b from -1 to 1 (folds at b = -+2/(3 sqrt 3));
 * Green-strain von Mises truss (EA = L = 1, H = 0.5), P from P(v=-0.5) to P(v=1.5) (limit
@@ -224,24 +224,31 @@ def run_scipy(pb, analytic):
 # ----------------------------------------------------------------------------- timing
 
 
-def best_time(fn, repeat):
-    """timeit-style: a loop count giving >= 0.1 s, then the best of `repeat` per-call times."""
-    number, t = 1, 0.0
+def autorange(fn):
+    """timeit-style loop count: the smallest 1, 10, 100, ... giving >= 0.05 s."""
+    number = 1
     while True:
         t0 = time.perf_counter()
         for _ in range(number):
             fn()
-        t = time.perf_counter() - t0
-        if t >= 0.1 or number >= 1000:
-            break
-        number *= 2 if t > 0.02 else 10
-    times = [t / number]
-    for _ in range(repeat - 1):
-        t0 = time.perf_counter()
-        for _ in range(number):
-            fn()
-        times.append((time.perf_counter() - t0) / number)
-    return min(times)
+        if time.perf_counter() - t0 >= 0.05 or number >= 1000:
+            return number
+        number *= 10
+
+
+def best_times(fns, repeat):
+    """Best per-call time of each function over `repeat` rounds. The rounds are interleaved
+    (every function once per round) so that load from other jobs on a shared machine hits all
+    tools alike and the ratios stay fair."""
+    numbers = [autorange(fn) for fn in fns]
+    best = [math.inf] * len(fns)
+    for _ in range(repeat):
+        for i, (fn, number) in enumerate(zip(fns, numbers, strict=True)):
+            t0 = time.perf_counter()
+            for _ in range(number):
+                fn()
+            best[i] = min(best[i], (time.perf_counter() - t0) / number)
+    return best
 
 
 def fold_errors(found, exact):
@@ -277,7 +284,7 @@ def git_rev():
 
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    ap.add_argument("--repeat", type=int, default=7)
+    ap.add_argument("--repeat", type=int, default=15)
     ap.add_argument("--out", default=str(ROOT / "docs" / "benchmarks" / "trace.md"))
     args = ap.parse_args(argv)
 
@@ -299,9 +306,9 @@ def main(argv=None):
     rows, ratios = [], []
     for pb in PROBLEMS:
         times = {}
-        for tool, deriv, fn in variants:
+        bests = best_times([lambda fn=fn, pb=pb: fn(pb) for _, _, fn in variants], args.repeat)
+        for (tool, deriv, fn), t in zip(variants, bests, strict=True):
             out = fn(pb)
-            t = best_time(lambda fn=fn, pb=pb: fn(pb), args.repeat)
             times[(tool.split()[0], deriv)] = t
             errs = fold_errors(out["folds"], pb["folds"])
             located = sum(e is not None and e <= 1e-12 * max(1.0, abs(lam))
@@ -330,7 +337,8 @@ def main(argv=None):
         "(contique is optional: `pip install contique`).",
         "",
         "Wall time per full branch: timeit-style, best of "
-        f"{args.repeat} repeats of an autoranged loop, all tools in one process. "
+        f"{args.repeat} rounds of an autoranged loop, all tools in one process, rounds "
+        "interleaved across tools so that load from other jobs hits all of them alike. "
         "Newton iterations per point are each tool's own count (ours: `stats`; contique: "
         "`NewtonResult.niterations` of accepted steps only); residual evaluations per point "
         "include finite-difference evaluations. A fold counts as located when its parameter is "
