@@ -21,6 +21,7 @@ from .errors import (
     SingularMatrixError,
 )
 from .events import Event
+from .foldcurve import fold_curve
 from .options import ContinuationOptions
 from .problem import ContinuationProblem, Problem
 from .tracer import Tracer, TracerState, trace
@@ -42,6 +43,7 @@ __all__ = [
     "Tracer",
     "TracerState",
     "check_jacobian",
+    "fold_curve",
     "from_sympy",
     "trace",
 ]

@@ -95,6 +95,10 @@ class _Test:
             return sdet
         if self.kind in ("target", "bound"):
             return float(z[self.k] - self.value_at)
+        if self.kind == "cusp":
+            return tracer.system.cusp_coefficient(z)
+        if self.kind == "codim2":
+            return tracer.system.double_zero_test(z)[0]
         u, p = tracer.split(z)
         val = float(self.event.function(u, p))
         if not math.isfinite(val):
@@ -129,6 +133,11 @@ class _Test:
             if found is not None:
                 return found
             return locate_on_arc(br, lambda z: z[self.k] - self.value_at, f_a, f_b)
+        if self.kind in ("cusp", "codim2"):
+            from .foldcurve import _locate_codim2, _locate_cusp
+
+            locate = _locate_cusp if self.kind == "cusp" else _locate_codim2
+            return locate(tracer.system, br, f_a, f_b)
         if self.kind == "branch_point":
             ref = tracer.bordered_det(br.z_a, br.row)
 
@@ -302,7 +311,6 @@ class Tracer:
         ``u0``: initial guess of the unknowns (at the problem's parameter values), or a
         :class:`SpecialPoint` (a ``"branch_point"`` starts on the other branch).
         """
-        o = self.options
         system = self.system
         start_label = "start"
         skip_bp = False
@@ -337,7 +345,11 @@ class Tracer:
             if not np.all(np.isfinite(u)):
                 raise ProblemDefinitionError(f"u0 must be finite, got {u}")
             z0 = np.concatenate([u, [system.params[system.free]]])
+        return self._start(z0, tangent, start_label, skip_bp)
 
+    def _start(self, z0, tangent, start_label, skip_bp) -> TracerState:
+        o = self.options
+        system = self.system
         k_free = system.dim - 1
         row = np.zeros(system.dim)
         row[k_free] = 1.0
@@ -373,6 +385,15 @@ class Tracer:
                        (("endpoint", start_label, None, "converged", None, {}),), None)
         self._check_start_in_bounds(z0)
         return TracerState(first, o.ds, tests, 0)
+
+    def init_at(self, z0, *, start_label: str = "start") -> TracerState:
+        """Start from a full curve vector ``z0`` (corrected with its last component fixed)."""
+        z0 = np.asarray(z0, dtype=float)
+        if z0.shape != (self.system.dim,):
+            raise ProblemDefinitionError(
+                f"z0 must hold {self.system.dim} values {list(self.system.names)}, "
+                f"got shape {z0.shape}")
+        return self._start(z0, None, start_label, False)
 
     def _check_start_in_bounds(self, z0) -> None:
         for name, (lo, hi) in self.bounds.items():

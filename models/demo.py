@@ -26,12 +26,15 @@ def main(args) -> int:
         jacobian=lambda u, p: np.array([[3.0 * u[0] ** 2 - p["a"]]]),
         param_jacobian=lambda u, p, name: np.array([-1.0]) if name == "b" else -u[:1],
     )
-    x0 = float(np.roots([1.0, 0.0, -a, 1.0]).real.min())  # the real root at b = -1
-    start = time.perf_counter()
-    br = trace(prob, [x0], free="b", bounds={"b": (-1.0, 1.0)})
-    elapsed = time.perf_counter() - start
     exact = 2.0 * (a / 3.0) ** 1.5
-    print(f"cusp normal form x^3 - a x - b = 0, a = {a:g}: traced b in [-1, 1]")
+    bmax = max(1.0, 2.0 * exact)  # wide enough to hold both folds
+    roots = np.roots([1.0, 0.0, -a, bmax])
+    x0 = float(roots[np.abs(roots.imag) < 1e-9].real.min())  # leftmost real root at b = -bmax
+    prob = prob.with_params(b=-bmax)
+    start = time.perf_counter()
+    br = trace(prob, [x0], free="b", bounds={"b": (-bmax, bmax)})
+    elapsed = time.perf_counter() - start
+    print(f"cusp normal form x^3 - a x - b = 0, a = {a:g}: traced b in [{-bmax:g}, {bmax:g}]")
     print(f"  {len(br)} points, status {br.status!r}: {br.message} ({elapsed * 1e3:.2f} ms)")
     print(f"  {'kind':<10}{'x':>22}{'b':>22}{'|b| - 2(a/3)^1.5':>20}  status")
     for sp in br.special_points:

@@ -1,0 +1,381 @@
+"""Two-parameter continuation of folds (limit points) and the cusps on them.
+
+The fold curve is traced by the ordinary tracer on the minimally augmented system
+(Govaerts 2000; as in MatCont and BifurcationKit)
+
+    G(u, p1, p2) = [F(u, p1, p2); g(u, p1, p2)],   [[M, b], [cᵀ, 0]] [v; g] = [0; 1],
+
+where ``M`` is ``∂F/∂(u, p1)`` without the column of the variable that turns (``p1`` for an
+ordinary fold, a monitored unknown for the fold of a snap-back), so the system has ``n + 1``
+equations in ``n + 2`` unknowns. The bordering vectors ``b, c`` are replaced by the current
+left/right null vectors after every accepted point. ``∇g = −wᵀ(∂M/∂z)v`` is a directional
+difference of the Jacobian.
+
+On the curve:
+
+- **cusp**: the normal-form coefficient ``a = ½⟨w, D²F[v, v]⟩`` changes sign; located by
+  Newton on ``[F; g; a] = 0`` (n + 2 equations and unknowns), cross-checked by the parameter
+  components of the fold curve's tangent (both vanish at a cusp);
+- **second zero eigenvalue** (codimension 2, e.g. a limit point meeting a branch point): the
+  determinant of the bordered matrix ``[[M, b], [cᵀ, 0]]`` changes sign (it is
+  ``−cᵀ adj(M) b``, proportional to the product of the non-zero eigenvalues of ``M``);
+- bounds, targets, events and monitored folds exactly as on ordinary branches.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping, Sequence
+from typing import Any
+
+import numpy as np
+import scipy.sparse as sp
+
+from .branch import Branch, SpecialPoint
+from .errors import ProblemDefinitionError, SingularMatrixError
+from .linalg import bordered, bordered_square, factor, matvec_t
+from .locate import Bracket, Located, locate_on_arc, tangent_at
+from .options import ContinuationOptions
+from .problem import as_problem
+from .system import CurveSystem, state_weights
+from .tracer import Tracer, _Test
+
+_EPS = np.finfo(float).eps
+
+
+class FoldSystem(CurveSystem):
+    """``[F; g]`` over ``z = (u, p1, p2)``; ``k`` is the index (in ``(u, p1)``) of the variable
+    that turns at the fold."""
+
+    def __init__(self, problem, p1: str, p2: str, k: int, params: Mapping[str, float],
+                 state_weight: float | None) -> None:
+        self.problem = problem
+        self.p1, self.p2 = p1, p2
+        self.params = dict(params)
+        self.n = len(problem.unknowns)
+        self.k = k
+        self.names = tuple(problem.unknowns) + (p1, p2)
+        self.dim = self.n + 2
+        self.weights = state_weights(self.n, 2, state_weight)
+        keep = np.ones(self.n + 1, dtype=bool)
+        keep[k] = False
+        self._keep = keep  # columns of ∂F/∂(u, p1) forming M
+        self.b = None
+        self.c = None
+
+    # -- pieces
+    def _p(self, z):
+        p = dict(self.params)
+        p[self.p1] = z[self.n]
+        p[self.p2] = z[self.n + 1]
+        return p
+
+    def f(self, z):
+        return self.problem.residual(z[: self.n], self._p(z))
+
+    def df(self, z):
+        """``∂F/∂(u, p1, p2)``: n × (n + 2), dense or CSR."""
+        u, p = z[: self.n], self._p(z)
+        j = self.problem.jacobian(u, p)
+        f1 = self.problem.param_jacobian(u, p, self.p1)
+        f2 = self.problem.param_jacobian(u, p, self.p2)
+        if sp.issparse(j):
+            return sp.hstack([j, sp.csr_matrix(np.column_stack([f1, f2]))], format="csr")
+        out = np.empty((self.n, self.n + 2))
+        out[:, : self.n] = j
+        out[:, self.n] = f1
+        out[:, self.n + 1] = f2
+        return out
+
+    def m_matrix(self, df):
+        cols = np.flatnonzero(self._keep)
+        if sp.issparse(df):
+            return sp.csc_matrix(df)[:, cols]
+        return df[:, cols]
+
+    def bordered_solve(self, z, df=None):
+        """``g``, right and left null vectors ``v`` (in M's columns), ``w``, the LU and df."""
+        df = self.df(z) if df is None else df
+        lu = factor(bordered_square(self.m_matrix(df), self.b, self.c))
+        e = np.zeros(self.n + 1)
+        e[-1] = 1.0
+        x = lu.solve(e)
+        y = lu.solve(e, trans=True)
+        return x[-1], x[:-1], y[:-1], lu, df
+
+    def lift(self, v):
+        """A vector over M's columns as a direction in z (zero at k and at p2)."""
+        out = np.zeros(self.dim)
+        out[: self.n + 1][self._keep] = v
+        return out
+
+    def init_borders(self, z, seed: int = 0) -> None:
+        rng = np.random.default_rng(seed)
+        self.b = rng.standard_normal(self.n)
+        self.c = rng.standard_normal(self.n)
+        self.b /= np.linalg.norm(self.b)
+        self.c /= np.linalg.norm(self.c)
+        for _ in range(2):
+            _, v, w, _, _ = self.bordered_solve(z)
+            self.b, self.c = w / np.linalg.norm(w), v / np.linalg.norm(v)
+
+    # -- CurveSystem interface
+    def residual(self, z):
+        g, *_ = self.bordered_solve(z)
+        out = np.empty(self.n + 1)
+        out[: self.n] = self.f(z)
+        out[self.n] = g
+        return out
+
+    def jacobian(self, z):
+        g, v, w, _, df = self.bordered_solve(z)
+        vt = self.lift(v)
+        grad = -_second_row(self, z, vt, w)
+        if sp.issparse(df):
+            return sp.vstack([df, sp.csr_matrix(grad[None, :])], format="csr")
+        out = np.empty((self.n + 1, self.dim))
+        out[: self.n] = df
+        out[self.n] = grad
+        return out
+
+    def bordered_jacobian(self, z, row):
+        return bordered(self.jacobian(z), row)
+
+    def refresh(self, z) -> None:
+        _, v, w, _, _ = self.bordered_solve(z)
+        self.b, self.c = w / np.linalg.norm(w), v / np.linalg.norm(v)
+
+    def fixed_values(self):
+        return {k: v for k, v in self.params.items() if k not in (self.p1, self.p2)}
+
+    def values(self, z):
+        out = dict(zip(self.problem.unknowns, map(float, z[: self.n])))
+        out.update(self.params)
+        out[self.p1] = float(z[self.n])
+        out[self.p2] = float(z[self.n + 1])
+        return out
+
+    # -- tests on the fold curve
+    def cusp_coefficient(self, z) -> float:
+        """``½⟨w, D²F[v, v]⟩`` with the null vectors normalised by the current borders."""
+        _, v, w, _, _ = self.bordered_solve(z)
+        vt = self.lift(v)
+        return 0.5 * float(_second_row(self, z, vt, w) @ vt)
+
+    def double_zero_test(self, z) -> tuple[float, float]:
+        """Sign and log|det| of ``[[M, b], [cᵀ, 0]]``."""
+        _, _, _, lu, _ = self.bordered_solve(z)
+        return lu.sign_det(), lu.log_abs_det()
+
+
+def _second_row(system: FoldSystem, z, v, w):
+    """``w·D²F(z)[v, ·]`` over z by central differences of ``∂F/∂z`` along ``v``."""
+    vmax = float(np.max(np.abs(v)))
+    if vmax == 0.0:
+        return np.zeros(z.size)
+    h = _EPS ** (1.0 / 3.0) * max(1.0, float(np.max(np.abs(z)))) / vmax
+    return (matvec_t(system.df(z + h * v), w) - matvec_t(system.df(z - h * v), w)) / (2.0 * h)
+
+
+def _locate_cusp(system: FoldSystem, br: Bracket, f_a: float, f_b: float) -> Located:
+    """Newton on ``[F; g; a] = 0`` from the regula-falsi estimate; Illinois if it fails."""
+    o = br.options
+    theta = f_a / (f_a - f_b) if f_a != f_b else 0.5
+    start = br.point_at(theta * br.h)
+    z = start.z if start.converged else br.guess(theta)
+    dim = system.dim
+    converged = False
+    it = 0
+    while it < o.max_locate_iterations:
+        it += 1
+        if dim > 200:
+            break  # a dense gradient of the coefficient is too costly: Illinois below
+        G = system.residual(z)
+        a = system.cusp_coefficient(z)
+        jac = system.jacobian(z)
+        jac = jac.toarray() if sp.issparse(jac) else jac
+        grad = np.empty(dim)
+        for i in range(dim):
+            h = _EPS ** (1.0 / 3.0) * max(1.0, abs(z[i]))
+            e = np.zeros(dim)
+            e[i] = h
+            grad[i] = (system.cusp_coefficient(z + e) - system.cusp_coefficient(z - e)) / (2 * h)
+        big = np.vstack([jac, grad[None, :]])
+        rhs = -np.concatenate([G, [a]])
+        try:
+            dz = factor(big).solve(rhs)
+        except SingularMatrixError:
+            break
+        z = z + dz
+        if not np.all(np.isfinite(z)):
+            break
+        if np.max(np.abs(dz)) <= o.locate_tol * (1.0 + np.max(np.abs(z))):
+            converged = True
+            break
+    if converged:
+        found = Located(z, br.sigma(z), "converged", it, {"method": "Newton on [F; g; a]"})
+    else:
+        found = locate_on_arc(br, system.cusp_coefficient, f_a, f_b)
+        found.details["method"] = "Illinois on the cusp coefficient"
+    tan = tangent_at(system, found.z, br.row, system.weights, br)
+    found.details.update(
+        coefficient_before=float(f_a), coefficient_after=float(f_b),
+        # the unfolding parameters of the cusp: the variable that turns and p2 (both
+        # components of the fold curve's tangent vanish there)
+        tangent_parameters={system.names[system.k]: float(tan[system.k]),
+                            system.p2: float(tan[-1])},
+        fold_branches=(system.values(br.z_a), system.values(br.z_b)),
+        residual=float(np.max(np.abs(system.residual(found.z)))))
+    return found
+
+
+def _locate_codim2(system: FoldSystem, br: Bracket, f_a: float, f_b: float) -> Located:
+    ref = system.double_zero_test(br.z_a)
+
+    def f(z):
+        try:
+            sgn, logdet = system.double_zero_test(z)
+        except SingularMatrixError:
+            return 0.0
+        return sgn * np.exp(min(logdet - ref[1], 700.0))
+
+    fb = f(br.z_b)
+    found = locate_on_arc(br, f, ref[0], fb if fb * ref[0] < 0 else -ref[0])
+    found.details.update(type="second zero eigenvalue of the fold's matrix",
+                         method="Illinois on det[[M, b], [c^T, 0]]")
+    return found
+
+
+def fold_curve(
+    problem,
+    fold_point: SpecialPoint,
+    *,
+    free: tuple[str, str],
+    direction: str | int = "both",
+    bounds: Mapping[str, tuple[float, float]] | None = None,
+    targets: Mapping[str, Sequence[float]] | None = None,
+    events: Sequence = (),
+    monitor: Sequence[str] = (),
+    options: ContinuationOptions | None = None,
+    throw: bool = True,
+    **overrides: Any,
+) -> Branch:
+    """Continue a fold in two parameters.
+
+    Parameters
+    ----------
+    problem:
+        the problem the fold was found on.
+    fold_point:
+        a :class:`SpecialPoint` of kind ``"fold"`` returned by :func:`trace` (a fold in the
+        free parameter, or in a monitored unknown: the fold curve of a snap-back).
+    free:
+        ``(p1, p2)``: the branch's free parameter and the second parameter.
+
+    Other parameters
+    ----------------
+    direction:
+        ``"both"`` (default: the two halves joined at the starting fold), ``+1`` or ``-1``
+        (the sign of the initial change of ``p2``).
+    bounds, targets, events, monitor, options, throw:
+        as for :func:`trace`; they apply to the fold curve (bounds may name any unknown or
+        either parameter).
+
+    The result is a :class:`Branch` whose special points include ``"cusp"`` (details: the
+    coefficient on each side, the tangent's parameter components, the fold branches that
+    meet) and ``"codim2"`` (a second zero eigenvalue). ``info["direction"]`` says which way(s)
+    were traced and ``info["start_index"]`` where the starting fold is.
+    """
+    problem = as_problem(problem)
+    if not isinstance(fold_point, SpecialPoint) or fold_point.kind != "fold":
+        raise ProblemDefinitionError(
+            f"fold_point must be a SpecialPoint of kind 'fold' returned by trace, "
+            f"got {fold_point!r}")
+    try:
+        p1, p2 = free
+    except (TypeError, ValueError):
+        raise ProblemDefinitionError(
+            f"free must be a pair (branch parameter, second parameter), got {free!r}") from None
+    params = dict(problem.params)
+    for name in (p1, p2):
+        if name not in params:
+            raise ProblemDefinitionError(
+                f"{name!r} is not a parameter of the problem; parameters are {sorted(params)}")
+    if p1 == p2:
+        raise ProblemDefinitionError(f"the two free parameters must differ, got {free!r}")
+    for key in params:
+        if key in fold_point.values:
+            params[key] = float(fold_point.values[key])
+    wrt = fold_point.with_respect_to or p1
+    names_y = list(problem.unknowns) + [p1]
+    if wrt not in names_y:
+        raise ProblemDefinitionError(
+            f"the fold is a turning point of {wrt!r}, which is neither an unknown nor {p1!r}: "
+            f"was it traced with free={wrt!r}? Pass free=({wrt!r}, second parameter)")
+    k = names_y.index(wrt)
+    options = options or ContinuationOptions(detect_branch_points=False)
+    if overrides:
+        options = options.replace(**overrides)
+    if direction not in ("both", 1, -1):
+        raise ProblemDefinitionError(f"direction must be 'both', +1 or -1, got {direction!r}")
+
+    z0 = np.array([fold_point.values[nm] for nm in problem.unknowns]
+                  + [fold_point.values[p1], fold_point.values[p2]], dtype=float)
+    halves = []
+    for d in ((1, -1) if direction == "both" else (direction,)):
+        system = FoldSystem(problem, p1, p2, k, params, options.state_weight)
+        system.init_borders(z0)
+        extra = [_Test("cusp", label="cusp"), _Test("codim2", label="second zero eigenvalue")]
+        tracer = Tracer.for_system(system, options=options, fold_components=(), bounds=bounds,
+                                   targets=targets, events=events, monitor=monitor,
+                                   direction=d, throw=throw, extra_tests=extra)
+        state = tracer.init_at(z0, start_label="start (fold)")
+        while not tracer.done(state):
+            state = tracer.step(state)
+        halves.append((d, tracer.result(state)))
+    if len(halves) == 1:
+        br = halves[0][1]
+        br.info.update(direction=halves[0][0], start_index=0)
+        return br
+    return _join(halves[1][1], halves[0][1])
+
+
+def _join(backward: Branch, forward: Branch) -> Branch:
+    """One branch from the reversed backward half and the forward half (sharing the start)."""
+    nb = len(backward)
+    columns = {}
+    for key in forward.keys():
+        columns[key] = np.concatenate([backward[key][::-1], forward[key][1:]])
+    s = np.concatenate([-backward.s[::-1], forward.s[1:]])
+    tangents = np.vstack([-backward.tangents[::-1], forward.tangents[1:]])
+    specials = []
+    for sp_ in backward.special_points:
+        if sp_.kind == "endpoint" and sp_.index == 0:
+            continue
+        specials.append(_reindex(sp_, nb - 1 - sp_.index, -sp_.s, -sp_.tangent))
+    for sp_ in forward.special_points:
+        moved = _reindex(sp_, nb - 1 + sp_.index, sp_.s, sp_.tangent)
+        if sp_.kind == "endpoint" and sp_.index == 0:  # the starting fold, mid-curve now
+            moved = SpecialPoint(kind="fold", index=moved.index, values=moved.values,
+                                 tangent=moved.tangent, status="converged",
+                                 label="start (fold)", s=0.0, details={"start": True})
+        specials.append(moved)
+    specials.sort(key=lambda q: q.index)
+    stats = {k: np.concatenate([backward.stats[k][::-1], forward.stats[k][1:]])
+             for k in forward.stats}
+    ok = backward.success and forward.success
+    status = forward.status if ok or not forward.success else backward.status
+    message = f"direction -1: {backward.message}; direction +1: {forward.message}"
+    info = {"direction": "both", "start_index": nb - 1, "status_minus": backward.status,
+            "status_plus": forward.status}
+    return Branch(columns, variables=forward.variables, s=s, tangents=tangents,
+                  special_points=specials, status=status, message=message, stats=stats,
+                  info=info)
+
+
+def _reindex(sp_: SpecialPoint, index: int, s: float, tangent) -> SpecialPoint:
+    return SpecialPoint(kind=sp_.kind, index=index, values=sp_.values, tangent=tangent,
+                        status=sp_.status, label=sp_.label, with_respect_to=sp_.with_respect_to,
+                        s=s, interval=sp_.interval, details=sp_.details)
+
+
+__all__ = ["FoldSystem", "fold_curve"]
