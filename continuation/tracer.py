@@ -108,7 +108,12 @@ class _Test:
         return val
 
     def crossed(self, old: float | None, new: float) -> bool:
-        if old is None or old == 0.0:
+        if old is None:
+            return False
+        if old == 0.0:
+            # starting exactly on a bound: leaving through it ends the branch at once
+            if self.kind == "bound":
+                return new < 0 if self.direction < 0 else new > 0
             return False
         if new == 0.0:
             up = old < 0

@@ -384,3 +384,12 @@ def test_branch_switching_simple(kind):
         assert other.success and len(other) > 3
         assert np.max(np.abs(other["x"])) > 0.5  # really left the trivial branch
         assert np.max(np.abs(on_other(other["x"], other["p"]))) < 1e-9
+
+
+def test_start_on_bound_and_leave_through_it():
+    # the branch starts exactly on b = 1 and moves outward: it ends there, at once
+    prob = Problem(lambda u, p: np.array([u[0] - p["b"]]), ["x"], {"b": 1.0})
+    br = trace(prob, [1.0], free="b", bounds={"b": (-1.0, 1.0)}, direction=1, max_steps=50)
+    assert br.status == "bound" and br["b"][-1] == 1.0 and np.all(br["b"] == 1.0)
+    inward = trace(prob, [1.0], free="b", bounds={"b": (-1.0, 1.0)}, direction=-1)
+    assert inward.status == "bound" and inward["b"][-1] == -1.0
