@@ -33,13 +33,24 @@ def _norm(x: np.ndarray) -> float:
     return m if math.isfinite(m) else math.nan
 
 
+def _rounding_floor(a, z: np.ndarray) -> float:
+    """Residual size attributable to rounding: 100·eps·‖A‖∞·(1 + ‖z‖∞), with ``A`` the
+    bordered matrix without its border row and last column (the large terms of a fine
+    discretisation live in the state block; a parameter derivative differenced across a
+    jump of the residual would inflate the estimate)."""
+    block = a[:-1, :-1]
+    norm = (abs(block).sum(axis=1).max() if hasattr(block, "tocsr")
+            else np.abs(block).sum(axis=1).max())
+    return 100 * np.finfo(float).eps * float(norm) * (1.0 + _norm(z))
+
+
 def _singular_reason(a) -> str:
     data = a.data if hasattr(a, "tocsr") else a
     return "singular" if np.all(np.isfinite(data)) else "nonfinite"
 
 
 def newton(system, z0: np.ndarray, row: np.ndarray, c: float, *, tol: float, step_tol: float,
-           max_iter: int, g0: np.ndarray | None = None) -> NewtonResult:
+           max_iter: int, g0: np.ndarray | None = None, strict: bool = False) -> NewtonResult:
     """Solve ``G(z) = 0``, ``row·z = c`` by Newton's method from ``z0``.
 
     Converged when the max-norm of ``G`` is ≤ ``tol`` and the last update is
@@ -47,7 +58,8 @@ def newton(system, z0: np.ndarray, row: np.ndarray, c: float, *, tol: float, ste
     then of order ``step_tol`` (the next update would be about the square of the last); or,
     whatever the residual, when the update is ≤ ``step_tol·(1 + |z|)`` (AUTO's test:
     residuals with large terms, such as finite differences on fine grids, cannot get below
-    ``tol`` in floating point).
+    ``tol`` in floating point). ``strict`` requires the latter (used to polish located
+    special points to rounding).
     """
     z = z0.copy()
     g = system.residual(z) if g0 is None else g0
@@ -74,11 +86,13 @@ def newton(system, z0: np.ndarray, row: np.ndarray, c: float, *, tol: float, ste
         sn = _norm(dz)
         if rn_new != rn_new or sn != sn:
             return NewtonResult(z, False, k, rn_new, lu, "nonfinite")
-        if rn_new <= tol and sn <= sq_step_tol:
+        if rn_new <= tol and sn <= sq_step_tol and not strict:
             return NewtonResult(z, True, k, rn_new, lu)
-        # the relative update is below step_tol (AUTO's test): the residual is then at the
-        # rounding level of its own terms, which for badly scaled residuals exceeds tol
-        if sn <= rel_step_tol:
+        # the relative update is below step_tol (AUTO's test) and the residual is at the
+        # rounding level of its own terms (which for badly scaled residuals exceeds tol); a
+        # wrong Jacobian (say, differenced across a kink) also gives tiny updates, but leaves
+        # the residual above that floor
+        if sn <= rel_step_tol and rn_new <= max(tol, _rounding_floor(a, z)):
             return NewtonResult(z, True, k, rn_new, lu)
         if k >= 3 and rn_new > 1e3 * max(rn, tol):
             return NewtonResult(z, False, k, rn_new, lu, "diverging")
@@ -110,7 +124,8 @@ def damped_newton(system, z0: np.ndarray, row: np.ndarray, c: float, *, tol: flo
         rhs[:m] = -g
         rhs[m] = c - row @ z
         dz = lu.solve(rhs)
-        if _norm(dz) <= step_tol * (1.0 + _norm(z)):
+        if _norm(dz) <= step_tol * (1.0 + _norm(z)) and _norm(g) <= max(
+                tol, _rounding_floor(a, z)):
             return NewtonResult(z + dz, True, k, _norm(g), lu)
         lam = 1.0
         while lam > 1e-6:

@@ -62,12 +62,19 @@ class Bracket:
         return (d00 * self.z_a / self.h + d10 * self.t_a + d01 * self.z_b / self.h
                 + d11 * self.t_b)
 
-    def point_at(self, sigma: float):
+    def point_at(self, sigma: float, strict: bool = False, start=None):
         """The curve point whose pseudo-arclength from ``z_a`` (along ``t_a``) is ``sigma``."""
         o = self.options
         theta = sigma / self.h if self.h != 0 else 0.0
-        return newton(self.system, self.guess(theta), self.row, self.row @ self.z_a + sigma,
-                      tol=o.tol, step_tol=o.step_tol, max_iter=2 * o.max_newton_iterations)
+        z0 = self.guess(theta) if start is None else start
+        return newton(self.system, z0, self.row, self.row @ self.z_a + sigma,
+                      tol=o.tol, step_tol=o.step_tol, max_iter=2 * o.max_newton_iterations,
+                      strict=strict)
+
+    def polish(self, z: np.ndarray, sigma: float) -> np.ndarray:
+        """Newton to the update tolerance (not just the residual tolerance) at ``sigma``."""
+        res = self.point_at(sigma, strict=True, start=z)
+        return res.z if res.converged else z
 
 
 @dataclass
@@ -127,15 +134,21 @@ def minimally_augmented(system, z: np.ndarray, k: int, b: np.ndarray, c: np.ndar
     return x[-1], x[:-1], y[:-1], dg
 
 
-def locate_fold(br: Bracket, k: int) -> Located | None:
-    """Newton on ``[G(z); g_k(z)] = 0`` started from the Hermite interpolant of the bracket."""
+def locate_fold(br: Bracket, k: int, start: np.ndarray | None = None,
+                tangent: np.ndarray | None = None) -> Located | None:
+    """Newton on ``[G(z); g_k(z)] = 0`` started from the Hermite interpolant of the bracket
+    (or from ``start`` with its ``tangent``); None if it fails or leaves the bracket."""
     o = br.options
     system = br.system
-    ta, tb = br.t_a[k], br.t_b[k]
-    theta = float(np.clip(ta / (ta - tb), 0.0, 1.0)) if ta != tb else 0.5
-    z = br.guess(theta)
+    if start is None:
+        ta, tb = br.t_a[k], br.t_b[k]
+        theta = float(np.clip(ta / (ta - tb), 0.0, 1.0)) if ta != tb else 0.5
+        z = br.guess(theta)
+        tangent = br.guess_derivative(theta)
+    else:
+        z = start.copy()
     keep = np.arange(z.size) != k
-    v0 = br.guess_derivative(theta)[keep]
+    v0 = tangent[keep]
     v0 /= np.linalg.norm(v0)
     b = c = v0
     rhs_len = z.size
@@ -171,7 +184,9 @@ def locate_fold(br: Bracket, k: int) -> Located | None:
             break
         # stagnation at the rounding level of an ill-conditioned system (cond ~ N² for
         # discretised operators): the updates stop shrinking
-        if it >= 4 and size > 0.5 * previous and size <= 1e-9 * scale:
+        # (forward differences stall near 1e-8: the fold's parameter is still exact to
+        # second order, its state to the accuracy of the derivatives)
+        if it >= 4 and size > 0.5 * previous and size <= 1e-6 * scale:
             converged = True
             break
         previous = size
@@ -205,11 +220,12 @@ def locate_component(br: Bracket, k: int, value: float) -> Located | None:
                    {"method": "Newton with the component fixed"})
 
 
-def locate_on_arc(br: Bracket, f, f_a: float, f_b: float) -> Located:
-    """Zero of ``f(z)`` along the arc by Illinois regula falsi on the pseudo-arclength."""
+def locate_on_arc(br: Bracket, f, f_a: float, f_b: float, rtol: float | None = None) -> Located:
+    """Zero of ``f(z)`` along the arc by Illinois regula falsi on the pseudo-arclength, to
+    ``rtol`` (default ``locate_tol``) relative to the step."""
     o = br.options
     lo, hi, flo, fhi = 0.0, br.h, f_a, f_b
-    xtol = o.locate_tol * abs(br.h) + 4 * _EPS * abs(br.h)
+    xtol = (o.locate_tol if rtol is None else rtol) * abs(br.h) + 4 * _EPS * abs(br.h)
     side = 0
     best = None
     it = 0
@@ -221,7 +237,8 @@ def locate_on_arc(br: Bracket, f, f_a: float, f_b: float) -> Located:
         fz = f(res.z)
         best = (res.z, sigma)
         if fz == 0.0:
-            return Located(res.z, sigma, "converged", it, {"method": "Illinois"})
+            return Located(br.polish(res.z, sigma), sigma, "converged", it,
+                           {"method": "Illinois", "test_values": (0.0, 0.0)})
         if np.sign(fz) == np.sign(flo):
             lo, flo = sigma, fz
             if side == -1:
@@ -233,8 +250,9 @@ def locate_on_arc(br: Bracket, f, f_a: float, f_b: float) -> Located:
                 flo *= 0.5
             side = 1
         if abs(hi - lo) <= xtol:
-            return Located(res.z, sigma, "converged", it,
-                           {"method": "Illinois", "interval": (lo, hi)})
+            return Located(br.polish(res.z, sigma), sigma, "converged", it,
+                           {"method": "Illinois", "interval": (lo, hi),
+                            "test_values": (float(flo), float(fhi))})
     if best is None:
         sigma = 0.5 * (lo + hi)
         return Located(br.guess(sigma / br.h), sigma, "guess", it, {"interval": (lo, hi)})

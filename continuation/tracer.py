@@ -44,6 +44,9 @@ from .system import BranchSystem
 
 logger = logging.getLogger(__name__)
 
+_STALL_STEPS = 10  # steps at ds < _STALL_FACTOR·ds_min before a corner step is tried
+_STALL_FACTOR = 1e3
+
 _REMEDY = ("Try a smaller ds_min or ds_max, a better starting point, an analytic jacobian, or "
            "check the residual for discontinuities; pass throw=False to keep the partial branch.")
 
@@ -72,6 +75,7 @@ class TracerState(NamedTuple):
     status: str | None = None
     message: str = ""
     n_points: int = 1
+    stalled: int = 0  # consecutive steps taken with ds near ds_min
 
 
 # --- --- test functions
@@ -127,12 +131,39 @@ class _Test:
 
     def locate(self, tracer: Tracer, br: Bracket, f_a: float, f_b: float) -> Located:
         if self.kind == "fold":
+            return tracer.check_fold_resolution(self._locate_fold(tracer, br, f_a, f_b), br)
+        return self._locate_other(tracer, br, f_a, f_b)
+
+    def _locate_fold(self, tracer: Tracer, br: Bracket, f_a: float, f_b: float) -> Located:
+        if True:
             found = locate_fold(br, self.k)
+            if found is not None:
+                return found
+
+            def tangent_k(z):
+                return tracer.tangent_through(z, br)[self.k]
+
+            # a poor start (a long step, or two folds close together): bracket the fold
+            # coarsely by regula falsi and restart Newton from there
+            rough = locate_on_arc(br, tangent_k, f_a, f_b, rtol=1e-3)
+            found = locate_fold(br, self.k, start=rough.z,
+                                tangent=tracer.tangent_through(rough.z, br))
+            if found is not None:
+                found.details["method"] = "minimally augmented Newton (after regula falsi)"
+                return found
             if found is None:  # Newton failed: fall back to regula falsi on the tangent
-                found = locate_on_arc(br, lambda z: tracer.tangent_through(z, br)[self.k],
-                                      f_a, f_b)
+                found = locate_on_arc(br, tangent_k, f_a, f_b)
                 found.details["method"] = "Illinois on the tangent component (Newton failed)"
+                # the fold system has no regular solution here (a kink, or derivatives too
+                # rough to locate it): the point is a bracketed estimate only
+                found.status = "guess"
+                ends = found.details.get("test_values", (0.0, 0.0))
+                if min(abs(ends[0]), abs(ends[1])) > 1e-6:
+                    # the tangent component jumps instead of passing through zero
+                    found.details["non_smooth"] = True
             return found
+
+    def _locate_other(self, tracer: Tracer, br: Bracket, f_a: float, f_b: float) -> Located:
         if self.kind in ("target", "bound"):
             found = locate_component(br, self.k, self.value_at)
             if found is not None:
@@ -426,6 +457,81 @@ class Tracer:
             t = -t
         return t
 
+    def check_fold_resolution(self, found: Located, br: Bracket) -> Located:
+        """With finite-difference derivatives, a fold whose radius of curvature is within
+        100 difference steps cannot be told from a kink smoothed by the stencil: it is then
+        reported as a bracketed guess."""
+        problem = self.problem
+        if problem is None or getattr(problem, "has_jacobian", True):
+            return found
+        method = getattr(problem, "derivatives", "central")
+        if method == "complex":
+            return found
+        rel = np.finfo(float).eps ** (1 / 3 if method == "central" else 1 / 2)
+        h_fd = rel * (1.0 + float(np.max(np.abs(found.z))))
+        cos = float(br.t_a @ (self.weights * br.t_b))
+        turn = math.acos(max(-1.0, min(1.0, cos)))
+        if turn > 0 and abs(br.h) / turn < 100 * h_fd:
+            found.status = "guess"
+            found.details["non_smooth"] = True
+            found.details["reason"] = (
+                f"radius of curvature {abs(br.h) / turn:.2g} is within 100 finite-difference "
+                f"steps ({h_fd:.2g}): possibly a kink; supply a jacobian to decide")
+        return found
+
+    def _corner_step(self, z, t, ds_hint, z_prev=None):
+        """Fallback at a corner of the curve (a non-smooth turning point, where the tangent
+        turns by more than 90° so no pseudo-arclength hyperplane meets the curve beyond):
+        natural-parameter steps in one component at a time, largest tangent components
+        first, each moving the way it was moving. Returns (result, tangent, row, angle)."""
+        o = self.options
+        system = self.system
+        W = self.weights
+        # the variable that turns at a corner is the one with the large tangent component
+        # before it: the smaller components are tried first (the "control component", as in
+        # contique); the approach to a corner halves ds at every step, so the trial sizes
+        # start higher, and at each size every component is tried
+        incoming = None
+        if z_prev is not None and self.wnorm(z - z_prev) > 0:
+            incoming = (z - z_prev) / self.wnorm(z - z_prev)
+        mags = np.abs(t) * np.sqrt(W)
+        order = [j for j in np.argsort(mags) if mags[j] > 1e-6 * mags.max()][:4]
+        h0 = max(ds_hint, 1e-4 * o.ds_max)
+        sizes = [h for h in (h0 * 0.25**k for k in range(12)) if h >= 10 * o.ds_min]
+        for h in sizes:
+            for j in order:
+                sign = 1.0 if t[j] > 0 else -1.0
+                row = np.zeros(system.dim)
+                row[j] = 1.0
+                target = z[j] + sign * h / math.sqrt(W[j])
+                z0 = z.copy()
+                z0[j] = target
+                res = newton(system, z0, row, target, tol=o.tol, step_tol=o.step_tol,
+                             max_iter=2 * o.max_newton_iterations)
+                # the other components move by (slope)·h: a looser guard than for
+                # arclength steps, still against jumping to a distant branch
+                if not res.converged or self.wnorm(res.z - z) > 20.0 * h:
+                    continue
+                if incoming is not None:  # never back along the way we came
+                    chord = res.z - z
+                    along = float(chord @ (W * incoming))
+                    if along < 0 and self.wnorm(chord - along * incoming) < 0.1 * self.wnorm(
+                            chord):
+                        continue
+                # oriented by the stepped component (the chord through the corner is not
+                # aligned with the tangent beyond it)
+                t_new = res.lu.solve(self._e_last)
+                if t_new[j] == 0.0:
+                    continue
+                t_new *= sign / t_new[j]
+                t_new /= self.wnorm(t_new)
+                cos = float(t_new @ (W * t))
+                angle = math.degrees(math.acos(max(-1.0, min(1.0, cos))))
+                logger.info("corner passed by a natural-parameter step in %s",
+                            system.names[j])
+                return res, t_new, W * t_new, angle
+        return None
+
     def _sdet(self, z, t):
         lu = factor(bordered(self.system.jacobian(z), self.weights * t))
         return lu.sign_det()
@@ -453,7 +559,13 @@ class Tracer:
                 secant = d / nd
         direction = t if secant is None else secant
         used_fallback = False
-        while True:
+        is_corner = False
+        corner = None
+        if state.stalled >= _STALL_STEPS:
+            # creeping at ds near ds_min (say, Newton with a Jacobian differenced across a
+            # kink): try to pass the corner directly
+            corner = self._corner_step(z, t, ds, None if last.prev is None else last.prev.z)
+        while corner is None:
             z_pred = z + ds * direction
             row = W * direction
             res = newton(system, z_pred, row, float(row @ z_pred), tol=o.tol,
@@ -469,15 +581,23 @@ class Tracer:
                 angle = math.degrees(math.acos(max(-1.0, min(1.0, cosang))))
                 dc = res.z - z_pred
                 correction = math.sqrt(dc @ (W * dc))
-                if (angle > o.max_angle or correction > ds) and ds > o.ds_min:
+                if angle > o.max_angle or correction > ds:
                     reason = (f"tangent turned {angle:.1f} degrees" if angle > o.max_angle
                               else "correction larger than the step")
-                    ds = max(0.5 * ds, o.ds_min)
-                    rejected += 1
-                    continue
-                break
-            reason = res.reason
+                    if ds > o.ds_min:
+                        ds = max(0.5 * ds, o.ds_min)
+                        rejected += 1
+                        continue
+                    res.converged = False
+                else:
+                    break
+            else:
+                reason = res.reason
             if ds <= o.ds_min:
+                corner = self._corner_step(z, t, state.ds,
+                                           None if last.prev is None else last.prev.z)
+                if corner is not None:
+                    break
                 values = system.values(z)
                 if reason == "nonfinite":
                     msg = (f"the residual is not finite within ds_min={o.ds_min:g} of "
@@ -492,6 +612,10 @@ class Tracer:
             ds = max(0.5 * ds, o.ds_min)
             rejected += 1
 
+        if corner is not None:
+            res, t_new, row, angle = corner
+            ds = self.wnorm(res.z - z)
+            is_corner = True
         z1 = res.z
         sdet = None
         if self._has_bp:
@@ -518,6 +642,15 @@ class Tracer:
                              else tt.value(self, z1, t_new, sdet))
         crossings = [(tt, old, new) for tt, old, new in zip(self.tests, state.tests, new_tests)
                      if tt.crossed(old, new)]
+        if is_corner:
+            # the tangent jumped across a corner: a fold there is non-smooth and only
+            # bracketed; it is recorded on the corner step's own end point
+            records = tuple(
+                (tt.kind, f"{tt.label} (non-smooth)", tt.wrt, "guess", (last.s, last.s + h),
+                 {"non_smooth": True, "method": "corner step (natural parameter)"})
+                for tt, _, _ in crossings if tt.kind == "fold")
+            new_point.special = records or None
+            crossings = [c for c in crossings if c[0].kind != "fold"]
         status = None
         message = ""
         n_points = state.n_points
@@ -556,8 +689,9 @@ class Tracer:
             status = "max_steps"
             message = f"the branch ended after max_steps={o.max_steps} steps"
             new_point.special = (("endpoint", "max_steps", None, "converged", None, {}),)
+        stalled = state.stalled + 1 if ds < _STALL_FACTOR * o.ds_min else 0
         return TracerState(new_point, ds_next, tuple(new_tests), steps, status, message,
-                           n_points)
+                           n_points, stalled)
 
     def _record(self, tt: _Test, loc: Located, br: Bracket, s_a: float):
         details = dict(loc.details)
