@@ -121,7 +121,8 @@ class PrintedVerdict:
 @dataclass(frozen=True)
 class ImplementationVerdict:
     equation: str
-    implementation: str | None  # e.g. "ExponentialRoughSurface.stick_force_ratio"; None: no counterpart
+    # e.g. "ExponentialRoughSurface.stick_force_ratio"; None: no counterpart in models/
+    implementation: str | None
     agrees: bool
     points: int
     max_rel_error: float
@@ -218,9 +219,11 @@ def _exponential_derivations() -> list[Derivation]:
         "c": F_hat - pref * (poly - sp.erf(X)),
     }
     # the first line of Eq 12, in x = g_T/(mu lambda)
-    eq12x_printed = (1 - sp.exp(-x)) - sp.exp(-x) / (3 * sp.sqrt(sp.pi)) * (
-        -4 * x**HALF3 - 6 * sp.sqrt(x)
-    ) - sp.erf(sp.sqrt(x))
+    eq12x_printed = (
+        (1 - sp.exp(-x))
+        - sp.exp(-x) / (3 * sp.sqrt(sp.pi)) * (-4 * x**HALF3 - 6 * sp.sqrt(x))
+        - sp.erf(sp.sqrt(x))
+    )
 
     # Eq 15: A_ST / A_r
     ast_x = sp.simplify(_in_x(1 - R["area_slip"] / R["area_all"]))
@@ -266,7 +269,7 @@ def _exponential_derivations() -> list[Derivation]:
             F_dom,
             (
                 "Eq 7 integrated, over mu F_N (Eq 11), with x = -ln(1 - Fhat_T) solved from the",
-                "derived Eq 9. Printed reading: Fhat - (1-Fhat)/(3 sqrt(pi)) [-4X^3 - 6X] - erf(X),",
+                "derived Eq 9. Printed reading: Fhat - (1-Fhat)/(3 sqrt(pi)) [-4X^3-6X] - erf(X),",
                 "X = sqrt(-ln(1-Fhat)), i.e. Fhat_T - P(5/2, x).",
             ),
             change_of_variable=to_x,
@@ -454,9 +457,10 @@ def _smooth_derivations() -> list[Derivation]:
     eq28 = sp.simplify((fst_cyl / (mu * F_N)).subs(ca, ca_cyl))
     width = sp.integrate(1, (xi, -c, c)) / sp.integrate(1, (xi, -a, a))
     eq29 = sp.simplify(width.subs(c, ca * a).subs(ca, ca_cyl))
-    eq27_printed = 2 / sp.pi * mu * F_N * (
-        ca * sp.sqrt(1 - ca**2) + sp.atan(ca / sp.sqrt(1 - ca**2))
-    ) - mu * F_N * ca**2
+    eq27_printed = (
+        2 / sp.pi * mu * F_N * (ca * sp.sqrt(1 - ca**2) + sp.atan(ca / sp.sqrt(1 - ca**2)))
+        - mu * F_N * ca**2
+    )
     eq28_printed = (
         2 / sp.pi * (sp.sqrt((1 - F_hat) * F_hat) + sp.atan(sp.sqrt((1 - F_hat) / F_hat)))
         + F_hat
@@ -522,8 +526,9 @@ def derive_all() -> list[Derivation]:
     order += ["25", "26", "27", "28", "29", "MD", "AB", "32"]
     recs = _all()
     key = {eq: i for i, eq in enumerate(order)}
-    return sorted(recs, key=lambda rec: (key.get(rec.equation.split(" (reading")[0], 99),
-                                         rec.equation))
+    return sorted(
+        recs, key=lambda rec: (key.get(rec.equation.split(" (reading")[0], 99), rec.equation)
+    )
 
 
 def derivation(equation: str) -> Derivation:
@@ -602,21 +607,28 @@ def check_printed(der: Derivation, *, points: int = 40, dps: int = 50) -> Printe
                 worst, worst_at = err, (args, vp, vd)
         agrees = worst <= tol
     args, vp, vd = worst_at
-    where = ", ".join(f"{s}={mpmath.nstr(v, 8)}" for s, v in zip(syms, args))
+    where = ", ".join(f"{s}={mpmath.nstr(v, 8)}" for s, v in zip(syms, args, strict=True))
     detail = (
         f"max relative difference {mpmath.nstr(worst, 3)} (tolerance 1e-{dps - 10}); "
         f"worst at {where}: printed {mpmath.nstr(vp, 12)}, derived {mpmath.nstr(vd, 12)}"
     )
-    return PrintedVerdict(der.equation, bool(agrees), f"numeric, {points} points at {dps} digits",
-                          detail)
+    return PrintedVerdict(
+        der.equation, bool(agrees), f"numeric, {points} points at {dps} digits", detail
+    )
 
 
 # --------------------------------------------------------------------------------------------
 # Verdict: derived vs the float implementation in models/
 
 
-def exact_value(expr: sp.Expr, symbols: Sequence[sp.Symbol], values: Sequence[float],
-                *, min_dps: int = 50, max_dps: int = 6400) -> mpmath.mpf:
+def exact_value(
+    expr: sp.Expr,
+    symbols: Sequence[sp.Symbol],
+    values: Sequence[float],
+    *,
+    min_dps: int = 50,
+    max_dps: int = 6400,
+) -> mpmath.mpf:
     """``expr`` at the exact binary values ``values``, to about 30 correct digits.
 
     The derived expressions are evaluated as derived (e.g. the erf form of Eq 12), which
@@ -680,34 +692,82 @@ def _model_checks(models) -> list[_Check]:
     pars = {mu: mu_m, lam: lam_m}
     F = _ft_hat_points()
     checks = [
-        _Check("12", "ExponentialRoughSurface.stick_force_ratio", derivation("12").derived,
-               (F_hat,), F, surf.stick_force_ratio),
-        _Check("15", "ExponentialRoughSurface.stick_area_ratio", derivation("15").derived,
-               (F_hat,), F, surf.stick_area_ratio),
-        _Check("21", "Sphere.stick_force_ratio", derivation("21").derived, (F_hat,), F,
-               sphere.stick_force_ratio),
-        _Check("22", "Sphere.stick_area_ratio", derivation("22").derived, (F_hat,), F,
-               sphere.stick_area_ratio),
-        _Check("28", "Cylinder.stick_force_ratio", derivation("28").derived, (F_hat,), F,
-               cylinder.stick_force_ratio),
-        _Check("29", "Cylinder.stick_area_ratio", derivation("29").derived, (F_hat,), F,
-               cylinder.stick_area_ratio),
+        _Check(
+            "12",
+            "ExponentialRoughSurface.stick_force_ratio",
+            derivation("12").derived,
+            (F_hat,),
+            F,
+            surf.stick_force_ratio,
+        ),
+        _Check(
+            "15",
+            "ExponentialRoughSurface.stick_area_ratio",
+            derivation("15").derived,
+            (F_hat,),
+            F,
+            surf.stick_area_ratio,
+        ),
+        _Check(
+            "21",
+            "Sphere.stick_force_ratio",
+            derivation("21").derived,
+            (F_hat,),
+            F,
+            sphere.stick_force_ratio,
+        ),
+        _Check(
+            "22",
+            "Sphere.stick_area_ratio",
+            derivation("22").derived,
+            (F_hat,),
+            F,
+            sphere.stick_area_ratio,
+        ),
+        _Check(
+            "28",
+            "Cylinder.stick_force_ratio",
+            derivation("28").derived,
+            (F_hat,),
+            F,
+            cylinder.stick_force_ratio,
+        ),
+        _Check(
+            "29",
+            "Cylinder.stick_area_ratio",
+            derivation("29").derived,
+            (F_hat,),
+            F,
+            cylinder.stick_area_ratio,
+        ),
     ]
     # Eq 9 and its inverse at F_N = 1000 N, at slips/forces spanning the Fhat_T points
     FN_f = 1000.0
     mulam = float(mu_m * lam_m)
-    g_pts = tuple(
-        (float(-mpmath.log1p(-mpmath.mpf(v)) * mpmath.mpf(mulam)), FN_f) for (v,) in F
-    )
+    g_pts = tuple((float(-mpmath.log1p(-mpmath.mpf(v)) * mpmath.mpf(mulam)), FN_f) for (v,) in F)
     ft_pts = tuple((float(mpmath.mpf(v) * mu_f * FN_f), FN_f) for (v,) in F)
     eq9 = derivation("9").derived.subs(pars)
     F_T = sp.Symbol("F_T", positive=True)
     g_inv = _solve_unique(derivation("9").derived.subs(pars) - F_T, g_T)
     checks += [
-        _Check("9", "ExponentialRoughSurface.tangential_force", eq9, (g_T, F_N), g_pts,
-               surf.tangential_force, conditioned=(g_T,)),
-        _Check("9", "ExponentialRoughSurface.tangential_slip", g_inv, (F_T, F_N), ft_pts,
-               surf.tangential_slip, conditioned=(F_T,)),
+        _Check(
+            "9",
+            "ExponentialRoughSurface.tangential_force",
+            eq9,
+            (g_T, F_N),
+            g_pts,
+            surf.tangential_force,
+            conditioned=(g_T,),
+        ),
+        _Check(
+            "9",
+            "ExponentialRoughSurface.tangential_slip",
+            g_inv,
+            (F_T, F_N),
+            ft_pts,
+            surf.tangential_slip,
+            conditioned=(F_T,),
+        ),
     ]
     # Section 4 at the Fig 6 data: F_N0 = 1000 N, g_A = 0.34 um, F'_N from 1000 N down
     gA_f, FN0_f = 0.34, 1000.0
@@ -726,12 +786,33 @@ def _model_checks(models) -> list[_Check]:
 
     ins = (F_Np, F_N0, g_A)
     checks += [
-        _Check("MD", "ExponentialRoughSurface.tangential_force - mu dF_N",
-               derivation("MD").derived.subs(pars), ins, sec4, md_call, conditioned=ins),
-        _Check("AB", "ExponentialRoughSurface.tangential_slip at (F'_T, F'_N)",
-               derivation("AB").derived.subs(pars), ins, sec4, ab_call, conditioned=ins),
-        _Check("32", "1 - ExponentialRoughSurface.stick_area_ratio + dF_N/F_N0",
-               derivation("32").derived.subs(pars), ins, sec4, asl_call, conditioned=ins),
+        _Check(
+            "MD",
+            "ExponentialRoughSurface.tangential_force - mu dF_N",
+            derivation("MD").derived.subs(pars),
+            ins,
+            sec4,
+            md_call,
+            conditioned=ins,
+        ),
+        _Check(
+            "AB",
+            "ExponentialRoughSurface.tangential_slip at (F'_T, F'_N)",
+            derivation("AB").derived.subs(pars),
+            ins,
+            sec4,
+            ab_call,
+            conditioned=ins,
+        ),
+        _Check(
+            "32",
+            "1 - ExponentialRoughSurface.stick_area_ratio + dF_N/F_N0",
+            derivation("32").derived.subs(pars),
+            ins,
+            sec4,
+            asl_call,
+            conditioned=ins,
+        ),
     ]
     return checks
 
@@ -779,8 +860,9 @@ def _run_check(chk: _Check) -> ImplementationVerdict:
     )
     if failures:
         detail += f"; {len(failures)} failing, first: {failures[0]}"
-    return ImplementationVerdict(chk.equation, chk.name, ok, len(chk.points), worst, detail,
-                                 tuple(failures))
+    return ImplementationVerdict(
+        chk.equation, chk.name, ok, len(chk.points), worst, detail, tuple(failures)
+    )
 
 
 def check_implementation(models=None) -> dict[str, list[ImplementationVerdict]]:
