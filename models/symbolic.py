@@ -636,7 +636,7 @@ def exact_value(
     until two successive evaluations agree to 1e-30 relative, starting high enough that
     1 - v is exact for every input v.
     """
-    f = _lambdify(expr, symbols)
+    f = _compiled(expr, tuple(symbols))
     start = min_dps
     for v in values:
         if v != 0 and math.isfinite(v):
@@ -685,11 +685,10 @@ def _model_checks(models) -> list[_Check]:
     sig_f, nu_f, mu_f = 2.0, 0.3, 0.1
     surf = models.ExponentialRoughSurface(sigma=sig_f, nu=nu_f, mu=mu_f)
     sphere, cylinder = models.Sphere(), models.Cylinder()
-    # the exact binary parameters the float code holds
-    sig_m, nu_m = sp.Float(mpmath.mpf(sig_f), 60), sp.Float(mpmath.mpf(nu_f), 60)
-    mu_m = sp.Float(mpmath.mpf(mu_f), 60)
-    lam_m = sig_m * (2 - nu_m) / (2 * (1 - nu_m))
-    pars = {mu: mu_m, lam: lam_m}
+    # the parameters enter as the exact binary floats the float code holds
+    nu_s = sp.Symbol("nu", positive=True)
+    pars = {lam: sigma * (2 - nu_s) / (2 * (1 - nu_s))}
+    par_syms, par_vals = (mu, sigma, nu_s), (mu_f, sig_f, nu_f)
     F = _ft_hat_points()
     checks = [
         _Check(
@@ -743,48 +742,51 @@ def _model_checks(models) -> list[_Check]:
     ]
     # Eq 9 and its inverse at F_N = 1000 N, at slips/forces spanning the Fhat_T points
     FN_f = 1000.0
-    mulam = float(mu_m * lam_m)
-    g_pts = tuple((float(-mpmath.log1p(-mpmath.mpf(v)) * mpmath.mpf(mulam)), FN_f) for (v,) in F)
-    ft_pts = tuple((float(mpmath.mpf(v) * mu_f * FN_f), FN_f) for (v,) in F)
+    mulam = mu_f * sig_f * (2 - nu_f) / (2 * (1 - nu_f))
+    g_pts = tuple(
+        (float(-mpmath.log1p(-mpmath.mpf(v)) * mpmath.mpf(mulam)), FN_f) + par_vals for (v,) in F
+    )
+    ft_pts = tuple((float(mpmath.mpf(v) * mu_f * FN_f), FN_f) + par_vals for (v,) in F)
     eq9 = derivation("9").derived.subs(pars)
     F_T = sp.Symbol("F_T", positive=True)
-    g_inv = _solve_unique(derivation("9").derived.subs(pars) - F_T, g_T)
+    g_inv = _solve_unique(derivation("9").derived - F_T, g_T).subs(pars)
     checks += [
         _Check(
             "9",
             "ExponentialRoughSurface.tangential_force",
             eq9,
-            (g_T, F_N),
+            (g_T, F_N) + par_syms,
             g_pts,
-            surf.tangential_force,
+            lambda g, fn, *_: surf.tangential_force(g, fn),
             conditioned=(g_T,),
         ),
         _Check(
             "9",
             "ExponentialRoughSurface.tangential_slip",
             g_inv,
-            (F_T, F_N),
+            (F_T, F_N) + par_syms,
             ft_pts,
-            surf.tangential_slip,
+            lambda ft, fn, *_: surf.tangential_slip(ft, fn),
             conditioned=(F_T,),
         ),
     ]
     # Section 4 at the Fig 6 data: F_N0 = 1000 N, g_A = 0.34 um, F'_N from 1000 N down
     gA_f, FN0_f = 0.34, 1000.0
     fnp = (999.999, 990.0, 950.0, 900.0, 850.0, 800.0, 750.0, 700.0)
-    sec4 = tuple((v, FN0_f, gA_f) for v in fnp)
+    sec4 = tuple((v, FN0_f, gA_f) + par_vals for v in fnp)
 
-    def md_call(fnp_, fn0, ga):
+    def md_call(fnp_, fn0, ga, *_):
         return float(surf.tangential_force(ga, fn0)) - mu_f * (fn0 - fnp_)
 
-    def ab_call(fnp_, fn0, ga):
+    def ab_call(fnp_, fn0, ga, *_):
         return surf.tangential_slip(md_call(fnp_, fn0, ga), fnp_)
 
-    def asl_call(fnp_, fn0, ga):
+    def asl_call(fnp_, fn0, ga, *_):
         fhat = md_call(fnp_, fn0, ga) / (mu_f * fnp_)
         return 1.0 - float(surf.stick_area_ratio(fhat)) + (fn0 - fnp_) / fn0
 
-    ins = (F_Np, F_N0, g_A)
+    loads = (F_Np, F_N0, g_A)
+    ins = loads + par_syms
     checks += [
         _Check(
             "MD",
@@ -793,7 +795,7 @@ def _model_checks(models) -> list[_Check]:
             ins,
             sec4,
             md_call,
-            conditioned=ins,
+            conditioned=loads,
         ),
         _Check(
             "AB",
@@ -802,7 +804,7 @@ def _model_checks(models) -> list[_Check]:
             ins,
             sec4,
             ab_call,
-            conditioned=ins,
+            conditioned=loads,
         ),
         _Check(
             "32",
@@ -811,14 +813,14 @@ def _model_checks(models) -> list[_Check]:
             ins,
             sec4,
             asl_call,
-            conditioned=ins,
+            conditioned=loads,
         ),
     ]
     return checks
 
 
 def _condition(expr, inputs, values, which) -> float:
-    """Sum over ``which`` of |v df/dv / f| at ``values`` (mpmath, 30 digits)."""
+    """Sum over ``which`` of |v df/dv / f| at ``values``: how much rounding the inputs costs."""
     total = 0.0
     for sym in which:
         dexpr = sp.diff(expr, sym) * sym / expr
@@ -827,6 +829,11 @@ def _condition(expr, inputs, values, which) -> float:
         except (ArithmeticError, ZeroDivisionError):
             return math.inf
     return total
+
+
+@functools.lru_cache(maxsize=256)
+def _compiled(expr: sp.Expr, symbols: tuple[sp.Symbol, ...]) -> Callable:
+    return _lambdify(expr, symbols)
 
 
 def _run_check(chk: _Check) -> ImplementationVerdict:
