@@ -1,0 +1,91 @@
+"""Two identical parallel elastic cylinders in partial slip, per unit length (Sec. 3.2, Eqs 23–29).
+
+With F̂_T = F_T/(μ F_N) and k = c/a the stick half-width over the contact half-width:
+
+* c/a = √(1 − F̂_T)                                                      (Eq 26)
+* F̂_ST = (2/π)[√(F̂_T(1 − F̂_T)) + arctan√((1 − F̂_T)/F̂_T)] + F̂_T − 1     (Eq 28)
+* Â_ST = c/a                                                             (Eq 29)
+
+Numerics: Eq 28 loses every digit as F̂_T → 0 (the bracket tends to π/2). With w = arcsin√F̂_T
+it is F̂_ST = F̂_T − (2w − sin 2w)/π, and u − sin u is summed as a series for u < 2; for
+F̂_T > 1/2, with v = arcsin√(1 − F̂_T), F̂_ST = (2v + sin 2v)/π − (1 − F̂_T).
+
+No compliance law: the paper gives none (the 2-D elastic displacement of a line contact is
+defined only up to a datum), so a cylinder cannot follow a load–displacement path; the methods
+that would need one raise :class:`models.errors.NoComplianceLawError`.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from .errors import NoComplianceLawError, check_ratio
+
+__all__ = ["Cylinder", "u_minus_sin_u"]
+
+# u − sin u = Σ_{j≥1} (−1)^{j+1} u^{2j+1}/(2j+1)!; 14 terms reach 1e-17 relative at u = 2
+_SERIES = [(-1.0) ** (j + 1) / math.factorial(2 * j + 1) for j in range(1, 15)]
+
+
+def u_minus_sin_u(u):
+    """u − sin u without cancellation (series below u = 2, direct above)."""
+    u = np.asarray(u, dtype=float)
+    u2 = u * u
+    acc = np.zeros_like(u)
+    for c in reversed(_SERIES):
+        acc = acc * u2 + c
+    series = acc * u2 * u
+    return np.where(np.abs(u) < 2.0, series, u - np.sin(u))
+
+
+_MESSAGE = (
+    "Cylinder has no compliance (load-displacement) law: the paper gives none, because the "
+    "2-D elastic displacement of a line contact is defined only up to an arbitrary datum. "
+    "Only the stick ratios (Eqs 26-29) are available; use Sphere for a loading path."
+)
+
+
+class Cylinder:
+    """Two identical parallel cylinders (per unit length). ``Cylinder(nu=None, mu=None)``."""
+
+    def __init__(self, nu=None, mu=None) -> None:
+        from .errors import check_poisson, check_positive
+
+        self.nu = None if nu is None else check_poisson(nu)
+        self.mu = None if mu is None else check_positive("mu", mu)
+
+    @staticmethod
+    def stick_zone_ratio(FT_hat):
+        """c/a = √(1 − F̂_T)  (Eq 26)."""
+        return np.sqrt(1.0 - check_ratio(FT_hat))
+
+    @staticmethod
+    def stick_force_ratio(FT_hat):
+        """F̂_ST(F̂_T), Eq 28, evaluated without cancellation at both ends."""
+        F = check_ratio(FT_hat)
+        m = 1.0 - F
+        w = np.arcsin(np.sqrt(F))
+        low = F - u_minus_sin_u(2.0 * w) / math.pi
+        v = np.arcsin(np.sqrt(m))
+        high = (2.0 * v + np.sin(2.0 * v)) / math.pi - m
+        return np.where(F <= 0.5, low, high)
+
+    @staticmethod
+    def stick_area_ratio(FT_hat):
+        """Â_ST(F̂_T) = c/a = √(1 − F̂_T)  (Eq 29)."""
+        return np.sqrt(1.0 - check_ratio(FT_hat))
+
+    def tangential_slip(self, F_T, F_N):
+        """Not available: raises NoComplianceLawError (see module docstring)."""
+        raise NoComplianceLawError(_MESSAGE)
+
+    def tangential_force(self, g_T, F_N):
+        """Not available: raises NoComplianceLawError (see module docstring)."""
+        raise NoComplianceLawError(_MESSAGE)
+
+    compliance = tangential_slip
+
+    def __repr__(self) -> str:
+        return f"Cylinder(nu={self.nu!r}, mu={self.mu!r})"

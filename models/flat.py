@@ -1,0 +1,48 @@
+"""Two ideally flat (smooth, rigid-plane) surfaces (paper Sec. 3.3, Eqs 30–31).
+
+Every point of the interface carries the same traction, so the whole contact sticks until
+F_T = μ F_N and then slides at once:
+
+* F̂_ST = F̂_T for 0 ≤ F̂_T < 1, and 0 at F̂_T = 1   (Eq 30)
+* Â_ST = 1   for 0 ≤ F̂_T < 1, and 0 at F̂_T = 1   (Eq 31)
+
+There is no compliance law either (the slip is 0 until gross sliding, then indeterminate).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .errors import NoComplianceLawError, check_ratio
+
+__all__ = ["FlatPlane"]
+
+_MESSAGE = (
+    "FlatPlane has no compliance law: ideally flat planes do not slip at all for F_T < mu*F_N "
+    "and slide as a whole at F_T = mu*F_N, so g_T(F_T) is not a function."
+)
+
+
+class FlatPlane:
+    """Two ideally flat surfaces in contact. ``FlatPlane()``."""
+
+    @staticmethod
+    def stick_force_ratio(FT_hat):
+        """F̂_ST = F̂_T (F̂_T < 1), 0 at F̂_T = 1  (Eq 30)."""
+        F = check_ratio(FT_hat)
+        return np.where(F < 1.0, F, 0.0)
+
+    @staticmethod
+    def stick_area_ratio(FT_hat):
+        """Â_ST = 1 (F̂_T < 1), 0 at F̂_T = 1  (Eq 31)."""
+        F = check_ratio(FT_hat)
+        return np.where(F < 1.0, 1.0, 0.0)
+
+    def tangential_slip(self, F_T, F_N):
+        raise NoComplianceLawError(_MESSAGE)
+
+    def tangential_force(self, g_T, F_N):
+        raise NoComplianceLawError(_MESSAGE)
+
+    def __repr__(self) -> str:
+        return "FlatPlane()"

@@ -1,0 +1,146 @@
+"""Two identical elastic spheres under partial slip (Cattaneo–Mindlin; Sec. 3.1, Eqs 16–22).
+
+With F̂_T = F_T/(μ F_N) and k = c/a the stick-circle radius over the contact radius:
+
+* c/a = (1 − F̂_T)^{1/3}                               (Eq 19)
+* F̂_ST = F̂_T − [1 − (1 − F̂_T)^{2/3}]^{3/2}            (Eq 21)
+* Â_ST = (1 − F̂_T)^{2/3}                               (Eq 22)
+* g_T = 3 (2 − ν) μ F_N / (8 G a) [1 − (1 − F̂_T)^{2/3}] (Eq 2), Hertz a = [3 F_N R*/(4 E*)]^{1/3}
+
+Composite conventions (two identical spheres of radius R [µm], modulus E [N/µm²], Poisson
+ratio ν): R* = R/2, E* = E/[2(1 − ν²)], G = E/[2(1 + ν)] (the shear modulus of each body, as
+in Johnson 1985 Eq 7.42 with G1 = G2). Units: lengths µm, forces N, moduli N/µm².
+
+Numerics: Eq 21 cancels as F̂_T → 1 (two numbers near 1); for F̂_T > 1/2 it is evaluated as
+−expm1(3/2 log1p(−k²)) − (1 − F̂_T), where 1 − F̂_T is exact and the first term
+≈ 3k²/2 ≫ 1 − F̂_T.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .errors import (
+    GrossSlidingError,
+    ModelParameterError,
+    check_finite_array,
+    check_poisson,
+    check_positive,
+    check_ratio,
+)
+
+__all__ = ["Sphere"]
+
+
+class Sphere:
+    """Two identical elastic spheres in contact (per pair).
+
+    ``Sphere(radius=None, E=None, nu=None, mu=None)``: radius R [µm] of each sphere, Young's
+    modulus E [N/µm²], Poisson ratio ν ∈ (−1, 0.5], friction coefficient μ > 0. None of them is
+    needed for the stick ratios; all four are needed for the compliance law (Eq 2).
+    """
+
+    def __init__(self, radius=None, E=None, nu=None, mu=None) -> None:
+        self.radius = None if radius is None else check_positive("radius", radius, "µm")
+        self.E = None if E is None else check_positive("E", E, "N/µm²")
+        self.nu = None if nu is None else check_poisson(nu)
+        self.mu = None if mu is None else check_positive("mu", mu)
+
+    # ------------------------------------------------------------------ ratios
+    @staticmethod
+    def stick_zone_ratio(FT_hat):
+        """c/a = (1 − F̂_T)^{1/3}  (Eq 19)."""
+        F = check_ratio(FT_hat)
+        with np.errstate(divide="ignore"):
+            return np.where(F <= 0.5, np.exp(np.log1p(-F) / 3.0), np.cbrt(1.0 - F))
+
+    @staticmethod
+    def stick_force_ratio(FT_hat):
+        """F̂_ST(F̂_T) = F̂_T − [1 − (1 − F̂_T)^{2/3}]^{3/2}  (Eq 21)."""
+        F = check_ratio(FT_hat)
+        m = 1.0 - F  # exact for F ≥ 1/2
+        with np.errstate(divide="ignore"):
+            one_minus_k2_low = -np.expm1(np.log1p(-F) * (2.0 / 3.0))
+            low = F - one_minus_k2_low**1.5
+            k2 = np.cbrt(m) ** 2
+            high = -np.expm1(1.5 * np.log1p(-k2)) - m
+        return np.where(F <= 0.5, low, np.where(F == 1.0, 0.0, high))
+
+    @staticmethod
+    def stick_area_ratio(FT_hat):
+        """Â_ST(F̂_T) = (c/a)² = (1 − F̂_T)^{2/3}  (Eq 22)."""
+        F = check_ratio(FT_hat)
+        with np.errstate(divide="ignore"):
+            low = np.exp(np.log1p(-F) * (2.0 / 3.0))
+        return np.where(F <= 0.5, low, np.cbrt(1.0 - F) ** 2)
+
+    # ------------------------------------------------------------------ compliance (Eq 2)
+    def _require(self, what: str) -> None:
+        missing = [k for k in ("radius", "E", "nu", "mu") if getattr(self, k) is None]
+        if missing:
+            raise ModelParameterError(
+                f"{what} needs Sphere(radius=..., E=..., nu=..., mu=...); missing: "
+                f"{', '.join(missing)}"
+            )
+
+    @property
+    def E_star(self) -> float:
+        """E* = E/[2(1 − ν²)]  [N/µm²]."""
+        self._require("E_star")
+        return self.E / (2.0 * (1.0 - self.nu**2))
+
+    @property
+    def G(self) -> float:
+        """G = E/[2(1 + ν)]  [N/µm²], shear modulus of each sphere."""
+        self._require("G")
+        return self.E / (2.0 * (1.0 + self.nu))
+
+    def contact_radius(self, F_N):
+        """Hertz a = [3 F_N R*/(4 E*)]^{1/3}, R* = R/2  [µm] at normal load F_N [N]."""
+        self._require("contact_radius")
+        F_N = _positive_load(F_N)
+        return np.cbrt(3.0 * F_N * (0.5 * self.radius) / (4.0 * self.E_star))
+
+    def slip_limit(self, F_N):
+        """g_T at the onset of gross sliding, 3 (2 − ν) μ F_N / (8 G a)  [µm]."""
+        self._require("slip_limit")
+        F_N = _positive_load(F_N)
+        return 3.0 * (2.0 - self.nu) * self.mu * F_N / (8.0 * self.G * self.contact_radius(F_N))
+
+    def tangential_slip(self, F_T, F_N):
+        """g_T(F_T; F_N) [µm] by Eq 2; F_T ≥ μ F_N (gross sliding) raises GrossSlidingError."""
+        self._require("tangential_slip")
+        F_T = check_finite_array("F_T", F_T, lower=0.0, unit="N")
+        F_N = _positive_load(F_N)
+        F_T, F_N = np.broadcast_arrays(F_T, F_N)
+        ratio = F_T / (self.mu * F_N)
+        if np.any(ratio >= 1.0):
+            i = int(np.flatnonzero(np.ravel(ratio >= 1.0))[0])
+            raise GrossSlidingError(
+                f"F_T must be < mu*F_N (gross sliding otherwise): F_T = {np.ravel(F_T)[i]!r} N, "
+                f"mu*F_N = {self.mu * np.ravel(F_N)[i]!r} N"
+            )
+        return self.slip_limit(F_N) * -np.expm1(np.log1p(-ratio) * (2.0 / 3.0))
+
+    def tangential_force(self, g_T, F_N):
+        """F_T(g_T; F_N) [N], the inverse of Eq 2: μ F_N [1 − (1 − g_T/g_lim)^{3/2}].
+
+        For g_T ≥ g_lim (:meth:`slip_limit`) the spheres slide: F_T = μ F_N.
+        """
+        self._require("tangential_force")
+        g_T = check_finite_array("g_T", g_T, lower=0.0, unit="µm")
+        F_N = _positive_load(F_N)
+        g_T, F_N = np.broadcast_arrays(g_T, F_N)
+        r = np.minimum(g_T / self.slip_limit(F_N), 1.0)
+        with np.errstate(divide="ignore"):
+            return self.mu * F_N * -np.expm1(1.5 * np.log1p(-r))
+
+    def __repr__(self) -> str:
+        return f"Sphere(radius={self.radius!r}, E={self.E!r}, nu={self.nu!r}, mu={self.mu!r})"
+
+
+def _positive_load(F_N):
+    F_N = check_finite_array("F_N", F_N, unit="N")
+    if np.any(F_N <= 0.0):
+        raise ModelParameterError(f"F_N must be > 0 [N], got {F_N!r}")
+    return F_N

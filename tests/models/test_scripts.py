@@ -1,0 +1,40 @@
+"""The Fig 5 script runs and writes PNG + SVG; its data keep the paper's ordering."""
+
+from __future__ import annotations
+
+import importlib.util
+import pathlib
+
+import numpy as np
+
+ROOT = pathlib.Path(__file__).resolve().parents[2]
+
+
+def load(name):
+    spec = importlib.util.spec_from_file_location(name, ROOT / "scripts" / f"{name}.py")
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+def test_fig5_writes_png_and_svg(tmp_path):
+    fig5 = load("fig5")
+    assert fig5.main(["--out", str(tmp_path)]) == 0
+    for panel in "ab":
+        for ext in ("png", "svg"):
+            assert (tmp_path / f"fig5{panel}.{ext}").stat().st_size > 1000
+
+
+def test_fig5_data_ordering():
+    data = load("fig5").curves()
+    order = ["spheres", "cylinders", "rough surfaces (exponential)", "flat planes"]
+    F = data["spheres"][0]
+    inner = (F > 0) & (F < 0.9)
+    for index in (1, 2):
+        vals = [data[k][index][inner] for k in order]
+        for lower, higher in zip(vals[:-1], vals[1:], strict=True):
+            assert np.all(lower < higher)
+    # bell shape: F̂_ST rises from 0, peaks inside, falls back to 0
+    for k in order[:3]:
+        y = data[k][1]
+        assert y[0] == 0 and y[-1] == 0 and 0.2 < np.argmax(y) / y.size < 0.9
