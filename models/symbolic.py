@@ -594,6 +594,13 @@ def check_printed(der: Derivation, *, points: int = 40, dps: int = 50) -> Printe
     evaluated with mpmath at ``points`` points of the domain at ``dps`` digits and must be
     below 10^-(dps-10) relative. The verdict says which method decided.
     """
+    if points < 1 or dps < 20:
+        raise ValueError(f"need points >= 1 and dps >= 20, got points={points}, dps={dps}")
+    return _check_printed(der, points, dps)
+
+
+@functools.lru_cache(maxsize=128)
+def _check_printed(der: Derivation, points: int, dps: int) -> PrintedVerdict:
     diff = der.printed - der.derived
     if _is_zero_symbolically(diff):
         return PrintedVerdict(der.equation, True, "symbolic", "simplify(printed - derived) == 0")

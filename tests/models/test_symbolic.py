@@ -42,6 +42,7 @@ def test_every_paper_equation_is_derived(derivations):
         "9",
         "10",
         "12 (x)",
+        "12 (slip)",
         "12",
         "15",
         "18",
