@@ -93,6 +93,24 @@ def _cell(text: str, width: int) -> list[str]:
     return textwrap.wrap(text, width, break_long_words=True, break_on_hyphens=False) or [""]
 
 
+def _reading_notes(recs: list[dict]) -> list[str]:
+    """One line per garbled equation: which reading the derivation supports."""
+    notes = []
+    for base in sorted({r["equation"].split(" (reading")[0] for r in recs if r["role"] != "paper"}):
+        paper = [r for r in recs if r["equation"] == base]
+        alts = [r for r in recs if r["equation"].startswith(f"{base} (reading")]
+        ok = [r["equation"] for r in alts if r["agrees"]]
+        wrong = [r["equation"] for r in alts if not r["agrees"]]
+        verdict = "agrees" if paper and paper[0]["agrees"] else "DISAGREES"
+        notes.append(
+            f"Eq {base}, garbled in the extracted text: the adopted reading "
+            f"[{paper[0]['printed'] if paper else '?'}] {verdict} with the "
+            f"derivation; alternative readings agreeing: {', '.join(ok) or 'none'}; "
+            f"disagreeing: {', '.join(wrong) or 'none'} (see docs/verification.md)."
+        )
+    return notes
+
+
 def format_table(recs: list[dict]) -> str:
     cols = (
         ("equation", 15),
@@ -126,6 +144,7 @@ def format_table(recs: list[dict]) -> str:
             ]
             lines.append("  ".join(row).rstrip())
         lines.append("")
+    lines += _reading_notes(recs)
     problems = [r for r in recs if not r["implementation_agrees"]]
     for r in problems:
         lines.append(f"implementation, Eq {r['equation']}: {r['implementation_detail']}")
