@@ -40,6 +40,7 @@ __all__ = [
     "FT_HAT_EXTREMES",
     "FT_HAT_INTERIOR",
     "IMPLEMENTATION_RTOL",
+    "exact_value",
 ]
 
 # --------------------------------------------------------------------------------------------
@@ -384,7 +385,6 @@ def _contact_loss(R, d_of_load, eq9, ast_x) -> list[Derivation]:
 
 
 def _smooth_derivations() -> list[Derivation]:
-    F_T = sp.Symbol("F_T", positive=True)
     out: list[Derivation] = []
     ratio_dom = ((ca, (0.0, 1.0)), (F_N, (0.0, 2000.0)), (mu, (0.0, 1.0)))
     F_dom = ((F_hat, (0.0, 1.0)),)
@@ -523,7 +523,6 @@ def _smooth_derivations() -> list[Derivation]:
             change_of_variable=to_w,
         ),
     ]
-    del F_T
     return out
 
 

@@ -7,6 +7,7 @@ import json
 import subprocess
 import sys
 import time
+from pathlib import Path
 
 import pytest
 
@@ -134,7 +135,11 @@ def test_wrong_printed_form_gives_nonzero_exit(capsys, monkeypatch):
 def test_cusp_verify_runs_in_under_60_s():
     start = time.perf_counter()
     proc = subprocess.run(
-        [sys.executable, "-m", "models.cli", "verify"], capture_output=True, text=True, timeout=120
+        [sys.executable, "-m", "models.cli", "verify"],
+        capture_output=True,
+        text=True,
+        timeout=120,
+        cwd=Path(__file__).resolve().parents[1],
     )
     elapsed = time.perf_counter() - start
     assert elapsed < 60
