@@ -523,6 +523,34 @@ def _smooth_derivations() -> list[Derivation]:
             change_of_variable=to_w,
         ),
     ]
+
+    # ---- flat planes: uniform pressure p = F_N/A and uniform traction q = F_T/A over the
+    # nominal area; a point sticks while q < mu p (Sec. 3.3). Integrate over the stick set.
+    A_n, s_ = sp.symbols("A_n s", positive=True)
+    F_Tf = F_hat * mu * F_N
+    utilisation = sp.simplify((F_Tf / A_n) / (mu * F_N / A_n))  # q / (mu p)
+    sticks = sp.Piecewise((1, utilisation < 1), (0, True))
+    fst_flat = sp.integrate(sticks * F_Tf / A_n, (s_, 0, A_n)) / (mu * F_N)
+    ast_flat = sp.integrate(sticks, (s_, 0, A_n)) / A_n
+    F_dom_closed = ((F_hat, (0.0, 1.0)),)
+    out += [
+        Derivation(
+            "30",
+            "flat planes: Fhat_ST(Fhat_T)",
+            sp.Piecewise((F_hat, F_hat < 1), (0, True)),
+            sp.piecewise_fold(sp.simplify(fst_flat)),
+            F_dom_closed,
+            ("Uniform traction F_T/A integrated over the set where it is below mu F_N/A.",),
+        ),
+        Derivation(
+            "31",
+            "flat planes: Ahat_ST(Fhat_T)",
+            sp.Piecewise((1, F_hat < 1), (0, True)),
+            sp.piecewise_fold(sp.simplify(ast_flat)),
+            F_dom_closed,
+            ("Measure of the set where the uniform traction is below mu F_N/A, over A.",),
+        ),
+    ]
     return out
 
 
@@ -534,7 +562,7 @@ def _all() -> tuple[Derivation, ...]:
 def derive_all() -> list[Derivation]:
     """All derivations, in paper order (computed once per process, ~seconds)."""
     order = ["9", "10", "12 (x)", "12 (slip)", "12", "15", "18", "19", "20", "21", "22"]
-    order += ["25", "26", "27", "28", "29", "MD", "AB", "32"]
+    order += ["25", "26", "27", "28", "29", "30", "31", "MD", "AB", "32"]
     recs = _all()
     key = {eq: i for i, eq in enumerate(order)}
     return sorted(
@@ -601,6 +629,10 @@ def check_printed(der: Derivation, *, points: int = 40, dps: int = 50) -> Printe
 @functools.lru_cache(maxsize=128)
 def _check_printed(der: Derivation, points: int, dps: int) -> PrintedVerdict:
     diff = der.printed - der.derived
+    declared = {sym for sym, _ in der.variables}
+    if not diff.free_symbols <= declared:
+        extra = ", ".join(sorted(str(sym) for sym in diff.free_symbols - declared))
+        raise ValueError(f"Eq {der.equation}: symbols {extra} have no declared domain")
     if _is_zero_symbolically(diff):
         return PrintedVerdict(der.equation, True, "symbolic", "simplify(printed - derived) == 0")
     if der.change_of_variable:
@@ -703,7 +735,7 @@ def _model_checks(models) -> list[_Check]:
     """The comparisons, against ``models.ExponentialRoughSurface``, ``Sphere``, ``Cylinder``."""
     sig_f, nu_f, mu_f = 2.0, 0.3, 0.1
     surf = models.ExponentialRoughSurface(sigma=sig_f, nu=nu_f, mu=mu_f)
-    sphere, cylinder = models.Sphere(), models.Cylinder()
+    sphere, cylinder, flat = models.Sphere(), models.Cylinder(), models.FlatPlane()
     # the parameters enter as the exact binary floats the float code holds
     nu_s = sp.Symbol("nu", positive=True)
     pars = {lam: sigma * (2 - nu_s) / (2 * (1 - nu_s))}
@@ -757,6 +789,25 @@ def _model_checks(models) -> list[_Check]:
             (F_hat,),
             F,
             cylinder.stick_area_ratio,
+        ),
+    ]
+    F_closed = F + ((1.0,),)  # the flat plane's drop at Fhat_T = 1 is part of Eqs 30-31
+    checks += [
+        _Check(
+            "30",
+            "FlatPlane.stick_force_ratio",
+            derivation("30").derived,
+            (F_hat,),
+            F_closed,
+            flat.stick_force_ratio,
+        ),
+        _Check(
+            "31",
+            "FlatPlane.stick_area_ratio",
+            derivation("31").derived,
+            (F_hat,),
+            F_closed,
+            flat.stick_area_ratio,
         ),
     ]
     # the slip part P(5/2, x) of Eq 12 from the model's slip integral at h = 0

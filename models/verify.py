@@ -20,7 +20,7 @@ import textwrap
 import time
 
 #: equations whose derived expression has a counterpart in the float models
-COMPARED = ("9", "12 (slip)", "12", "15", "21", "22", "28", "29", "MD", "AB", "32")
+COMPARED = ("9", "12 (slip)", "12", "15", "21", "22", "28", "29", "30", "31", "MD", "AB", "32")
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:

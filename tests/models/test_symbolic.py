@@ -32,7 +32,7 @@ def test_import_models_does_not_import_sympy():
 
 def test_every_paper_equation_is_derived(derivations):
     wanted = {"9", "10", "12", "15", "18", "19", "20", "21", "22"}
-    wanted |= {"25", "26", "27", "28", "29", "MD", "AB", "32"}
+    wanted |= {"25", "26", "27", "28", "29", "30", "31", "MD", "AB", "32"}
     assert wanted <= set(derivations)
 
 
@@ -55,6 +55,8 @@ def test_every_paper_equation_is_derived(derivations):
         "27",
         "28",
         "29",
+        "30",
+        "31",
         "MD",
         "AB",
         "32",
@@ -192,6 +194,16 @@ class _GoodCylinder:
         return mpmath.sqrt(1 - f)
 
 
+class _GoodFlat:
+    @staticmethod
+    def stick_force_ratio(f):
+        return f if f < 1.0 else 0.0
+
+    @staticmethod
+    def stick_area_ratio(f):
+        return 1.0 if f < 1.0 else 0.0
+
+
 class _NaiveRough(_GoodRough):
     """Eq 12 in plain floats with the erf form: cancels catastrophically as Fhat -> 1."""
 
@@ -205,7 +217,10 @@ class _NaiveRough(_GoodRough):
 
 def _fake(rough):
     return types.SimpleNamespace(
-        ExponentialRoughSurface=rough, Sphere=_GoodSphere, Cylinder=_GoodCylinder
+        ExponentialRoughSurface=rough,
+        Sphere=_GoodSphere,
+        Cylinder=_GoodCylinder,
+        FlatPlane=_GoodFlat,
     )
 
 
@@ -224,6 +239,8 @@ def test_correct_stand_in_implementation_agrees(good_verdicts):
         "22",
         "28",
         "29",
+        "30",
+        "31",
         "MD",
         "AB",
         "32",
