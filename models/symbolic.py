@@ -129,6 +129,8 @@ class ImplementationVerdict:
     max_rel_error: float
     detail: str
     failures: tuple[str, ...] = field(default=())
+    #: max over points of (relative error / tolerance at that point); <= 1 means agreement
+    max_error_over_tolerance: float = math.nan
 
 
 # --------------------------------------------------------------------------------------------
@@ -928,7 +930,7 @@ def _compiled(expr: sp.Expr, symbols: tuple[sp.Symbol, ...]) -> Callable:
 
 def _run_check(chk: _Check) -> ImplementationVerdict:
     eps = 2.0**-52
-    worst, worst_note = 0.0, ""
+    worst, worst_note, worst_ratio = 0.0, "", 0.0
     failures = []
     for pt in chk.points:
         exact = exact_value(chk.expr, chk.inputs, pt)
@@ -944,6 +946,7 @@ def _run_check(chk: _Check) -> ImplementationVerdict:
             err = 0.0 if got == 0 else math.inf
         else:
             err = float(abs((mpmath.mpf(got) - exact) / exact))
+        worst_ratio = max(worst_ratio, err / tol)
         if err >= worst:
             worst, worst_note = err, f" at {pt[: len(pt) - chk.n_params]} (tolerance {tol:.3g})"
         if not err <= tol:
@@ -957,7 +960,7 @@ def _run_check(chk: _Check) -> ImplementationVerdict:
     if failures:
         detail += f"; {len(failures)} failing, first: {failures[0]}"
     return ImplementationVerdict(
-        chk.equation, chk.name, ok, len(chk.points), worst, detail, tuple(failures)
+        chk.equation, chk.name, ok, len(chk.points), worst, detail, tuple(failures), worst_ratio
     )
 
 

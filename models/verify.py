@@ -56,6 +56,8 @@ def records(models=None) -> list[dict]:
         if der.role != "paper" or der.equation not in COMPARED:
             rec.update(
                 implementation=None,
+                implementation_max_rel_error=None,
+                implementation_error_over_tolerance=None,
                 implementation_compared=False,
                 implementation_agrees=True,
                 implementation_detail="no counterpart in models/ (not compared)",
@@ -63,6 +65,8 @@ def records(models=None) -> list[dict]:
         elif unavailable:
             rec.update(
                 implementation=None,
+                implementation_max_rel_error=None,
+                implementation_error_over_tolerance=None,
                 implementation_compared=False,
                 implementation_agrees=False,
                 implementation_detail=unavailable[0].detail,
@@ -71,6 +75,10 @@ def records(models=None) -> list[dict]:
             checks = impl.get(der.equation, [])
             rec.update(
                 implementation=", ".join(str(chk.implementation) for chk in checks),
+                implementation_max_rel_error=max((c.max_rel_error for c in checks), default=None),
+                implementation_error_over_tolerance=max(
+                    (c.max_error_over_tolerance for c in checks), default=None
+                ),
                 implementation_compared=bool(checks),
                 implementation_agrees=bool(checks) and all(chk.agrees for chk in checks),
                 implementation_detail=" | ".join(
@@ -119,7 +127,10 @@ def format_table(recs: list[dict]) -> str:
         ("verdict", 22),
         ("implementation", 26),
     )
-    lines = ["  ".join(name.ljust(wd) for name, wd in cols), "  ".join("-" * wd for _, wd in cols)]
+    lines = [
+        "  ".join(name.ljust(wd) for name, wd in cols).rstrip(),
+        "  ".join("-" * wd for _, wd in cols),
+    ]
     for r in recs:
         verdict = "agrees" if r["agrees"] else "DISAGREES"
         if r["role"] != "paper":
@@ -129,7 +140,10 @@ def format_table(recs: list[dict]) -> str:
             impl = "n/a" if r["implementation_agrees"] else "NOT RUN: models unavailable"
         else:
             impl = "agrees" if r["implementation_agrees"] else "DISAGREES"
-            impl += f" ({r['implementation']})"
+            err = r.get("implementation_max_rel_error")
+            ratio = r.get("implementation_error_over_tolerance")
+            if err is not None:
+                impl += f", max rel. error {err:.1e} ({ratio:.1g} of tolerance)"
         cells = [
             _cell(r["equation"], cols[0][1]),
             _cell(r["printed"], cols[1][1]),
