@@ -14,6 +14,10 @@ import sys
 #: subcommand name -> (module path, one-line help)
 COMMANDS: dict[str, tuple[str, str]] = {
     "demo": ("models.demo", "trace the cusp normal form x^3 - a x - b = 0 and print its folds"),
+    "verify": (
+        "models.verify",
+        "derive the paper's closed forms with sympy; compare printed, derived and implemented",
+    ),
 }
 
 #: what ``cusp`` with no subcommand runs
