@@ -69,8 +69,9 @@ def newton(system, z0: np.ndarray, row: np.ndarray, c: float, *, tol: float, ste
     m = g.size
     rhs = np.empty(m + 1)
     lu = None
-    sq_step_tol = math.sqrt(step_tol) * (1.0 + _norm(z))
-    rel_step_tol = step_tol * (1.0 + _norm(z))
+    scale = 1.0 + _norm(z)
+    sq_step_tol = math.sqrt(step_tol) * scale
+    rel_step_tol = step_tol * scale
     for k in range(1, max_iter + 1):
         a = system.bordered_jacobian(z, row)
         try:

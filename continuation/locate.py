@@ -11,6 +11,7 @@
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -180,6 +181,12 @@ def locate_fold(br: Bracket, k: int, start: np.ndarray | None = None,
         size = float(np.max(np.abs(dz)))
         scale = 1.0 + float(np.max(np.abs(z)))
         if size <= o.locate_tol * scale:
+            converged = True
+            break
+        # quadratic convergence under way (the update shrank by 100 or more) and the next
+        # update, about size²/previous, would be below the tolerance: stop now
+        if (math.isfinite(previous) and size <= 1e-2 * previous
+                and size * size / previous <= o.locate_tol * scale):
             converged = True
             break
         # stagnation at the rounding level of an ill-conditioned system (cond ~ N² for
