@@ -33,7 +33,7 @@ import scipy.sparse as sp
 from .branch import Branch, SpecialPoint
 from .errors import ProblemDefinitionError, SingularMatrixError
 from .linalg import bordered, bordered_square, factor, matvec_t
-from .locate import Bracket, Located, locate_on_arc, tangent_at
+from .locate import Bracket, Located, locate_on_arc, newton_done, tangent_at
 from .options import ContinuationOptions
 from .problem import as_problem
 from .system import CurveSystem, state_weights
@@ -239,13 +239,9 @@ def _locate_cusp(system: FoldSystem, br: Bracket, f_a: float, f_b: float) -> Loc
         if not np.all(np.isfinite(z)):
             break
         size = float(np.max(np.abs(dz)))
-        scale = 1.0 + float(np.max(np.abs(z)))
-        if size <= o.locate_tol * scale:
-            converged = True
-            break
         # the gradient of the coefficient is a finite difference: Newton converges linearly
         # and, with finite-difference Jacobians, stalls at the noise floor of the coefficient
-        if it >= 4 and size > 0.5 * previous and size <= 1e-9 * scale:
+        if newton_done(it, size, previous, z, o.locate_tol, stall=1e-9):
             converged = True
             break
         previous = size

@@ -135,6 +135,21 @@ def minimally_augmented(system, z: np.ndarray, k: int, b: np.ndarray, c: np.ndar
     return x[-1], x[:-1], y[:-1], dg
 
 
+def newton_done(it: int, size: float, previous: float, z: np.ndarray, tol: float,
+                stall: float) -> bool:
+    """Stopping test of the locating Newton iterations, with update ``size`` (max-norm)."""
+    scale = 1.0 + float(np.max(np.abs(z)))
+    if size <= tol * scale:
+        return True
+    # quadratic convergence under way (the update shrank by 100 or more) and the next
+    # update, about size²/previous, would be below the tolerance
+    if math.isfinite(previous) and size <= 1e-2 * previous and size * size / previous <= (
+            tol * scale):
+        return True
+    # stagnation: the updates stopped shrinking, at a level below ``stall``
+    return it >= 4 and size > 0.5 * previous and size <= stall * scale
+
+
 def locate_fold(br: Bracket, k: int, start: np.ndarray | None = None,
                 tangent: np.ndarray | None = None) -> Located | None:
     """Newton on ``[G(z); g_k(z)] = 0`` started from the Hermite interpolant of the bracket
@@ -179,21 +194,10 @@ def locate_fold(br: Bracket, k: int, start: np.ndarray | None = None,
         if nb > 0 and nc > 0:
             b, c = w / nb, v / nc
         size = float(np.max(np.abs(dz)))
-        scale = 1.0 + float(np.max(np.abs(z)))
-        if size <= o.locate_tol * scale:
-            converged = True
-            break
-        # quadratic convergence under way (the update shrank by 100 or more) and the next
-        # update, about size²/previous, would be below the tolerance: stop now
-        if (math.isfinite(previous) and size <= 1e-2 * previous
-                and size * size / previous <= o.locate_tol * scale):
-            converged = True
-            break
-        # stagnation at the rounding level of an ill-conditioned system (cond ~ N² for
-        # discretised operators): the updates stop shrinking
-        # (forward differences stall near 1e-8: the fold's parameter is still exact to
-        # second order, its state to the accuracy of the derivatives)
-        if it >= 4 and size > 0.5 * previous and size <= 1e-6 * scale:
+        # stagnation accepted up to 1e-6: ill-conditioned systems (cond ~ N² for discretised
+        # operators) and forward differences stall there; the fold's parameter is still
+        # exact to second order, its state to the accuracy of the derivatives
+        if newton_done(it, size, previous, z, o.locate_tol, stall=1e-6):
             converged = True
             break
         previous = size
