@@ -8,7 +8,7 @@ from typing import Any
 import numpy as np
 
 #: statuses that count as a normal end of a branch
-SUCCESS_STATUSES = frozenset({"bound", "max_steps", "terminal_event", "closed_loop", "completed"})
+SUCCESS_STATUSES = frozenset({"bound", "max_steps", "terminal_event"})
 
 
 @dataclass(frozen=True)
@@ -46,7 +46,7 @@ class Branch:
 
     Attributes: ``s`` (arclength), ``tangents`` (rows, in the order of ``variables``),
     ``special_points``, ``status`` (``"bound"``, ``"max_steps"``, ``"terminal_event"``,
-    ``"closed_loop"``, ``"convergence_failure"``, ``"nonfinite_residual"``, ...), ``success``,
+    ``"convergence_failure"``, ``"nonfinite_residual"``, ...), ``success``,
     ``message`` (a sentence), ``stats`` (per-point arrays ``newton_iterations``,
     ``rejected_steps``, ``residual_norm``, ``ds``), ``variables`` (the names of the traced
     components, i.e. the unknowns and the free parameter(s)).

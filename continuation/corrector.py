@@ -8,7 +8,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .errors import SingularMatrixError
-from .linalg import factor
+from .linalg import factor, rounding_floor
 
 
 @dataclass
@@ -31,17 +31,6 @@ def _norm(x: np.ndarray) -> float:
             0.0 if not vals else math.nan)
     m = float(np.abs(x).max())
     return m if math.isfinite(m) else math.nan
-
-
-def _rounding_floor(a, z: np.ndarray) -> float:
-    """Residual size attributable to rounding: 100·eps·‖A‖∞·(1 + ‖z‖∞), with ``A`` the
-    bordered matrix without its border row and last column (the large terms of a fine
-    discretisation live in the state block; a parameter derivative differenced across a
-    jump of the residual would inflate the estimate)."""
-    block = a[:-1, :-1]
-    norm = (abs(block).sum(axis=1).max() if hasattr(block, "tocsr")
-            else np.abs(block).sum(axis=1).max())
-    return 100 * np.finfo(float).eps * float(norm) * (1.0 + _norm(z))
 
 
 def _singular_reason(a) -> str:
@@ -93,7 +82,7 @@ def newton(system, z0: np.ndarray, row: np.ndarray, c: float, *, tol: float, ste
         # rounding level of its own terms (which for badly scaled residuals exceeds tol); a
         # wrong Jacobian (say, differenced across a kink) also gives tiny updates, but leaves
         # the residual above that floor
-        if sn <= rel_step_tol and rn_new <= max(tol, _rounding_floor(a, z)):
+        if sn <= rel_step_tol and rn_new <= max(tol, rounding_floor(a[:-1, :-1], z)):
             return NewtonResult(z, True, k, rn_new, lu)
         if k >= 3 and rn_new > 1e3 * max(rn, tol):
             return NewtonResult(z, False, k, rn_new, lu, "diverging")
@@ -126,7 +115,7 @@ def damped_newton(system, z0: np.ndarray, row: np.ndarray, c: float, *, tol: flo
         rhs[m] = c - row @ z
         dz = lu.solve(rhs)
         if _norm(dz) <= step_tol * (1.0 + _norm(z)) and _norm(g) <= max(
-                tol, _rounding_floor(a, z)):
+                tol, rounding_floor(a[:-1, :-1], z)):
             return NewtonResult(z + dz, True, k, _norm(g), lu)
         lam = 1.0
         while lam > 1e-6:

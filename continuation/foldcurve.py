@@ -32,8 +32,15 @@ import scipy.sparse as sp
 
 from .branch import Branch, SpecialPoint
 from .errors import ProblemDefinitionError, SingularMatrixError
-from .linalg import bordered, bordered_square, factor, matvec_t
-from .locate import Bracket, Located, locate_on_arc, newton_done, tangent_at
+from .linalg import bordered, bordered_square, factor
+from .locate import (
+    Bracket,
+    Located,
+    locate_on_arc,
+    newton_done,
+    second_derivative_row,
+    tangent_at,
+)
 from .options import ContinuationOptions
 from .problem import as_problem
 from .system import CurveSystem, state_weights
@@ -145,7 +152,7 @@ class FoldSystem(CurveSystem):
     def jacobian(self, z):
         g, v, w, _, df = self.bordered_solve(z)
         vt = self.lift(v)
-        grad = -_second_row(self, z, vt, w)
+        grad = -second_derivative_row(self.df, z, vt, w)
         if sp.issparse(df):
             return sp.vstack([df, sp.csr_matrix(grad[None, :])], format="csr")
         out = np.empty((self.n + 1, self.dim))
@@ -183,7 +190,7 @@ class FoldSystem(CurveSystem):
         _, v, w, _, _ = self.bordered_solve(z)
         vt = self.lift(v)
         if self._exact_jacobian:
-            return 0.5 * float(_second_row(self, z, vt, w) @ vt)
+            return 0.5 * float(second_derivative_row(self.df, z, vt, w) @ vt)
         vmax = float(np.max(np.abs(vt)))
         h = _EPS ** 0.25 * max(1.0, float(np.max(np.abs(z)))) / vmax
         second = w @ (self.f(z + h * vt) - 2.0 * self.f(z) + self.f(z - h * vt)) / (h * h)
@@ -193,15 +200,6 @@ class FoldSystem(CurveSystem):
         """Sign and log|det| of ``[[M, b], [cᵀ, 0]]``."""
         _, _, _, lu, _ = self.bordered_solve(z)
         return lu.sign_det(), lu.log_abs_det()
-
-
-def _second_row(system: FoldSystem, z, v, w):
-    """``w·D²F(z)[v, ·]`` over z by central differences of ``∂F/∂z`` along ``v``."""
-    vmax = float(np.max(np.abs(v)))
-    if vmax == 0.0:
-        return np.zeros(z.size)
-    h = _EPS ** (1.0 / 3.0) * max(1.0, float(np.max(np.abs(z)))) / vmax
-    return (matvec_t(system.df(z + h * v), w) - matvec_t(system.df(z - h * v), w)) / (2.0 * h)
 
 
 def _locate_cusp(system: FoldSystem, br: Bracket, f_a: float, f_b: float) -> Located:

@@ -118,6 +118,10 @@ def bordered_square(m, b: np.ndarray, c: np.ndarray):
     return a
 
 
-def matvec_t(dg, w: np.ndarray) -> np.ndarray:
-    """``dg^T w`` for dense or sparse ``dg``."""
-    return dg.T @ w
+def rounding_floor(block, z: np.ndarray) -> float:
+    """Residual size attributable to rounding: 100·eps·‖block‖∞·(1 + ‖z‖∞), with ``block``
+    the state part of the Jacobian (the large terms of a fine discretisation live there; a
+    parameter derivative differenced across a jump of the residual would inflate it)."""
+    norm = (abs(block).sum(axis=1).max() if sp.issparse(block)
+            else np.abs(block).sum(axis=1).max())
+    return 100 * np.finfo(float).eps * float(norm) * (1.0 + float(np.max(np.abs(z))))

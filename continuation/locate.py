@@ -18,7 +18,7 @@ import numpy as np
 
 from .corrector import newton
 from .errors import SingularMatrixError
-from .linalg import bordered, bordered_square, delete_column, factor, matvec_t
+from .linalg import bordered, bordered_square, delete_column, factor, rounding_floor
 
 _EPS = np.finfo(float).eps
 
@@ -87,12 +87,6 @@ class Located:
     details: dict = field(default_factory=dict)
 
 
-def residual_floor(dg, z: np.ndarray) -> float:
-    """Residual size attributable to rounding: 1e3·eps·‖∂G/∂z‖∞·(1 + ‖z‖∞)."""
-    norm = abs(dg).sum(axis=1).max() if hasattr(dg, "tocsr") else np.abs(dg).sum(axis=1).max()
-    return 1e3 * _EPS * float(norm) * (1.0 + float(np.max(np.abs(z))))
-
-
 def tangent_at(system, z: np.ndarray, row: np.ndarray, weights: np.ndarray,
                br: Bracket | None = None) -> np.ndarray:
     """Unit tangent at ``z`` oriented so that ``row·t > 0``.
@@ -111,15 +105,14 @@ def tangent_at(system, z: np.ndarray, row: np.ndarray, weights: np.ndarray,
     return t / np.sqrt(t @ (weights * t))
 
 
-def second_derivative_row(system, z: np.ndarray, v: np.ndarray, w: np.ndarray) -> np.ndarray:
-    """``∇_z (w·∂G/∂z(z) v) = w·D²G(z)[v, ·]`` by central differences of the Jacobian along
+def second_derivative_row(jacobian, z: np.ndarray, v: np.ndarray, w: np.ndarray) -> np.ndarray:
+    """``∇_z (w·J(z) v) = w·D²G(z)[v, ·]`` by central differences of ``jacobian(z)`` along
     ``v`` (exact in exact arithmetic for quadratic G; error O(h²) otherwise)."""
     vmax = float(np.max(np.abs(v)))
     if vmax == 0.0:
         return np.zeros(z.size)
     h = _EPS ** (1.0 / 3.0) * max(1.0, float(np.max(np.abs(z)))) / vmax
-    return (matvec_t(system.jacobian(z + h * v), w) - matvec_t(system.jacobian(z - h * v), w)) / (
-        2.0 * h)
+    return (jacobian(z + h * v).T @ w - jacobian(z - h * v).T @ w) / (2.0 * h)
 
 
 def minimally_augmented(system, z: np.ndarray, k: int, b: np.ndarray, c: np.ndarray):
@@ -179,7 +172,7 @@ def locate_fold(br: Bracket, k: int, start: np.ndarray | None = None,
         G = system.residual(z)
         vt = np.zeros(z.size)
         vt[keep] = v
-        grad = -second_derivative_row(system, z, vt, w)
+        grad = -second_derivative_row(system.jacobian, z, vt, w)
         rhs = np.empty(rhs_len)
         rhs[:-1] = -G
         rhs[-1] = -g
@@ -204,7 +197,8 @@ def locate_fold(br: Bracket, k: int, start: np.ndarray | None = None,
     if not converged:
         return None
     res = system.residual(z)
-    if not np.all(np.isfinite(res)) or np.max(np.abs(res)) > max(o.tol, residual_floor(dg, z)):
+    floor = max(o.tol, rounding_floor(dg[:, :-1], z))
+    if not np.all(np.isfinite(res)) or np.max(np.abs(res)) > floor:
         return None
     sigma = br.sigma(z)
     if not (-0.05 * abs(br.h) <= sigma * np.sign(br.h) <= 1.05 * abs(br.h)):
@@ -303,7 +297,7 @@ def branch_point_directions(system, z: np.ndarray, t: np.ndarray, weights: np.nd
     phi /= np.sqrt(phi @ (weights * phi))
 
     def d2(v1, v2):
-        return second_derivative_row(system, z, v1, psi) @ v2
+        return second_derivative_row(system.jacobian, z, v1, psi) @ v2
 
     a11, a12, a22 = d2(t, t), d2(t, phi), d2(phi, phi)
     scale = max(abs(a11), abs(a12), abs(a22), 1e-300)

@@ -78,7 +78,6 @@ class BranchSystem(CurveSystem):
         self.names = tuple(problem.unknowns) + (free,)
         self.dim = self.n + 1
         self.weights = state_weights(self.n, 1, state_weight)
-        self.sparse = None  # decided at the first Jacobian
 
     def _p(self, z) -> dict[str, float]:
         p = dict(self.params)

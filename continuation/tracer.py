@@ -135,33 +135,31 @@ class _Test:
         return self._locate_other(tracer, br, f_a, f_b)
 
     def _locate_fold(self, tracer: Tracer, br: Bracket, f_a: float, f_b: float) -> Located:
-        if True:
-            found = locate_fold(br, self.k)
-            if found is not None:
-                return found
-
-            def tangent_k(z):
-                return tracer.tangent_through(z, br)[self.k]
-
-            # a poor start (a long step, or two folds close together): bracket the fold
-            # coarsely by regula falsi and restart Newton from there
-            rough = locate_on_arc(br, tangent_k, f_a, f_b, rtol=1e-3)
-            found = locate_fold(br, self.k, start=rough.z,
-                                tangent=tracer.tangent_through(rough.z, br))
-            if found is not None:
-                found.details["method"] = "minimally augmented Newton (after regula falsi)"
-                return found
-            if found is None:  # Newton failed: fall back to regula falsi on the tangent
-                found = locate_on_arc(br, tangent_k, f_a, f_b)
-                found.details["method"] = "Illinois on the tangent component (Newton failed)"
-                # the fold system has no regular solution here (a kink, or derivatives too
-                # rough to locate it): the point is a bracketed estimate only
-                found.status = "guess"
-                ends = found.details.get("test_values", (0.0, 0.0))
-                if min(abs(ends[0]), abs(ends[1])) > 1e-6:
-                    # the tangent component jumps instead of passing through zero
-                    found.details["non_smooth"] = True
+        found = locate_fold(br, self.k)
+        if found is not None:
             return found
+
+        def tangent_k(z):
+            return tracer.tangent_through(z, br)[self.k]
+
+        # a poor start (a long step, or two folds close together): bracket the fold
+        # coarsely by regula falsi and restart Newton from there
+        rough = locate_on_arc(br, tangent_k, f_a, f_b, rtol=1e-3)
+        found = locate_fold(br, self.k, start=rough.z, tangent=tracer.tangent_through(rough.z, br))
+        if found is not None:
+            found.details["method"] = "minimally augmented Newton (after regula falsi)"
+            return found
+        # Newton failed: regula falsi on the tangent component. The fold system has no
+        # regular solution here (a kink, or derivatives too rough to locate it): the point
+        # is a bracketed estimate only
+        found = locate_on_arc(br, tangent_k, f_a, f_b)
+        found.details["method"] = "Illinois on the tangent component (Newton failed)"
+        found.status = "guess"
+        ends = found.details.get("test_values", (0.0, 0.0))
+        if min(abs(ends[0]), abs(ends[1])) > 1e-6:
+            # the tangent component jumps instead of passing through zero
+            found.details["non_smooth"] = True
+        return found
 
     def _locate_other(self, tracer: Tracer, br: Bracket, f_a: float, f_b: float) -> Located:
         if self.kind in ("target", "bound"):
@@ -329,9 +327,6 @@ class Tracer:
 
     def tangent_through(self, z, br: Bracket):
         return tangent_at(self.system, z, br.row, self.weights)
-
-    def _values(self, z):
-        return self.system.values(z)
 
     def _fail(self, state: TracerState, status: str, message: str, exc: Exception):
         if self.throw:
@@ -688,7 +683,8 @@ class Tracer:
         if status is None and steps >= o.max_steps:
             status = "max_steps"
             message = f"the branch ended after max_steps={o.max_steps} steps"
-            new_point.special = (("endpoint", "max_steps", None, "converged", None, {}),)
+            new_point.special = (*(new_point.special or ()),
+                                 ("endpoint", "max_steps", None, "converged", None, {}))
         stalled = state.stalled + 1 if ds < _STALL_FACTOR * o.ds_min else 0
         return TracerState(new_point, ds_next, tuple(new_tests), steps, status, message,
                            n_points, stalled)

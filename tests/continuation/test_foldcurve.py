@@ -5,7 +5,7 @@ import math
 import numpy as np
 import pytest
 
-from continuation import ContinuationOptions, Event, Problem, fold_curve, trace
+from continuation import Event, Problem, fold_curve, trace
 
 X0 = -1.324717957244746  # root of x^3 - x + 1
 
@@ -143,4 +143,3 @@ def test_fold_curve_input_errors():
         fold_curve(prob, fold, free=("b", "b"))
     with pytest.raises(ValueError, match="direction"):
         fold_curve(prob, fold, free=("b", "a"), direction=2)
-    assert isinstance(ContinuationOptions(detect_branch_points=False), ContinuationOptions)
