@@ -24,6 +24,7 @@ from .events import Event
 from .foldcurve import fold_curve
 from .options import ContinuationOptions
 from .problem import ContinuationProblem, Problem
+from .resample import points_at
 from .tracer import Tracer, TracerState, trace
 
 __all__ = [
@@ -44,6 +45,7 @@ __all__ = [
     "TracerState",
     "check_jacobian",
     "fold_curve",
+    "points_at",
     "from_sympy",
     "trace",
 ]

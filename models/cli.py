@@ -13,6 +13,10 @@ import sys
 
 #: subcommand name -> (module path, one-line help)
 COMMANDS: dict[str, tuple[str, str]] = {
+    "run": (
+        "models.run",
+        "trace the contact-loss path of a scene (TOML); default: the paper's Fig 6 scene",
+    ),
     "demo": ("models.demo", "trace the cusp normal form x^3 - a x - b = 0 and print its folds"),
     "verify": (
         "models.verify",
@@ -21,7 +25,7 @@ COMMANDS: dict[str, tuple[str, str]] = {
 }
 
 #: what ``cusp`` with no subcommand runs
-DEFAULT_COMMAND = "demo"
+DEFAULT_COMMAND = "run"
 
 
 def _parser() -> tuple[argparse.ArgumentParser, dict[str, argparse.ArgumentParser]]:

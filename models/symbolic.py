@@ -41,6 +41,7 @@ __all__ = [
     "FT_HAT_INTERIOR",
     "IMPLEMENTATION_RTOL",
     "exact_value",
+    "contact_loss_path",
 ]
 
 # --------------------------------------------------------------------------------------------
@@ -380,6 +381,63 @@ def _contact_loss(R, d_of_load, eq9, ast_x) -> list[Derivation]:
             ),
         ),
     ]
+
+
+@functools.lru_cache(maxsize=1)
+def contact_loss_path() -> dict[str, sp.Expr]:
+    """Closed forms of the whole contact-loss path (Sec. 4) for exponential heights.
+
+    Keys: ``F_A``; ``g_B``, ``F_B``; ``g_C`` (F_T = F_A again on the reloading curve, needs
+    F_A < mu F'_N), ``F_D`` (the reloading curve at g_A); ``A_SL_A`` ... ``A_SL_D`` (Eq 32
+    as printed); ``snap_back`` (area ABD) and ``snap_through`` (area ABC) as the loop
+    integrals of F_T dg_T. Every expression is derived from the GW integrals: the loading
+    curve (Eq 9), its inverse, the MD rule summed over the asperities and Eq 32, then
+    integrated by sympy; symbols are those of :data:`SYMBOLS` (``sigma``, ``mu``, ``lambda``,
+    ``F_N0``, ``Fp_N``, ``g_A``). Used as test oracles for :mod:`models.contact_loss`, which
+    traces the path from residuals instead.
+    """
+    R = _rough()
+    d_of_load = _solve_unique(R["F_N"] - F_N, d)
+    eq9 = sp.simplify((R["F_T"] / R["F_N"]) * F_N)
+    ast_x = sp.simplify(_in_x(1 - R["area_slip"] / R["area_all"]))
+    f = sp.Symbol("f", positive=True)  # the normal load along AB
+    gp = sp.Symbol("gp", positive=True)
+    F_A = eq9.subs({g_T: g_A, F_N: F_N0})
+    d_A = d_of_load.subs(F_N, F_N0)
+    # MD summed over the asperities, and the inverse loading curve, along AB at load f
+    md = sp.simplify(F_A - mu * (R["F_N"].subs(d, d_A) - R["F_N"].subs(d, d_of_load.subs(F_N, f))))
+    g_ab = sp.expand_log(sp.simplify(_solve_unique(eq9.subs({g_T: gp, F_N: f}) - md, gp)))
+    reload = eq9.subs(F_N, F_Np)  # F_T(g_T) at F'_N
+    g_B = g_ab.subs(f, F_Np)
+    F_B = md.subs(f, F_Np)
+    g_C = sp.simplify(_solve_unique(reload.subs(g_T, gp) - F_A, gp))
+    F_D = reload.subs(g_T, g_A)
+    # Eq 32 (printed): 1 - Ahat_ST(x) + dA_r/A_r, A_r from Eq 13 at the two separations
+    A_r = R["area_all"]
+    d_B = d_of_load.subs(F_N, F_Np)
+    dA = sp.simplify((A_r.subs(d, d_A) - A_r.subs(d, d_B)) / A_r.subs(d, d_A))
+
+    def asl(g, reduced):
+        return sp.simplify(1 - ast_x.subs(x, g / (mu * lam)) + (dA if reduced else 0))
+
+    # loop integrals of F_T dg_T: A -> B (parametrised by the load f), B -> D and B -> C
+    # on the reloading curve, then back to A vertically (D) or horizontally (C)
+    along_ab = sp.integrate(sp.simplify(md * sp.diff(g_ab, f)), (f, F_N0, F_Np))
+    b_to_d = sp.integrate(reload, (g_T, g_B, g_A))
+    b_to_c = sp.integrate(reload, (g_T, g_B, g_C))
+    return {
+        "F_A": F_A,
+        "g_B": g_B,
+        "F_B": F_B,
+        "g_C": g_C,
+        "F_D": F_D,
+        "A_SL_A": asl(g_A, False),
+        "A_SL_B": asl(g_B, True),
+        "A_SL_C": asl(g_C, True),
+        "A_SL_D": asl(g_A, True),
+        "snap_back": sp.simplify(-(along_ab + b_to_d)),
+        "snap_through": sp.simplify(-(along_ab + b_to_c - F_A * (g_C - g_A))),
+    }
 
 
 # --------------------------------------------------------------------------------------------

@@ -1,0 +1,634 @@
+"""The contact-loss path O→A→B→C (Sec. 4, Figs 6–8), traced by the continuation solver.
+
+Loading protocol (PHYSICS.md §7):
+
+* O→A: normal load held at F_N0, tangential slip g_T raised from 0 to g_A;
+* A→B: normal load reduced to F'_N with the Mindlin–Deresiewicz rule F'_T = F_A − μΔF_N;
+* B→C: F'_N held, the tangential force raised again until F_T = F_A (C); D is the point of
+  this reloading curve at g_T = g_A.
+
+Under displacement control the path snaps back from A to D (releasing the area ABD), under
+force control it snaps through from A to C (area ABC). If F_A ≥ μF'_N there is no C: force
+control ends in gross sliding.
+
+Formulation
+-----------
+A body is described by two levels: the contact level p and the stick level q (for a rough
+surface the mean-plane separation d and the stick-threshold level d0 = d + g_N0, in units of
+σ*; for a sphere the contact radius a and the stick radius c, in units of the Hertz radius
+a0 at F_N0). In these the equilibrium of the contact reads, for every state on the path,
+
+* normal equilibrium        log(F_N/F_N0) = ℓ(p)               (Eq 11; Hertz for a sphere)
+* tangential equilibrium    F_T/(μF_N) = F̂_T(p, q)            (Eq 9; Eq 19)
+* compliance                g_T = μ s(p, q)                     (Eqs 4–5; Eq 2)
+* slipped area              Â_SL = (1 − Â_ST(p, q)) + ΔA_r/A_r (Eq 32)
+
+plus one constraint for the leg: F_N = F_N0 (OA), the Mindlin–Deresiewicz rule (AB) or
+F_N = F'_N (BC). The rule keeps μF_N − F_T, hence the stick level q, unchanged along AB.
+Each leg is a :class:`continuation.Problem` in the nondimensional unknowns
+
+    g = g_T/g_A,  t = F_T/(μ0 F_N0),  n = F_N/F_N0,  A_SL,  p,  q
+
+(μ0 the friction coefficient of the body; μ is a parameter ``mu`` of the problem) with the
+control of the leg as the free parameter: g on OA, n on AB, g on BC. Nondimensional unknowns
+of order one make the arclength metric meaningful (F_T in N and g_T in µm differ by 10³).
+
+The released energies are integrals along the traced branches, ∫ (F_AB − F_BC) dg over
+[g_B, g_A] (ABD) plus ∫ (F_A − F_BC) dg over [g_A, g_C] (ABC − ABD), by Gauss–Legendre
+quadrature in g with the nodes placed on the branches by :func:`continuation.points_at`
+(each a corrected point, not an interpolated one), doubling the nodes until two rules agree
+to 1e-13 relative. No closed form is evaluated to trace the path; the closed forms of the
+exponential surface (PHYSICS.md §7) are test oracles only.
+
+Â_SL (Eq 32): ``"printed"`` (default) normalises Â_ST by the current real contact area, as
+printed, so Â_SL = (1 − A_ST/A'_r) + (A_r − A'_r)/A_r; ``"consistent"`` measures the stick
+area against the area before the reduction, Â_SL = 1 − A_ST/A_r. They agree on OA.
+
+Units: lengths µm, forces N, energies N·µm (= µJ).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from continuation import Branch, ContinuationOptions, Problem, points_at, trace
+
+from .errors import GrossSlidingError, ModelParameterError, NoComplianceLawError, check_positive
+
+__all__ = ["ContactLoss", "ContactLossResult", "AREA_READINGS", "VARIABLES", "LEG_CONTROLS"]
+
+#: nondimensional variables of every leg problem (one of them is the leg's control)
+VARIABLES = ("g", "t", "n", "A_SL", "p", "q")
+#: leg -> its control (the free parameter of the leg problem)
+LEG_CONTROLS = {"OA": "g", "AB": "n", "BC": "g"}
+AREA_READINGS = ("printed", "consistent")
+
+#: default solver settings for the legs (nondimensional arclength)
+DEFAULT_OPTIONS = ContinuationOptions(ds=0.02, ds_max=0.05)
+
+_QUAD_RTOL = 1e-13
+_QUAD_MAX_NODES = 256
+
+
+# ------------------------------------------------------------------------------------------
+# Levels: the body's equilibrium in (p, q). Each method returns value and partial derivatives.
+
+
+class _ExponentialLevels:
+    """Exponential heights: p = d/σ*, q = d0/σ*, everything in closed form."""
+
+    names = ("d", "d0")
+
+    def __init__(self, surf, F_N0: float) -> None:
+        self.scale = surf.sigma
+        self.lam = surf.lam
+        # the response is invariant under shifts of the mean plane: without a load scale the
+        # datum is put at d = 0 under F_N0
+        self.p0 = float(surf.separation(F_N0)) / surf.sigma if surf.has_load_scale else 0.0
+
+    def ell(self, p):
+        return -(p - self.p0), -1.0
+
+    def ratio(self, p, q):
+        e = math.exp(-(q - p))
+        return -math.expm1(-(q - p)), -e, e
+
+    def slip(self, p, q):
+        return self.lam * (q - p), -self.lam, self.lam
+
+    def stick_area(self, p, q):
+        x = q - p
+        e = math.exp(-x)
+        return e * (1.0 + x), x * e, -x * e
+
+    def area_ratio(self, p):
+        r = math.exp(-(p - self.p0))
+        return r, -r
+
+    def slip_limit(self, p) -> float:
+        return math.inf
+
+
+class _RoughLevels:
+    """Any height density: p = d/σ*, q = d0/σ*, with the surface's GW integrals."""
+
+    names = ("d", "d0")
+
+    def __init__(self, surf, F_N0: float) -> None:
+        self.surf = surf
+        self.scale = s = surf.sigma
+        self.lam = surf.lam
+        d0 = float(surf.separation(F_N0))  # raises MissingLoadScaleError without the scale
+        self.p0 = d0 / s
+        self.j0 = math.log(F_N0 / surf.load_scale)
+        self.A0 = float(surf.area_integral(d0))
+
+    def _j(self, p):
+        h = self.scale * p
+        return float(self.surf.log_load_integral(h)), self.scale * float(
+            self.surf.load_integral_derivative(h) / self.surf.load_integral(h))
+
+    def ell(self, p):
+        j, dj = self._j(p)
+        return j - self.j0, dj
+
+    def ratio(self, p, q):
+        jp, djp = self._j(p)
+        jq, djq = self._j(q)
+        e = math.exp(jq - jp)
+        return -math.expm1(jq - jp), e * djp, -e * djq
+
+    def slip(self, p, q):
+        return self.lam * (q - p), -self.lam, self.lam
+
+    def stick_area(self, p, q):
+        s, surf = self.scale, self.surf
+        h, h0 = s * p, s * q
+        tail0 = float(surf.tail_probability(h0))
+        num = float(surf.area_integral(h0)) + (h0 - h) * tail0
+        den = float(surf.area_integral(h))
+        dnum_p = -s * tail0
+        dnum_q = -s * (h0 - h) * float(surf.pdf(h0))
+        dden_p = -s * float(surf.tail_probability(h))
+        val = num / den
+        return val, (dnum_p - val * dden_p) / den, dnum_q / den
+
+    def area_ratio(self, p):
+        h = self.scale * p
+        return float(self.surf.area_integral(h)) / self.A0, -self.scale * float(
+            self.surf.tail_probability(h)) / self.A0
+
+    def slip_limit(self, p) -> float:
+        return math.inf
+
+
+class _SphereLevels:
+    """Hertz–Mindlin sphere: p = a/a0, q = c/a0 (a0 the Hertz radius under F_N0).
+
+    F_N ∝ a³, F_T = μ(F_N − F_N(c)) (Eq 19), g_T = μκ(p² − q²) with
+    κ = (2 − ν) E* a0² / (2 G R*) (Eq 2 with Hertz), A_r ∝ a², A_ST ∝ c².
+    """
+
+    names = ("a", "c")
+
+    def __init__(self, sphere, F_N0: float) -> None:
+        a0 = float(sphere.contact_radius(F_N0))
+        self.scale = a0
+        self.kappa = (2.0 - sphere.nu) * sphere.E_star * a0**2 / (2.0 * sphere.G
+                                                                 * 0.5 * sphere.radius)
+
+    def ell(self, p):
+        return 3.0 * math.log(p), 3.0 / p
+
+    def ratio(self, p, q):
+        k = q / p
+        return 1.0 - k**3, 3.0 * k**3 / p, -3.0 * k * k / p
+
+    def slip(self, p, q):
+        return self.kappa * (p * p - q * q), 2.0 * self.kappa * p, -2.0 * self.kappa * q
+
+    def stick_area(self, p, q):
+        k = q / p
+        return k * k, -2.0 * k * k / p, 2.0 * k / p
+
+    def area_ratio(self, p):
+        return p * p, 2.0 * p
+
+    def slip_limit(self, p) -> float:
+        return self.kappa * p * p
+
+
+def _levels_for(body, F_N0: float):
+    from .rough import RoughSurface
+    from .sphere import Sphere
+
+    if isinstance(body, RoughSurface):
+        if not body.load_dependent:
+            return _ExponentialLevels(body, F_N0)
+        return _RoughLevels(body, F_N0)
+    if isinstance(body, Sphere):
+        body._require("the contact-loss path (compliance law, Eq 2)")
+        return _SphereLevels(body, F_N0)
+    name = type(body).__name__
+    if name in ("Cylinder", "FlatPlane"):
+        raise NoComplianceLawError(
+            f"a {name} cannot follow the contact-loss path: the paper gives it no compliance "
+            f"law (no load-displacement relation g_T(F_T, F_N)), so there is no O-A-B-C path "
+            f"to trace; use a rough surface or a sphere")
+    raise ModelParameterError(
+        f"body must be a rough surface or a Sphere, got {type(body).__name__}")
+
+
+# ------------------------------------------------------------------------------------------
+# Results
+
+
+@dataclass(frozen=True)
+class ContactLossResult:
+    """Outcome of :meth:`ContactLoss.run`.
+
+    ``points``: ``"O"``, ``"A"``, ``"B"``, ``"C"``, ``"D"`` → ``{"g_T" [µm], "F_T" [N],
+    "F_N" [N], "A_SL", and the two levels (d, d0 [µm] or a, c [µm])}``, or None for a point
+    that does not exist. ``energy``: ``snap_back`` (area ABD) and ``snap_through`` (area
+    ABC) [N·µm], None when the landing point does not exist, with the quadrature error
+    estimates in ``energy_error``. ``folds``: turning points of the controls g_T
+    (snap-back) and F_T (snap-through) along the path (the corners A and B, and any smooth
+    fold the tracer located inside a leg). ``legs``: the traced branches (nondimensional, see
+    the module docstring). ``gross_sliding``: which control ends in gross sliding.
+    """
+
+    points: dict[str, dict[str, float] | None]
+    energy: dict[str, float | None]
+    energy_error: dict[str, float | None]
+    folds: list[dict[str, Any]]
+    legs: dict[str, Branch]
+    gross_sliding: dict[str, bool]
+    messages: list[str]
+    level_names: tuple[str, str]
+    scales: dict[str, float]
+    problems: dict[str, Problem] = field(default_factory=dict)
+    point_rows: dict[str, tuple[str, int]] = field(default_factory=dict)
+    stats: dict[str, dict[str, Any]] = field(default_factory=dict)
+
+    def path(self, leg: str | None = None) -> dict[str, np.ndarray]:
+        """Physical columns along the whole path (or one leg), with a ``leg`` label column.
+
+        Consecutive legs share their junction point, which appears once in each leg.
+        """
+        legs = [leg] if leg is not None else list(self.legs)
+        parts = [self._physical(self.legs[name]) for name in legs]
+        out = {k: np.concatenate([p[k] for p in parts]) for k in parts[0]}
+        out["leg"] = np.concatenate([np.full(len(self.legs[name]), name) for name in legs])
+        return out
+
+    def dense(self, leg: str, points: int = 100) -> dict[str, np.ndarray]:
+        """Physical columns of one leg at ``points`` values of its control spread evenly
+        over the leg, each corrected onto the branch (:func:`continuation.points_at`): a
+        smooth curve for plotting, exact at every point whatever the step sizes were."""
+        br = self.legs[leg]
+        control = LEG_CONTROLS[leg]
+        ends = br[control][[0, -1]]
+        values = np.linspace(ends[0], ends[1], points)
+        return self._physical(points_at(self.problems[leg], br, control, values))
+
+    def _physical(self, columns) -> dict[str, np.ndarray]:
+        sc = self.scales
+        p_name, q_name = self.level_names
+        return {
+            "g_T": np.asarray(columns["g"]) * sc["g"],
+            "F_T": np.asarray(columns["t"]) * sc["t"],
+            "F_N": np.asarray(columns["n"]) * sc["n"],
+            "A_SL": np.asarray(columns["A_SL"], dtype=float).copy(),
+            p_name: np.asarray(columns["p"]) * sc["level"],
+            q_name: np.asarray(columns["q"]) * sc["level"],
+        }
+
+
+# ------------------------------------------------------------------------------------------
+# The model
+
+
+class ContactLoss:
+    """The contact-loss loading path of a body (rough surface or sphere).
+
+    Parameters
+    ----------
+    body:
+        an :class:`~models.ExponentialRoughSurface`, :class:`~models.GaussianRoughSurface`,
+        :class:`~models.GeneralRoughSurface` (these two need the load scale: E, radius,
+        density, nominal_area) or a :class:`~models.Sphere` with all four parameters.
+        Cylinders and flat planes raise :class:`~models.NoComplianceLawError`.
+    normal_load:
+        F_N0 [N], held on OA.
+    max_slip:
+        g_A [µm], the slip at A.
+    reduced_normal_load:
+        F'_N [N] at B, with F_N0 − F_A/μ ≤ F'_N < F_N0 (deeper reductions would make F'_T
+        negative).
+    area_reading:
+        ``"printed"`` (Eq 32 as printed, default) or ``"consistent"`` (see module docstring).
+    """
+
+    def __init__(self, body, normal_load: float, max_slip: float, reduced_normal_load: float,
+                 *, area_reading: str = "printed") -> None:
+        self.F_N0 = check_positive("normal_load", normal_load, "N")
+        self.g_A = check_positive("max_slip", max_slip, "µm")
+        self.F_Np = check_positive("reduced_normal_load", reduced_normal_load, "N")
+        if area_reading not in AREA_READINGS:
+            raise ModelParameterError(
+                f"area_reading must be one of {AREA_READINGS}, got {area_reading!r}")
+        self.area_reading = area_reading
+        self.body = body
+        self.levels = _levels_for(body, self.F_N0)
+        self.mu0 = float(body.mu)
+        if self.F_Np >= self.F_N0:
+            raise ModelParameterError(
+                f"reduced_normal_load must be < normal_load = {self.F_N0!r} N (a reduction), "
+                f"got {self.F_Np!r} N")
+        g_lim = self.mu0 * self.levels.slip_limit(1.0)
+        if self.g_A >= g_lim:
+            raise ModelParameterError(
+                f"max_slip must be < {g_lim!r} µm, the slip at which this body slides under "
+                f"normal_load = {self.F_N0!r} N (gross sliding, no point A), got {self.g_A!r} µm")
+        # F_A from the loading curve, only to validate the reduction (the path is traced)
+        F_A = float(body.tangential_force(self.g_A, self.F_N0))
+        floor = self.F_N0 - F_A / self.mu0
+        if self.F_Np < floor:
+            raise ModelParameterError(
+                f"reduced_normal_load = {self.F_Np!r} N is too deep: F'_T = F_A - mu*dF_N = "
+                f"{F_A - self.mu0 * (self.F_N0 - self.F_Np)!r} N would be negative; allowed: "
+                f"{floor!r} N <= reduced_normal_load < {self.F_N0!r} N")
+        self.scales = {"g": self.g_A, "t": self.mu0 * self.F_N0, "n": self.F_N0,
+                       "level": self.levels.scale}
+
+    # -------------------------------------------------------------- residual and Jacobian
+    def _equations(self, x, mu: float, leg: str, consts) -> tuple[np.ndarray, np.ndarray]:
+        """Residual (5) and its derivatives with respect to (g, t, n, A_SL, p, q, mu)."""
+        g, t, n, a_sl, p, q = x
+        L = self.levels
+        ell, dell = L.ell(p)
+        F, dF_p, dF_q = L.ratio(p, q)
+        s, ds_p, ds_q = L.slip(p, q)
+        ast, dast_p, dast_q = L.stick_area(p, q)
+        r, dr_p = L.area_ratio(p)
+        k = self.mu0 / mu
+        m = mu / self.g_A
+        R = np.empty(5)
+        J = np.zeros((5, 7))
+        R[0] = math.log(n) - ell
+        J[0, 2] = 1.0 / n
+        J[0, 4] = -dell
+        R[1] = k * t - n * F
+        J[1, 1] = k
+        J[1, 2] = -F
+        J[1, 4] = -n * dF_p
+        J[1, 5] = -n * dF_q
+        J[1, 6] = -k * t / mu
+        R[2] = g - m * s
+        J[2, 0] = 1.0
+        J[2, 4] = -m * ds_p
+        J[2, 5] = -m * ds_q
+        J[2, 6] = -s / self.g_A
+        J[3, 3] = 1.0
+        if self.area_reading == "printed":
+            R[3] = a_sl - (2.0 - ast - r)
+            J[3, 4] = dast_p + dr_p
+            J[3, 5] = dast_q
+        else:
+            R[3] = a_sl - (1.0 - r * ast)
+            J[3, 4] = dr_p * ast + r * dast_p
+            J[3, 5] = r * dast_q
+        if leg == "OA":
+            R[4] = n - 1.0
+            J[4, 2] = 1.0
+        elif leg == "AB":
+            R[4] = t - consts + (mu / self.mu0) * (1.0 - n)
+            J[4, 1] = 1.0
+            J[4, 2] = -mu / self.mu0
+            J[4, 6] = (1.0 - n) / self.mu0
+        else:
+            R[4] = n - consts
+            J[4, 2] = 1.0
+        return R, J
+
+    def problem(self, leg: str, *, start: float, constant: float | None = None,
+                mu: float | None = None) -> Problem:
+        """The continuation problem of one leg (nondimensional; see the module docstring).
+
+        ``start``: the value of the leg's control (:data:`LEG_CONTROLS`). ``constant``: t_A
+        (F_A/(μ0 F_N0)) on AB, n_B (F'_N/F_N0) on BC. Parameters: the control, ``mu`` and the
+        leg constant (``t_A`` or ``n_B``).
+        """
+        if leg not in LEG_CONTROLS:
+            raise ModelParameterError(f"leg must be one of {list(LEG_CONTROLS)}, got {leg!r}")
+        control = LEG_CONTROLS[leg]
+        ci = VARIABLES.index(control)
+        unknowns = [v for v in VARIABLES if v != control]
+        params = {control: float(start), "mu": self.mu0 if mu is None else float(mu)}
+        const_name = {"OA": None, "AB": "t_A", "BC": "n_B"}[leg]
+        if const_name is not None:
+            if constant is None:
+                raise ModelParameterError(f"leg {leg} needs constant={const_name}")
+            params[const_name] = float(constant)
+        cols = [i for i in range(6) if i != ci]
+
+        def full(u, p):
+            x = list(u)
+            x.insert(ci, p[control])
+            return x, (p[const_name] if const_name else None)
+
+        def residual(u, p):
+            x, c = full(u, p)
+            return self._equations(x, p["mu"], leg, c)[0]
+
+        def jacobian(u, p):
+            x, c = full(u, p)
+            return self._equations(x, p["mu"], leg, c)[1][:, cols]
+
+        def param_jacobian(u, p, name):
+            x, c = full(u, p)
+            J = self._equations(x, p["mu"], leg, c)[1]
+            if name == control:
+                return J[:, ci]
+            if name == "mu":
+                return J[:, 6]
+            col = np.zeros(5)
+            col[4] = -1.0  # d/d t_A (AB) and d/d n_B (BC) of the leg constraint
+            return col
+
+        return Problem(residual, unknowns, params, jacobian=jacobian,
+                       param_jacobian=param_jacobian, name=f"contact-loss leg {leg}")
+
+    # -------------------------------------------------------------- the path
+    def run(self, options: ContinuationOptions | None = None) -> ContactLossResult:
+        """Trace O→A→B→C (and D), locate the folds and integrate the released energies."""
+        o = options or DEFAULT_OPTIONS
+        L = self.levels
+        p0 = getattr(L, "p0", 1.0)
+        messages: list[str] = []
+        # O -> A: slip raised at F_N0
+        prob = self.problem("OA", start=0.0)
+        oa = trace(prob, [0.0, 1.0, 0.0, p0, p0], free="g", bounds={"g": (-math.inf, 1.0)},
+                   monitor=["t", "A_SL"], options=o)
+        _require_end(oa, "OA", "g = g_A")
+        A = _polish(prob, oa, "g", 1.0, o)
+        # A -> B: normal load reduced, Mindlin-Deresiewicz
+        n_B = self.F_Np / self.F_N0
+        prob_ab = self.problem("AB", start=A["n"], constant=A["t"])
+        ab = trace(prob_ab, _unknowns(A, "n"), free="n", direction=-1,
+                   bounds={"n": (n_B, math.inf)}, monitor=["g", "t", "A_SL"], options=o)
+        _require_end(ab, "AB", "F_N = F'_N")
+        B = _polish(prob_ab, ab, "n", n_B, o)
+        # B -> C: reloading at F'_N
+        c_exists = A["t"] < n_B  # F_A < mu F'_N (t = F_T/(mu0 F_N0), mu = mu0)
+        d_exists = self.mu0 * L.slip_limit(B["p"]) > self.g_A
+        bounds: dict[str, tuple[float, float]] = {}
+        targets = {}
+        if c_exists:
+            bounds["t"] = (-math.inf, A["t"])
+            targets["g"] = [1.0]  # D, as a row of the branch
+        elif d_exists:
+            bounds["g"] = (-math.inf, 1.0)
+        if math.isfinite(L.slip_limit(B["p"])):
+            bounds["q"] = (0.0, math.inf)  # sphere: the stick zone vanishes at gross slip
+        prob_bc = self.problem("BC", start=B["g"], constant=B["n"])
+        bc = trace(prob_bc, _unknowns(B, "g"), free="g", bounds=bounds, targets=targets,
+                   monitor=["t", "A_SL"], options=o)
+        _require_end(bc, "BC", "F_T = F_A" if c_exists else "g_T = g_A")
+        C = _polish(prob_bc, bc, "t", A["t"], o) if c_exists else None
+        D = _polish(prob_bc, bc, "g", 1.0, o) if d_exists else None
+        if not c_exists:
+            messages.append(
+                f"F_A = {A['t'] * self.scales['t']:.6g} N >= mu F'_N = "
+                f"{self.mu0 * self.F_Np:.6g} N: under force control the block slides (gross "
+                f"sliding); there is no point C and no snap-through energy")
+        if not d_exists:
+            messages.append(
+                f"g_A = {self.g_A:.6g} µm exceeds the slip at which the body slides under F'_N:"
+                f" under displacement control the block slides (gross sliding); there is no "
+                f"point D and no snap-back energy")
+        legs = {"OA": oa, "AB": ab, "BC": bc}
+        energy, error = self._energies(legs, prob_ab, prob_bc, A, B, C, D, o)
+        raw = {"O": oa.point(0), "A": A, "B": B, "C": C, "D": D}
+        result = ContactLossResult(
+            points={}, energy=energy, energy_error=error, folds=[], legs=legs,
+            gross_sliding={"force_control": not c_exists, "displacement_control": not d_exists},
+            messages=messages, level_names=L.names, scales=self.scales,
+            problems={"OA": prob, "AB": prob_ab, "BC": prob_bc},
+            point_rows=_point_rows(legs, c_exists, d_exists),
+            stats={name: _leg_stats(br) for name, br in legs.items()})
+        for key, val in raw.items():
+            result.points[key] = None if val is None else {
+                k: float(v[0]) for k, v in result._physical({
+                    c: [val[c]] for c in VARIABLES}).items()}
+        result.folds.extend(self._folds(result, raw))
+        return result
+
+    def _energies(self, legs, prob_ab, prob_bc, A, B, C, D, o):
+        """Areas ABD and ABC [N·µm] by Gauss–Legendre in g on the corrected branches."""
+        ft, gs = self.scales["t"], self.scales["g"]
+        energy: dict[str, float | None] = {"snap_back": None, "snap_through": None}
+        error: dict[str, float | None] = {"snap_back": None, "snap_through": None}
+        g_B = B["g"]
+
+        def f_ab(g):
+            return points_at(prob_ab, legs["AB"], "g", g, options=o)["t"]
+
+        def f_bc(g):
+            return points_at(prob_bc, legs["BC"], "g", g, options=o)["t"]
+
+        def gap(g):
+            return f_ab(g) - f_bc(g)
+
+        if D is not None or C is not None:
+            # area between AB and BC over [g_B, g_A] (D lies on BC at g_A)
+            abd, abd_err = _gauss(gap, g_B, 1.0)
+            abd, abd_err = abd * ft * gs, abd_err * ft * gs
+            if D is not None:
+                energy["snap_back"], error["snap_back"] = abd, abd_err
+            if C is not None:
+                t_A = A["t"]
+                extra, extra_err = _gauss(lambda g: t_A - f_bc(g), 1.0, C["g"])
+                energy["snap_through"] = abd + extra * ft * gs
+                error["snap_through"] = abd_err + extra_err * ft * gs
+        return energy, error
+
+    def _folds(self, result: ContactLossResult, raw) -> list[dict[str, Any]]:
+        """Turning points of the controls g_T and F_T along the path."""
+        out: list[dict[str, Any]] = []
+        kinds = {"g": ("snap-back", "g_T"), "t": ("snap-through", "F_T")}
+        order = [("A", "OA", "AB"), ("B", "AB", "BC")]
+        for point, before, after in order:
+            t_before = _path_derivatives(result.legs[before], -1)
+            t_after = _path_derivatives(result.legs[after], 0)
+            for var, (kind, control) in kinds.items():
+                if t_before[var] * t_after[var] < 0.0:
+                    out.append({
+                        "kind": kind, "control": control, "point": point, "corner": True,
+                        "values": result.points[point],
+                        "direction_before": "increasing" if t_before[var] > 0 else "decreasing",
+                        "direction_after": "increasing" if t_after[var] > 0 else "decreasing",
+                    })
+        names = {"g": "g_T", "t": "F_T", "n": "F_N", "A_SL": "A_SL"}
+        for leg, br in result.legs.items():
+            for sp in br.special("fold"):
+                vals = {c: [sp.values[c]] for c in VARIABLES}
+                phys = {k: float(v[0]) for k, v in result._physical(vals).items()}
+                wrt = sp.with_respect_to
+                kind = kinds.get(wrt, ("turning point", names.get(wrt, wrt)))
+                out.append({"kind": kind[0], "control": kind[1], "point": None,
+                            "corner": False, "leg": leg, "status": sp.status, "values": phys})
+        return out
+
+
+# ------------------------------------------------------------------------------------------
+# helpers
+
+
+def _unknowns(point: dict[str, float], control: str) -> list[float]:
+    return [point[v] for v in VARIABLES if v != control]
+
+
+def _require_end(br: Branch, leg: str, what: str) -> None:
+    if br.status != "bound":
+        raise GrossSlidingError(
+            f"the contact-loss leg {leg} ended with status {br.status!r} before reaching "
+            f"{what}: {br.message}")
+
+
+def _polish(problem, br: Branch, name: str, value: float, o) -> dict[str, float]:
+    """The point of the branch at ``name = value``, Newton-polished to the update tolerance."""
+    cols = points_at(problem, br, name, value, options=o)
+    return {k: float(v[0]) for k, v in cols.items()}
+
+
+def _point_rows(legs, c_exists: bool, d_exists: bool) -> dict[str, tuple[str, int]]:
+    """Where the named points are rows of the legs."""
+    rows = {"O": ("OA", 0), "A": ("OA", len(legs["OA"]) - 1), "B": ("AB", len(legs["AB"]) - 1)}
+    last = len(legs["BC"]) - 1
+    if c_exists:
+        rows["C"] = ("BC", last)
+        hits = [sp.index for sp in legs["BC"].special("target") if sp.with_respect_to == "g"]
+        if hits:
+            rows["D"] = ("BC", hits[0])
+    elif d_exists:
+        rows["D"] = ("BC", last)
+    return rows
+
+
+def _path_derivatives(br: Branch, row: int) -> dict[str, float]:
+    """Tangent components (oriented along the direction of travel) at a row of a leg."""
+    t = br.tangents[row]
+    return dict(zip(br.variables, map(float, t)))
+
+
+def _leg_stats(br: Branch) -> dict[str, Any]:
+    it = br.stats["newton_iterations"]
+    return {"points": len(br), "status": br.status,
+            "newton_iterations_per_point": float(np.mean(it[1:])) if len(it) > 1 else 0.0,
+            "rejected_steps": int(np.sum(br.stats["rejected_steps"])),
+            "max_residual_norm": float(np.max(br.stats["residual_norm"]))}
+
+
+def _gauss(f, a: float, b: float) -> tuple[float, float]:
+    """∫_a^b f by Gauss–Legendre, nodes doubled from 8 until two rules agree to 1e-13.
+
+    Returns the integral and the difference of the last two rules (an error estimate)."""
+    if a == b:
+        return 0.0, 0.0
+    prev = None
+    n = 8
+    while True:
+        x, w = np.polynomial.legendre.leggauss(n)
+        nodes = 0.5 * (b - a) * x + 0.5 * (a + b)
+        val = 0.5 * (b - a) * float(w @ f(nodes))
+        if prev is not None:
+            err = abs(val - prev)
+            if err <= _QUAD_RTOL * abs(val) or n >= _QUAD_MAX_NODES:
+                return val, err
+        prev = val
+        n *= 2

@@ -1,0 +1,143 @@
+"""Figures of a contact-loss scene (the paper's Figs 6–8), rendered to PNG and SVG bytes.
+
+* ``force-slip``: F_T against g_T along O→A→B→C (Fig 6a; with several reductions of the
+  normal load, Fig 8, the post-peak paths AB dashed);
+* ``force-slip-detail``: the region around AB magnified, with the snap-back A→D, the
+  snap-through A→C and the released areas ABD and ABC shaded (Fig 6b);
+* ``force-area``: F_T against the total slipped area Â_SL (Fig 7), on which the path is
+  single-valued.
+
+Matplotlib is imported here only (never by the solver or the models), with the Agg canvas
+and no pyplot state; SVG output carries no date and a fixed hash salt, so a scene renders to
+the same bytes every time.
+"""
+
+from __future__ import annotations
+
+import io
+
+import numpy as np
+
+__all__ = ["render"]
+
+_COLORS = ("#1f4e79", "#c0392b", "#2e7d32", "#8e44ad", "#d35400", "#546e7a")
+
+
+def render(cases, names, *, title: str = "") -> dict[str, dict[str, bytes]]:
+    """``{figure name: {"png": bytes, "svg": bytes}}`` for ``cases`` (a list of
+    ``(reduced normal load [N], ContactLossResult)``)."""
+    import matplotlib
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.figure import Figure
+
+    dense = [(load, res, {leg: res.dense(leg) for leg in res.legs}) for load, res in cases]
+    makers = {"force-slip": _force_slip, "force-slip-detail": _detail,
+              "force-area": _force_area}
+    out: dict[str, dict[str, bytes]] = {}
+    with matplotlib.rc_context({"svg.hashsalt": "cusp", "font.size": 10}):
+        for name in names:
+            fig = Figure(figsize=(6.4, 4.8), layout="constrained")
+            FigureCanvasAgg(fig)
+            ax = fig.add_subplot()
+            makers[name](ax, dense)
+            if title:
+                ax.set_title(title)
+            blobs = {}
+            for fmt, meta in (("png", {"Software": None}), ("svg", {"Date": None})):
+                buf = io.BytesIO()
+                fig.savefig(buf, format=fmt, dpi=150, metadata=meta)
+                blobs[fmt] = buf.getvalue()
+            out[name] = blobs
+    return out
+
+
+def _label_points(ax, res, x: str, which=("O", "A", "B", "C", "D"), color="k") -> None:
+    offsets = {"O": (6, -12), "A": (4, 6), "B": (-12, -12), "C": (4, 6), "D": (6, -10)}
+    for key in which:
+        pt = res.points.get(key)
+        if pt is None:
+            continue
+        ax.plot(pt[x], pt["F_T"], "o", color=color, ms=4, zorder=5)
+        ax.annotate(key, (pt[x], pt["F_T"]), textcoords="offset points",
+                    xytext=offsets[key], fontsize=10, fontweight="bold")
+
+
+def _plot_path(ax, dense_legs, x: str, color, label, dashed_ab: bool) -> None:
+    for leg, cols in dense_legs.items():
+        style = "--" if (leg == "AB" and dashed_ab) else "-"
+        ax.plot(cols[x], cols["F_T"], style, color=color, lw=1.6,
+                label=label if leg == "OA" else None)
+
+
+def _force_slip(ax, dense) -> None:
+    several = len(dense) > 1
+    for i, (load, res, legs) in enumerate(dense):
+        color = _COLORS[i % len(_COLORS)]
+        _plot_path(ax, legs, "g_T", color, f"$F'_N$ = {load:g} N", dashed_ab=several)
+        if not several or i == 0:
+            _label_points(ax, res, "g_T")
+        elif res.points["B"] is not None:
+            _label_points(ax, res, "g_T", which=("B",), color=color)
+    ax.set_xlabel(r"relative tangential displacement $g_T$ [µm]")
+    ax.set_ylabel(r"tangential force $F_T$ [N]")
+    ax.set_xlim(left=0.0)
+    ax.set_ylim(bottom=0.0)
+    if several:
+        ax.legend(frameon=False, loc="lower right")
+    ax.grid(alpha=0.3)
+
+
+def _detail(ax, dense) -> None:
+    load, res, legs = dense[0]
+    A, B, C, D = (res.points[k] for k in "ABCD")
+    ab, bc = legs["AB"], legs["BC"]
+    ax.plot(ab["g_T"], ab["F_T"], "-", color=_COLORS[0], lw=1.8)
+    ax.plot(bc["g_T"], bc["F_T"], "-", color=_COLORS[0], lw=1.8)
+    oa = legs["OA"]
+    ax.plot(oa["g_T"], oa["F_T"], "-", color=_COLORS[0], lw=1.8)
+    g_hi = C["g_T"] if C is not None else bc["g_T"][-1]
+    if D is not None:
+        # area ABD: between AB (above) and the reloading curve (below), g_B <= g <= g_A
+        g = np.linspace(B["g_T"], A["g_T"], 200)
+        upper = np.interp(g, ab["g_T"][::-1], ab["F_T"][::-1])
+        lower = np.interp(g, bc["g_T"], bc["F_T"])
+        ax.fill_between(g, lower, upper, color=_COLORS[1], alpha=0.35,
+                        label=f"area ABD = snap-back energy, {res.energy['snap_back']:.6g} N·µm")
+        ax.annotate("", xy=(D["g_T"], D["F_T"]), xytext=(A["g_T"], A["F_T"]),
+                    arrowprops={"arrowstyle": "->", "color": _COLORS[1], "lw": 1.4})
+    if C is not None:
+        g = np.linspace(A["g_T"], C["g_T"], 200)
+        lower = np.interp(g, bc["g_T"], bc["F_T"])
+        ax.fill_between(g, lower, np.full_like(g, A["F_T"]), color=_COLORS[2], alpha=0.3,
+                        label="area ABC = ABD + ADC = snap-through energy, "
+                              f"{res.energy['snap_through']:.6g} N·µm")
+        ax.annotate("", xy=(C["g_T"], C["F_T"]), xytext=(A["g_T"], A["F_T"]),
+                    arrowprops={"arrowstyle": "->", "color": _COLORS[2], "lw": 1.4})
+    _label_points(ax, res, "g_T", which=("A", "B", "C", "D"))
+    g_lo = B["g_T"]
+    span = g_hi - g_lo
+    f_lo = min(B["F_T"], D["F_T"] if D is not None else B["F_T"])
+    f_hi = A["F_T"]
+    fspan = f_hi - f_lo
+    ax.set_xlim(g_lo - 0.15 * span, g_hi + 0.15 * span)
+    ax.set_ylim(f_lo - 0.25 * fspan, f_hi + 0.25 * fspan)
+    ax.set_xlabel(r"relative tangential displacement $g_T$ [µm]")
+    ax.set_ylabel(r"tangential force $F_T$ [N]")
+    ax.legend(frameon=False, loc="lower right", fontsize=9)
+    ax.grid(alpha=0.3)
+
+
+def _force_area(ax, dense) -> None:
+    several = len(dense) > 1
+    for i, (load, res, legs) in enumerate(dense):
+        color = _COLORS[i % len(_COLORS)]
+        _plot_path(ax, legs, "A_SL", color, f"$F'_N$ = {load:g} N", dashed_ab=several)
+        if not several or i == 0:
+            _label_points(ax, res, "A_SL")
+    ax.set_xlabel(r"total slipped contact area $\hat A_{SL} = A_{SL}/A_r$")
+    ax.set_ylabel(r"tangential force $F_T$ [N]")
+    ax.set_xlim(left=0.0)
+    ax.set_ylim(bottom=0.0)
+    if several:
+        ax.legend(frameon=False, loc="lower right")
+    ax.grid(alpha=0.3)

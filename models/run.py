@@ -1,0 +1,271 @@
+"""``cusp run [SCENE] [--out DIR] [--no-plots]``: trace the contact-loss path of a scene.
+
+Writes ``DIR/summary.json``, ``DIR/branch.csv`` and, unless ``--no-plots``, the scene's
+figures as PNG and SVG. Everything is computed and rendered in memory first, then written to
+a staging directory beside ``DIR`` and moved into place, so a failure leaves no partial
+output. Exit status: 0 success, 2 bad scene (one line on stderr naming the field), 1 a
+numerical failure (one line).
+
+Only what the scene needs is imported: an exponential scene loads no Gaussian or quadrature
+code, ``--no-plots`` loads no matplotlib, and sympy is never loaded.
+"""
+
+from __future__ import annotations
+
+import csv
+import io
+import json
+import math
+import os
+import platform
+import shutil
+import sys
+import tempfile
+import time
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+from .scene import Scene, SceneError, load_scene
+
+__all__ = ["run_scene", "SceneRun", "summary", "branch_csv", "write_outputs", "DEFAULT_SCENE"]
+
+#: the scene ``cusp run`` runs without an argument (the paper's Fig 6)
+DEFAULT_SCENE = "fig6.toml"
+
+_UNITS = {"g_T": "µm", "F_T": "N", "F_N": "N", "A_SL": "1", "d": "µm", "d0": "µm",
+          "a": "µm", "c": "µm", "energy": "N·µm (= µJ)"}
+
+
+def add_arguments(parser) -> None:
+    parser.add_argument("scene", nargs="?", default=None,
+                        help=f"scene file (TOML); default: the bundled {DEFAULT_SCENE} "
+                             "(the paper's Fig 6)")
+    parser.add_argument("--out", default=None, metavar="DIR",
+                        help="output directory (default: cusp-out/<scene name>)")
+    parser.add_argument("--no-plots", action="store_true", help="write no figures")
+    parser.add_argument("--quiet", action="store_true", help="print only errors")
+
+
+def bundled_scene(name: str = DEFAULT_SCENE) -> Path:
+    """Path of a scene shipped with the package (the ``scenes`` directory)."""
+    from importlib import resources
+
+    return Path(str(resources.files("scenes") / name))
+
+
+@dataclass
+class SceneRun:
+    """The computed cases of a scene: ``cases`` is a list of (F'_N [N], ContactLossResult);
+    ``timing`` holds the compute and render wall times [s]."""
+
+    scene: Scene
+    cases: list
+    timing: dict[str, float]
+
+
+def build_body(scene: Scene):
+    """The body a scene describes (imports only that model's module)."""
+    s = dict(scene.surface)
+    model = s.pop("model")
+    try:
+        if model == "rough-exponential":
+            from .exponential import ExponentialRoughSurface
+
+            return ExponentialRoughSurface(**s)
+        if model == "rough-gaussian":
+            from .gaussian import GaussianRoughSurface
+
+            return GaussianRoughSurface(**s)
+        if model == "rough-weibull":
+            from .density import GeneralRoughSurface, HeightDensity
+
+            k = s.pop("shape")
+            # Weibull scale such that the heights have standard deviation sigma
+            spread = math.sqrt(math.gamma(1 + 2 / k) - math.gamma(1 + 1 / k) ** 2)
+            heights = HeightDensity.weibull(k, s["sigma"] / spread)
+            return GeneralRoughSurface(heights, **s)
+        from .sphere import Sphere
+
+        return Sphere(**s)
+    except ValueError as exc:
+        raise SceneError(f"{scene.source}: [surface] {exc}") from None
+
+
+def run_scene(scene: Scene, *, plots: bool = True) -> tuple[SceneRun, dict]:
+    """Trace every case of a scene; returns the run and the rendered figures (bytes)."""
+    from .contact_loss import DEFAULT_OPTIONS, ContactLoss
+    from .errors import ModelParameterError
+
+    t0 = time.perf_counter()
+    body = build_body(scene)
+    options = DEFAULT_OPTIONS
+    if scene.solver:
+        try:
+            options = options.replace(**scene.solver)
+        except ValueError as exc:
+            raise SceneError(f"{scene.source}: [solver] {exc}") from None
+    cases = []
+    for load in scene.reduced_normal_loads:
+        try:
+            model = ContactLoss(body, scene.loading["normal_load"], scene.loading["max_slip"],
+                                load, area_reading=scene.options["area_reading"])
+        except ModelParameterError as exc:
+            raise SceneError(f"{scene.source}: [loading] {exc}") from None
+        cases.append((load, model.run(options)))
+    t1 = time.perf_counter()
+    figures = {}
+    if plots and scene.figures:
+        from .figures import render
+
+        figures = render(cases, scene.figures, title=scene.title)
+    t2 = time.perf_counter()
+    return SceneRun(scene, cases, {"compute_s": t1 - t0, "render_s": t2 - t1}), figures
+
+
+def _case_summary(load: float, res) -> dict[str, Any]:
+    energy = dict(res.energy)
+    return {
+        "reduced_normal_load": {"value": load, "unit": "N"},
+        "points": res.points,
+        "energy": {**energy, "unit": _UNITS["energy"],
+                   "error_estimate": dict(res.energy_error)},
+        "folds": res.folds,
+        "gross_sliding": res.gross_sliding,
+        "messages": res.messages,
+        "solver": res.stats,
+    }
+
+
+def summary(run: SceneRun) -> dict[str, Any]:
+    """The content of ``summary.json``: the first case at the top level, all in ``cases``."""
+    import numpy
+    import scipy
+
+    cases = [_case_summary(load, res) for load, res in run.cases]
+    first = cases[0]
+    level_names = run.cases[0][1].level_names
+    return {
+        "scene": run.scene.echo(),
+        "points": first["points"],
+        "energy": first["energy"],
+        "folds": first["folds"],
+        "gross_sliding": first["gross_sliding"],
+        "messages": first["messages"],
+        "solver": first["solver"],
+        "cases": cases,
+        "units": {k: _UNITS[k] for k in ("g_T", "F_T", "F_N", "A_SL", *level_names,
+                                         "energy")},
+        "software": {"python": platform.python_version(), "numpy": numpy.__version__,
+                     "scipy": scipy.__version__, "cusp": _version()},
+    }
+
+
+def _version() -> str:
+    try:
+        from importlib.metadata import version
+
+        return version("cusp")
+    except Exception:  # not installed (run from a source tree)
+        return "unknown"
+
+
+def branch_csv(run: SceneRun) -> str:
+    """The traced branches as CSV: one row per traced point, all cases and legs."""
+    buf = io.StringIO()
+    first = run.cases[0][1]
+    p_name, q_name = first.level_names
+    cols = ["case", "reduced_normal_load", "leg", "point", "g_T", "F_T", "F_N", "A_SL",
+            p_name, q_name]
+    w = csv.writer(buf, lineterminator="\n")
+    w.writerow(cols)
+    for i, (load, res) in enumerate(run.cases):
+        labels = {row: key for key, row in res.point_rows.items()}
+        for leg in res.legs:
+            path = res.path(leg)
+            for j in range(len(path["g_T"])):
+                w.writerow([i, repr(load), leg, labels.get((leg, j), ""),
+                            *(repr(float(path[c][j])) for c in cols[4:])])
+    return buf.getvalue()
+
+
+def write_outputs(out: Path, files: dict[str, bytes]) -> None:
+    """Write ``files`` (name -> bytes) into ``out`` atomically: staged beside ``out`` and
+    moved into place (a new directory is renamed in one step; in an existing one each file
+    is replaced atomically). On failure the staging directory is removed."""
+    out = Path(out)
+    parent = out.parent if str(out.parent) else Path(".")
+    parent.mkdir(parents=True, exist_ok=True)
+    if out.exists() and not out.is_dir():
+        raise OSError(f"--out {out} exists and is not a directory")
+    stage = Path(tempfile.mkdtemp(prefix=f".{out.name}.partial-", dir=parent))
+    try:
+        for name, data in files.items():
+            (stage / name).write_bytes(data)
+        if not out.exists():
+            os.replace(stage, out)
+            return
+        for name in files:
+            os.replace(stage / name, out / name)
+    finally:
+        if stage.exists():
+            shutil.rmtree(stage, ignore_errors=True)
+
+
+def main(args) -> int:
+    from continuation import ContinuationError
+
+    t_start = time.perf_counter()
+    path = Path(args.scene) if args.scene is not None else bundled_scene()
+    try:
+        scene = load_scene(path)
+        run, figures = run_scene(scene, plots=not args.no_plots)
+    except SceneError as exc:
+        print(f"cusp run: error: {exc}", file=sys.stderr)
+        return 2
+    except ContinuationError as exc:
+        first = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
+        print(f"cusp run: numerical failure: {first}", file=sys.stderr)
+        return 1
+    files = {
+        "summary.json": (json.dumps(summary(run), indent=2, ensure_ascii=False,
+                                    allow_nan=False) + "\n").encode(),
+        "branch.csv": branch_csv(run).encode(),
+    }
+    for name, blobs in figures.items():
+        for fmt, data in blobs.items():
+            files[f"{name}.{fmt}"] = data
+    out = Path(args.out) if args.out is not None else Path("cusp-out") / scene.name
+    try:
+        write_outputs(out, files)
+    except OSError as exc:
+        print(f"cusp run: error: cannot write the output to {out}: {exc}", file=sys.stderr)
+        return 1
+    if not args.quiet:
+        _report(run, out, sorted(files), time.perf_counter() - t_start)
+    return 0
+
+
+def _report(run: SceneRun, out: Path, files: list[str], total: float) -> None:
+    sc = run.scene
+    print(f"scene {sc.name} ({sc.source}): {sc.surface['model']}, F_N0 = "
+          f"{sc.loading['normal_load']:g} N, g_A = {sc.loading['max_slip']:g} µm")
+    for load, res in run.cases:
+        print(f"  F'_N = {load:g} N")
+        for key in "OABCD":
+            pt = res.points[key]
+            if pt is None:
+                print(f"    {key}: none")
+                continue
+            print(f"    {key}: g_T = {pt['g_T']:.10g} µm, F_T = {pt['F_T']:.10g} N, "
+                  f"F_N = {pt['F_N']:.10g} N, A_SL = {pt['A_SL']:.10g}")
+        for kind in ("snap_back", "snap_through"):
+            val = res.energy[kind]
+            text = "none (gross sliding)" if val is None else f"{val:.10g} N·µm"
+            print(f"    energy {kind}: {text}")
+        for msg in res.messages:
+            print(f"    note: {msg}")
+    t = run.timing
+    print(f"compute {t['compute_s'] * 1e3:.1f} ms, figures {t['render_s'] * 1e3:.1f} ms, "
+          f"total {total * 1e3:.1f} ms (after imports)")
+    print(f"wrote {out}/: {', '.join(files)}")

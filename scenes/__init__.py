@@ -1,0 +1,1 @@
+"""Scene files (TOML) for ``cusp run``, one per figure of the paper; see ``models.scene``."""
