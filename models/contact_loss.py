@@ -23,8 +23,13 @@ a0 at F_N0). In these the equilibrium of the contact reads, for every state on t
 * compliance                g_T = μ s(p, q)                     (Eqs 4–5; Eq 2)
 * slipped area              Â_SL = (1 − Â_ST(p, q)) + ΔA_r/A_r (Eq 32)
 
-plus one constraint for the leg: F_N = F_N0 (OA), the Mindlin–Deresiewicz rule (AB) or
-F_N = F'_N (BC). The rule keeps μF_N − F_T, hence the stick level q, unchanged along AB.
+plus one constraint for the leg: F_N = F_N0 (OA), the frozen stick zone q = q_A (AB) or
+F_N = F'_N (BC). Mindlin and Deresiewicz freeze the stick zone of every asperity while the
+tractions are removed from the lost annulus; summed over the contact this is their rule
+F'_T = F_A − μΔF_N (μF_N − F_T = μ K J(d0) for a rough surface, μ(4E*/3R*)c³ for a sphere,
+is kept). The frozen-level form is used as the residual because it stays well conditioned
+when F̂_T(A) is within rounding of 1, where F_T no longer resolves q; the force form is
+checked on every traced row in the tests.
 Each leg is a :class:`continuation.Problem` in the nondimensional unknowns
 
     g = g_T/g_A,  t = F_T/(μ0 F_N0),  n = F_N/F_N0,  A_SL,  p,  q
@@ -79,49 +84,57 @@ _QUAD_MAX_NODES = 256
 
 
 class _ExponentialLevels:
-    """Exponential heights: p = d/σ*, q = d0/σ*, everything in closed form."""
+    """Exponential heights: p = d/u, q = d0/u, everything in closed form.
+
+    The unit u = σ*·max(1, x_A), x_A = g_A/(μλ) the stick-threshold gap at A over σ*, keeps
+    q − p of order one at A however large x_A is (small μ or σ*)."""
 
     names = ("d", "d0")
 
-    def __init__(self, surf, F_N0: float) -> None:
-        self.scale = surf.sigma
-        self.lam = surf.lam
+    def __init__(self, surf, F_N0: float, g_A: float) -> None:
+        self.c = max(1.0, g_A / (surf.mu * surf.lam))
+        self.scale = surf.sigma * self.c
+        self.lam = surf.lam * self.c  # g_T = mu * lam * (q - p)
         # the response is invariant under shifts of the mean plane: without a load scale the
         # datum is put at d = 0 under F_N0
-        self.p0 = float(surf.separation(F_N0)) / surf.sigma if surf.has_load_scale else 0.0
+        self.p0 = float(surf.separation(F_N0)) / self.scale if surf.has_load_scale else 0.0
 
     def ell(self, p):
-        return -(p - self.p0), -1.0
+        return -self.c * (p - self.p0), -self.c
 
     def ratio(self, p, q):
-        e = math.exp(-(q - p))
-        return -math.expm1(-(q - p)), -e, e
+        c = self.c
+        e = math.exp(-c * (q - p))
+        return -math.expm1(-c * (q - p)), -c * e, c * e
 
     def slip(self, p, q):
         return self.lam * (q - p), -self.lam, self.lam
 
     def stick_area(self, p, q):
-        x = q - p
+        c = self.c
+        x = c * (q - p)
         e = math.exp(-x)
-        return e * (1.0 + x), x * e, -x * e
+        return e * (1.0 + x), c * x * e, -c * x * e
 
     def area_ratio(self, p):
-        r = math.exp(-(p - self.p0))
-        return r, -r
+        r = math.exp(-self.c * (p - self.p0))
+        return r, -self.c * r
 
     def slip_limit(self, p) -> float:
         return math.inf
 
 
 class _RoughLevels:
-    """Any height density: p = d/σ*, q = d0/σ*, with the surface's GW integrals."""
+    """Any height density: p = d/u, q = d0/u (u as for the exponential), with the
+    surface's GW integrals."""
 
     names = ("d", "d0")
 
-    def __init__(self, surf, F_N0: float) -> None:
+    def __init__(self, surf, F_N0: float, g_A: float) -> None:
         self.surf = surf
-        self.scale = s = surf.sigma
-        self.lam = surf.lam
+        c = max(1.0, g_A / (surf.mu * surf.lam))
+        self.scale = s = surf.sigma * c
+        self.lam = surf.lam * c
         d0 = float(surf.separation(F_N0))  # raises MissingLoadScaleError without the scale
         self.p0 = d0 / s
         self.j0 = math.log(F_N0 / surf.load_scale)
@@ -175,7 +188,7 @@ class _SphereLevels:
 
     names = ("a", "c")
 
-    def __init__(self, sphere, F_N0: float) -> None:
+    def __init__(self, sphere, F_N0: float, g_A: float) -> None:
         a0 = float(sphere.contact_radius(F_N0))
         self.scale = a0
         self.kappa = (2.0 - sphere.nu) * sphere.E_star * a0**2 / (2.0 * sphere.G
@@ -202,17 +215,17 @@ class _SphereLevels:
         return self.kappa * p * p
 
 
-def _levels_for(body, F_N0: float):
+def _levels_for(body, F_N0: float, g_A: float):
     from .rough import RoughSurface
     from .sphere import Sphere
 
     if isinstance(body, RoughSurface):
         if not body.load_dependent:
-            return _ExponentialLevels(body, F_N0)
-        return _RoughLevels(body, F_N0)
+            return _ExponentialLevels(body, F_N0, g_A)
+        return _RoughLevels(body, F_N0, g_A)
     if isinstance(body, Sphere):
         body._require("the contact-loss path (compliance law, Eq 2)")
-        return _SphereLevels(body, F_N0)
+        return _SphereLevels(body, F_N0, g_A)
     name = type(body).__name__
     if name in ("Cylinder", "FlatPlane"):
         raise NoComplianceLawError(
@@ -323,7 +336,7 @@ class ContactLoss:
                 f"area_reading must be one of {AREA_READINGS}, got {area_reading!r}")
         self.area_reading = area_reading
         self.body = body
-        self.levels = _levels_for(body, self.F_N0)
+        self.levels = _levels_for(body, self.F_N0, self.g_A)
         self.mu0 = float(body.mu)
         if self.F_Np >= self.F_N0:
             raise ModelParameterError(
@@ -386,10 +399,8 @@ class ContactLoss:
             R[4] = n - 1.0
             J[4, 2] = 1.0
         elif leg == "AB":
-            R[4] = t - consts + (mu / self.mu0) * (1.0 - n)
-            J[4, 1] = 1.0
-            J[4, 2] = -mu / self.mu0
-            J[4, 6] = (1.0 - n) / self.mu0
+            R[4] = q - consts  # the stick zone is frozen (Mindlin-Deresiewicz)
+            J[4, 5] = 1.0
         else:
             R[4] = n - consts
             J[4, 2] = 1.0
@@ -399,9 +410,9 @@ class ContactLoss:
                 mu: float | None = None) -> Problem:
         """The continuation problem of one leg (nondimensional; see the module docstring).
 
-        ``start``: the value of the leg's control (:data:`LEG_CONTROLS`). ``constant``: t_A
-        (F_A/(μ0 F_N0)) on AB, n_B (F'_N/F_N0) on BC. Parameters: the control, ``mu`` and the
-        leg constant (``t_A`` or ``n_B``).
+        ``start``: the value of the leg's control (:data:`LEG_CONTROLS`). ``constant``: q_A
+        (the stick level at A) on AB, n_B (F'_N/F_N0) on BC. Parameters: the control, ``mu``
+        and the leg constant (``q_A`` or ``n_B``).
         """
         if leg not in LEG_CONTROLS:
             raise ModelParameterError(f"leg must be one of {list(LEG_CONTROLS)}, got {leg!r}")
@@ -409,7 +420,7 @@ class ContactLoss:
         ci = VARIABLES.index(control)
         unknowns = [v for v in VARIABLES if v != control]
         params = {control: float(start), "mu": self.mu0 if mu is None else float(mu)}
-        const_name = {"OA": None, "AB": "t_A", "BC": "n_B"}[leg]
+        const_name = {"OA": None, "AB": "q_A", "BC": "n_B"}[leg]
         if const_name is not None:
             if constant is None:
                 raise ModelParameterError(f"leg {leg} needs constant={const_name}")
@@ -437,7 +448,7 @@ class ContactLoss:
             if name == "mu":
                 return J[:, 6]
             col = np.zeros(5)
-            col[4] = -1.0  # d/d t_A (AB) and d/d n_B (BC) of the leg constraint
+            col[4] = -1.0  # d/d q_A (AB) and d/d n_B (BC) of the leg constraint
             return col
 
         return Problem(residual, unknowns, params, jacobian=jacobian,
@@ -458,7 +469,7 @@ class ContactLoss:
         A = _polish(prob, oa, "g", 1.0, o)
         # A -> B: normal load reduced, Mindlin-Deresiewicz
         n_B = self.F_Np / self.F_N0
-        prob_ab = self.problem("AB", start=A["n"], constant=A["t"])
+        prob_ab = self.problem("AB", start=A["n"], constant=A["q"])
         ab = trace(prob_ab, _unknowns(A, "n"), free="n", direction=-1,
                    bounds={"n": (n_B, math.inf)}, monitor=["g", "t", "A_SL"], options=o)
         _require_end(ab, "AB", "F_N = F'_N")

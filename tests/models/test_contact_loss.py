@@ -1,0 +1,319 @@
+"""The contact-loss path (models.contact_loss) against closed forms and mpmath references.
+
+Exponential heights: the sympy closed forms of :func:`models.symbolic.contact_loss_path`
+evaluated at 50+ digits (derived from the GW integrals, not from the traced path).
+Gaussian heights and spheres: the independent mpmath computations of ``_contact_oracles``.
+Tolerances are the issue's: points ≤ 1e-10 relative, energies ≤ 1e-8 relative.
+"""
+
+from __future__ import annotations
+
+import math
+
+import mpmath as mp
+import numpy as np
+import pytest
+
+from models import (
+    Cylinder,
+    ExponentialRoughSurface,
+    FlatPlane,
+    GaussianRoughSurface,
+    GeneralRoughSurface,
+    HeightDensity,
+    ModelParameterError,
+    NoComplianceLawError,
+    Sphere,
+)
+from models.contact_loss import ContactLoss
+from tests.models import _contact_oracles as oracles
+
+POINT_RTOL = 1e-10
+ENERGY_RTOL = 1e-8
+KEYS = ("g_T", "F_T", "F_N", "A_SL")
+
+
+def _close(got: float, want, rtol: float) -> bool:
+    want = float(want)
+    return abs(got - want) <= rtol * max(abs(want), 1e-300) or (want == 0.0 and got == 0.0)
+
+
+def _check_points(res, ref, rtol=POINT_RTOL):
+    for key in "OABCD":
+        if ref[key] is None:
+            assert res.points[key] is None, key
+            continue
+        for q in KEYS:
+            got, want = res.points[key][q], ref[key][q]
+            if float(want) == 0.0:  # at O: zero to rounding of the quantity's own size
+                size = max(abs(float(p[q])) for p in ref.values() if p is not None)
+                assert abs(got) <= 1e-14 * size, (key, q, got)
+            else:
+                assert _close(got, want, rtol), (key, q, got, float(want))
+
+
+def _check_energies(res, ref, rtol=ENERGY_RTOL):
+    for kind in ("snap_back", "snap_through"):
+        if ref[kind] is None:
+            assert res.energy[kind] is None, kind
+        else:
+            assert _close(res.energy[kind], ref[kind], rtol), (kind, res.energy[kind],
+                                                               float(ref[kind]))
+
+
+# ------------------------------------------------------------------ exponential: sympy
+symbolic = pytest.importorskip("models.symbolic")
+
+
+def _exponential_reference(sigma, nu, mu, F_N0, g_A, F_Np):
+    """Points and energies from the sympy closed forms, at the exact binary inputs."""
+    S = symbolic.SYMBOLS
+    lam = sigma * (2.0 - nu) / (2.0 * (1.0 - nu))  # the float λ the model uses
+    syms = (S["sigma"], S["mu"], S["lambda"], S["F_N0"], S["g_A"], S["Fp_N"])
+    vals = (sigma, mu, lam, F_N0, g_A, F_Np)
+    cf = symbolic.contact_loss_path()
+
+    def ev(key):
+        return symbolic.exact_value(cf[key], syms, vals)
+
+    F_A = ev("F_A")
+    c_exists = F_A < mu * F_Np
+    pts = {
+        "O": {"g_T": 0, "F_T": 0, "F_N": F_N0, "A_SL": 0},
+        "A": {"g_T": g_A, "F_T": F_A, "F_N": F_N0, "A_SL": ev("A_SL_A")},
+        "B": {"g_T": ev("g_B"), "F_T": ev("F_B"), "F_N": F_Np, "A_SL": ev("A_SL_B")},
+        "D": {"g_T": g_A, "F_T": ev("F_D"), "F_N": F_Np, "A_SL": ev("A_SL_D")},
+        "C": ({"g_T": ev("g_C"), "F_T": F_A, "F_N": F_Np, "A_SL": ev("A_SL_C")}
+              if c_exists else None),
+    }
+    energy = {"snap_back": ev("snap_back"),
+              "snap_through": ev("snap_through") if c_exists else None}
+    return pts, energy
+
+
+FIG6 = (2.0, 0.3, 0.1, 1000.0, 0.34, 850.0)
+
+
+def test_fig6_points_and_energies_match_the_symbolic_closed_forms():
+    sigma, nu, mu, F_N0, g_A, F_Np = FIG6
+    res = ContactLoss(ExponentialRoughSurface(sigma, nu, mu), F_N0, g_A, F_Np).run()
+    pts, energy = _exponential_reference(*FIG6)
+    _check_points(res, pts)
+    _check_energies(res, energy)
+    # the quadrature's own error estimate is honest (well below the requirement)
+    assert res.energy_error["snap_back"] < 1e-12 * res.energy["snap_back"]
+    assert res.gross_sliding == {"force_control": False, "displacement_control": False}
+    assert res.messages == []
+
+
+def test_fig6_traced_rows_satisfy_the_physics_oracle_along_AB():
+    # PHYSICS.md §7: along AB, g'_T = g_A + μλ ln(F'_N/F_N0) (every traced row, not just B)
+    sigma, nu, mu, F_N0, g_A, F_Np = FIG6
+    surf = ExponentialRoughSurface(sigma, nu, mu)
+    res = ContactLoss(surf, F_N0, g_A, F_Np).run()
+    ab = res.path("AB")
+    assert len(ab["g_T"]) >= 3
+    want = g_A + mu * surf.lam * np.log(ab["F_N"] / F_N0)
+    np.testing.assert_allclose(ab["g_T"], want, rtol=1e-9, atol=0)
+    # and the Mindlin-Deresiewicz rule F'_T = F_A - mu dF_N
+    F_A = res.points["A"]["F_T"]
+    np.testing.assert_allclose(ab["F_T"], F_A - mu * (F_N0 - ab["F_N"]), rtol=1e-12)
+
+
+def test_path_is_traced_by_the_solver_with_corner_folds_at_A_and_B():
+    res = ContactLoss(ExponentialRoughSurface(*FIG6[:3]), *FIG6[3:]).run()
+    assert set(res.legs) == {"OA", "AB", "BC"}
+    assert all(br.status == "bound" for br in res.legs.values())
+    assert res.legs["OA"].variables[-1] == "g" and res.legs["AB"].variables[-1] == "n"
+    corners = {(f["point"], f["kind"]) for f in res.folds if f["corner"]}
+    assert corners == {("A", "snap-back"), ("A", "snap-through"), ("B", "snap-back"),
+                       ("B", "snap-through")}
+    a_fold = next(f for f in res.folds if f["point"] == "A" and f["kind"] == "snap-back")
+    assert (a_fold["direction_before"], a_fold["direction_after"]) == ("increasing",
+                                                                       "decreasing")
+    # Â_SL grows along every leg (Fig 7: single-valued in Â_SL), and the legs join (the
+    # end row of a leg is a bound located by the tracer; the next leg starts from the point
+    # polished to the update tolerance, so they agree to about the corrector tolerance)
+    for leg in res.legs:
+        assert np.all(np.diff(res.path(leg)["A_SL"]) > 0), leg
+    for before, after in (("OA", "AB"), ("AB", "BC")):
+        end, start = res.path(before), res.path(after)
+        for q in KEYS:
+            assert end[q][-1] == pytest.approx(start[q][0], rel=1e-10, abs=1e-12)
+
+
+def test_full_slip_deep_reduction_has_no_C_and_null_snap_through():
+    sigma, nu, mu, F_N0, g_A = FIG6[:5]
+    F_Np = 500.0  # F_A = 75.3 N > mu F'_N = 50 N
+    res = ContactLoss(ExponentialRoughSurface(sigma, nu, mu), F_N0, g_A, F_Np).run()
+    pts, energy = _exponential_reference(sigma, nu, mu, F_N0, g_A, F_Np)
+    assert pts["C"] is None
+    _check_points(res, pts)
+    _check_energies(res, energy)
+    assert res.gross_sliding["force_control"] and not res.gross_sliding["displacement_control"]
+    assert any("gross sliding" in m for m in res.messages)
+
+
+@pytest.mark.parametrize(
+    "params",
+    [
+        (2.0, 0.3, 0.1, 1000.0, 0.34, 1000.0 * (1 - 1e-6)),  # ΔF_N → 0: the pleat closes
+        (2.0, 0.3, 0.1, 1000.0, 0.34, 260.0),  # close to the floor F_N0 − F_A/μ = 246.6 N
+        (2.0, 0.499999, 0.1, 1000.0, 0.34, 850.0),  # ν → 0.5
+        (2.0, 0.3, 0.01, 1000.0, 0.34, 995.0),  # small μ: F̂_T(A) = 1 − 1e-6
+        # tiny and huge σ* at the same x_A = g_A/(μλ) = 1.4 (g_A ∝ σ*) ...
+        (1e-4, 0.3, 0.1, 1000.0, 0.17e-4, 850.0),
+        (1e4, 0.3, 0.1, 1000.0, 0.17e4, 850.0),
+        # ... and at fixed g_A: σ* = 0.02 µm gives x_A = 140, F̂_T(A) = 1 − 1.6e-61 (C absent)
+        (0.02, 0.3, 0.1, 1000.0, 0.34, 850.0),
+        (2.0, 0.3, 0.8, 1000.0, 0.34, 850.0),  # large μ: more severe snap-back
+    ],
+)
+def test_extremes_match_the_closed_forms(params):
+    sigma, nu, mu, F_N0, g_A, F_Np = params
+    res = ContactLoss(ExponentialRoughSurface(sigma, nu, mu), F_N0, g_A, F_Np).run()
+    pts, energy = _exponential_reference(*params)
+    _check_points(res, pts)
+    _check_energies(res, energy)
+
+
+def test_snap_back_energy_grows_with_friction():
+    # the paper (Sec. 4, Fig 9): the snap-back is more severe at higher friction
+    vals = [ContactLoss(ExponentialRoughSurface(2.0, 0.3, mu), 1000.0, 0.34, 850.0)
+            .run().energy["snap_back"] for mu in (0.1, 0.3, 0.5)]
+    assert vals[0] < vals[1] < vals[2]
+
+
+def test_consistent_reading_of_eq32():
+    sigma, nu, mu, F_N0, g_A, F_Np = FIG6
+    surf = ExponentialRoughSurface(sigma, nu, mu)
+    printed = ContactLoss(surf, F_N0, g_A, F_Np).run()
+    cons = ContactLoss(surf, F_N0, g_A, F_Np, area_reading="consistent").run()
+    # identical on OA (no reduction yet)
+    assert cons.points["A"]["A_SL"] == pytest.approx(printed.points["A"]["A_SL"], rel=1e-14)
+    # at B: consistent = 1 − Â_ST(x_B) A'_r/A_r with A_r ∝ F_N (exponential heights)
+    x_B = cons.points["B"]["g_T"] / (mu * surf.lam)
+    with mp.workdps(30):
+        a_st = mp.exp(-x_B) * (1 + x_B)
+        want = 1 - a_st * mp.mpf(F_Np) / F_N0
+    assert cons.points["B"]["A_SL"] == pytest.approx(float(want), rel=1e-12)
+    # the two readings differ by (ΔA_r/A_r)(1 − Â_ST) ≥ 0
+    diff = printed.points["B"]["A_SL"] - cons.points["B"]["A_SL"]
+    assert diff == pytest.approx(float((1 - mp.mpf(F_Np) / F_N0) * (1 - a_st)), rel=1e-9)
+    # energies do not depend on the reading (the traces differ only in their step sizes)
+    for kind in ("snap_back", "snap_through"):
+        assert cons.energy[kind] == pytest.approx(printed.energy[kind], rel=1e-13)
+
+
+def test_load_scale_shifts_the_datum_only():
+    # exponential heights: absolute separation needs the load scale, nothing else changes
+    sigma, nu, mu, F_N0, g_A, F_Np = FIG6
+    plain = ContactLoss(ExponentialRoughSurface(sigma, nu, mu), F_N0, g_A, F_Np).run()
+    scaled_surf = ExponentialRoughSurface(sigma, nu, mu, E=0.2, radius=10.0, density=0.01,
+                                          nominal_area=1e6)
+    scaled = ContactLoss(scaled_surf, F_N0, g_A, F_Np).run()
+    for key in "ABCD":
+        for q in KEYS:
+            assert scaled.points[key][q] == pytest.approx(plain.points[key][q], rel=1e-12)
+    assert scaled.points["A"]["d"] == pytest.approx(float(scaled_surf.separation(F_N0)),
+                                                    rel=1e-13)
+
+
+# ------------------------------------------------------------------ Gaussian: mpmath
+GAUSS = dict(sigma=2.0, nu=0.3, mu=0.1, E=0.2, radius=10.0, density=0.01, nominal_area=1e6)
+
+
+def test_gw_oracle_agrees_with_quadrature():
+    # the parabolic-cylinder closed form used by the oracle, checked against the definition
+    with mp.workdps(30):
+        for n in (0, 1, 1.5, 2.5):
+            for t in (-2.0, 0.5, 3.0):
+                q = mp.quad(lambda s, t=t, n=n: (s - t) ** n * mp.npdf(s), [t, t + 5, mp.inf])
+                assert abs(oracles.gw(n, t) - q) <= 1e-25 * abs(q)
+
+
+@pytest.mark.parametrize("g_A,F_Np", [(0.1, 850.0), (0.34, 850.0)])
+def test_gaussian_path_matches_mpmath(g_A, F_Np):
+    surf = GaussianRoughSurface(**GAUSS)
+    res = ContactLoss(surf, 1000.0, g_A, F_Np).run()
+    pts, energy = oracles.gaussian_path(**GAUSS, F_N0=1000.0, g_A=g_A, F_Np=F_Np)
+    _check_points(res, pts)
+    _check_energies(res, energy)
+    for key in "AB":
+        assert res.points[key]["d"] == pytest.approx(float(pts[key]["d"]), rel=1e-10)
+        assert res.points[key]["d0"] == pytest.approx(float(pts[key]["d0"]), rel=1e-10)
+    if pts["C"] is None:  # g_A = 0.34: F_A = 97.3 N > mu F'_N = 85 N
+        assert res.gross_sliding["force_control"]
+
+
+def test_general_density_reproduces_the_exponential_path():
+    # the quadrature-based adapter on an exponential density (support z > 0, the datum of
+    # the closed-form surface) against the closed-form adapter, same load scale
+    scale = dict(E=0.2, radius=10.0, density=0.01, nominal_area=1e6)
+    sigma = 2.0
+    heights = HeightDensity(lambda z: np.where(np.asarray(z) >= 0, np.exp(-np.asarray(z)
+                                                                          / sigma) / sigma,
+                                               0.0), (0.0, math.inf), scale=sigma)
+    general = GeneralRoughSurface(heights, 0.3, 0.1, sigma=sigma, **scale)
+    exact = ExponentialRoughSurface(sigma, 0.3, 0.1, **scale)
+    assert float(exact.separation(1000.0)) > 0  # the whole path stays where Φ is exponential
+    r_gen = ContactLoss(general, 1000.0, 0.34, 850.0).run()
+    r_exp = ContactLoss(exact, 1000.0, 0.34, 850.0).run()
+    for key in "ABCD":
+        for q in KEYS:
+            assert r_gen.points[key][q] == pytest.approx(r_exp.points[key][q], rel=1e-9)
+    for kind in ("snap_back", "snap_through"):
+        assert r_gen.energy[kind] == pytest.approx(r_exp.energy[kind], rel=1e-8)
+
+
+# ------------------------------------------------------------------ sphere: mpmath
+SPHERE = dict(radius=1000.0, E=0.2, nu=0.3, mu=0.1)
+
+
+@pytest.mark.parametrize("g_A,F_Np", [(2.0, 850.0), (4.0, 700.0)])
+def test_sphere_path_matches_mpmath(g_A, F_Np):
+    res = ContactLoss(Sphere(**SPHERE), 1000.0, g_A, F_Np).run()
+    pts, energy = oracles.sphere_path(**SPHERE, F_N0=1000.0, g_A=g_A, F_Np=F_Np)
+    _check_points(res, pts)
+    _check_energies(res, energy)
+
+
+def test_sphere_slipping_under_the_reduced_load_has_no_D_nor_C():
+    # g_A beyond the slip at which the sphere slides under F'_N: both landings are absent
+    sph = Sphere(**SPHERE)
+    F_Np = 700.0
+    g_A = 0.5 * (sph.slip_limit(F_Np) + sph.slip_limit(1000.0))
+    assert sph.slip_limit(F_Np) < g_A < sph.slip_limit(1000.0)
+    res = ContactLoss(sph, 1000.0, g_A, F_Np).run()
+    assert res.points["C"] is None and res.points["D"] is None
+    assert res.energy == {"snap_back": None, "snap_through": None}
+    assert res.gross_sliding == {"force_control": True, "displacement_control": True}
+    assert res.legs["BC"]["q"][-1] == 0.0  # ends exactly at gross slip (stick zone gone)
+
+
+# ------------------------------------------------------------------ refusals
+def test_bodies_without_a_compliance_law_say_why():
+    for body in (Cylinder(), FlatPlane()):
+        with pytest.raises(NoComplianceLawError, match="compliance law"):
+            ContactLoss(body, 1000.0, 0.34, 850.0)
+
+
+@pytest.mark.parametrize(
+    "args,match",
+    [
+        ((1000.0, 0.34, 1200.0), "reduced_normal_load must be < normal_load"),
+        ((1000.0, 0.34, 1000.0), "reduced_normal_load must be < normal_load"),
+        ((1000.0, 0.34, 200.0), "too deep.*246.59"),
+        ((1000.0, -0.34, 850.0), "max_slip must be a finite number > 0"),
+        ((float("nan"), 0.34, 850.0), "normal_load must be a finite number > 0"),
+    ],
+)
+def test_bad_loading_is_refused_with_the_parameter_named(args, match):
+    with pytest.raises(ModelParameterError, match=match):
+        ContactLoss(ExponentialRoughSurface(2.0, 0.3, 0.1), *args)
+
+
+def test_sphere_max_slip_beyond_gross_sliding_is_refused():
+    sph = Sphere(**SPHERE)
+    with pytest.raises(ModelParameterError, match="max_slip must be <"):
+        ContactLoss(sph, 1000.0, 1.01 * sph.slip_limit(1000.0), 850.0)
