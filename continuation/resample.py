@@ -77,13 +77,13 @@ def points_at(problem, branch: Branch, name: str, values: Sequence[float] | floa
     out = np.empty((vals.size, Z.shape[1]))
     e_k = np.zeros(Z.shape[1])
     e_k[k] = 1.0
-    for i, v in enumerate(vals):
+    for i, v in enumerate(vals.tolist()):
         d = x - v
         hits = np.flatnonzero(d[:-1] * d[1:] <= 0.0)
         if hits.size == 0:
             raise ProblemDefinitionError(
                 f"{name} = {v!r} is not reached on this branch ({name} covers "
-                f"[{x.min()!r}, {x.max()!r}])")
+                f"[{float(x.min())!r}, {float(x.max())!r}])")
         j = int(hits[0])
         span = d[j] - d[j + 1]
         frac = d[j] / span if span != 0.0 else 0.0
