@@ -22,6 +22,8 @@ _EXPORTS = {
     "Sphere": "sphere",
     "Cylinder": "cylinder",
     "FlatPlane": "flat",
+    "ContactLoss": "contact_loss",
+    "ContactLossResult": "contact_loss",
     "gw_integral": "gw",
     "log_gw_integral": "gw",
     "gw_difference": "gw",

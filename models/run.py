@@ -216,9 +216,10 @@ def main(args) -> int:
     from continuation import ContinuationError
 
     t_start = time.perf_counter()
-    path = Path(args.scene) if args.scene is not None else bundled_scene()
+    bundled = args.scene is None
+    path = bundled_scene() if bundled else Path(args.scene)
     try:
-        scene = load_scene(path)
+        scene = load_scene(path, source=f"scenes/{DEFAULT_SCENE} (bundled)" if bundled else None)
         run, figures = run_scene(scene, plots=not args.no_plots)
     except SceneError as exc:
         print(f"cusp run: error: {exc}", file=sys.stderr)

@@ -143,9 +143,11 @@ class Scene:
         return out
 
 
-def load_scene(path: str | Path) -> Scene:
-    """Read and check a scene file."""
+def load_scene(path: str | Path, *, source: str | None = None) -> Scene:
+    """Read and check a scene file (``source``: how messages and the echo name it; default
+    the path as given)."""
     path = Path(path)
+    label = str(path) if source is None else source
     try:
         raw = path.read_bytes()
     except FileNotFoundError:
@@ -162,7 +164,7 @@ def load_scene(path: str | Path) -> Scene:
         raise SceneError(
             f"{path}: not UTF-8 text (byte {exc.start}); a scene is a UTF-8 TOML text file"
         ) from None
-    return parse_scene(text, source=str(path), default_name=path.stem)
+    return parse_scene(text, source=label, default_name=path.stem)
 
 
 def parse_scene(text: str, *, source: str = "<scene>", default_name: str = "scene") -> Scene:

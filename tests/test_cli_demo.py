@@ -6,8 +6,8 @@ import sys
 from models.cli import main
 
 
-def test_cusp_without_arguments_runs_the_demo(capsys):
-    assert main([]) == 0
+def test_cusp_demo_prints_both_folds(capsys):
+    assert main(["demo"]) == 0
     out = capsys.readouterr().out
     assert "cusp normal form" in out
     lines = [ln for ln in out.splitlines() if ln.strip().startswith("fold")]

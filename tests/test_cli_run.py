@@ -132,6 +132,16 @@ def test_cusp_run_without_arguments_runs_the_bundled_fig6_scene(tmp_path):
     assert s["scene"]["name"] == "fig6"
 
 
+def test_cusp_without_a_subcommand_is_cusp_run(tmp_path, capsys, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    status, stdout, _ = _run(capsys)
+    assert status == 0
+    assert "scene fig6 (scenes/fig6.toml (bundled))" in stdout
+    out = tmp_path / "cusp-out" / "fig6"
+    assert sorted(p.suffix for p in out.iterdir()) == [".csv", ".json", ".png", ".png",
+                                                        ".svg", ".svg"]
+
+
 # ------------------------------------------------------------------ other bodies
 def test_gaussian_and_sphere_scenes_run(tmp_path, capsys):
     for name in ("gaussian", "sphere"):
