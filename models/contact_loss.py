@@ -62,9 +62,10 @@ import numpy as np
 
 from continuation import Branch, ContinuationOptions, Problem, points_at, trace
 
-from .errors import GrossSlidingError, ModelParameterError, NoComplianceLawError, check_positive
+from .errors import ModelParameterError, NoComplianceLawError, check_positive
 
-__all__ = ["ContactLoss", "ContactLossResult", "AREA_READINGS", "VARIABLES", "LEG_CONTROLS"]
+__all__ = ["ContactLoss", "ContactLossResult", "PathError", "AREA_READINGS", "VARIABLES",
+           "LEG_CONTROLS"]
 
 #: nondimensional variables of every leg problem (one of them is the leg's control)
 VARIABLES = ("g", "t", "n", "A_SL", "p", "q")
@@ -187,6 +188,7 @@ class _SphereLevels:
     """
 
     names = ("a", "c")
+    p0 = 1.0  # a = a0 under F_N0
 
     def __init__(self, sphere, F_N0: float, g_A: float) -> None:
         a0 = float(sphere.contact_radius(F_N0))
@@ -240,6 +242,11 @@ def _levels_for(body, F_N0: float, g_A: float):
 # Results
 
 
+class PathError(RuntimeError):
+    """A leg of the path ended before its end point (the branch's status and message say
+    why)."""
+
+
 @dataclass(frozen=True)
 class ContactLossResult:
     """Outcome of :meth:`ContactLoss.run`.
@@ -289,16 +296,26 @@ class ContactLossResult:
         return self._physical(points_at(self.problems[leg], br, control, values))
 
     def _physical(self, columns) -> dict[str, np.ndarray]:
-        sc = self.scales
-        p_name, q_name = self.level_names
-        return {
-            "g_T": np.asarray(columns["g"]) * sc["g"],
-            "F_T": np.asarray(columns["t"]) * sc["t"],
-            "F_N": np.asarray(columns["n"]) * sc["n"],
-            "A_SL": np.asarray(columns["A_SL"], dtype=float).copy(),
-            p_name: np.asarray(columns["p"]) * sc["level"],
-            q_name: np.asarray(columns["q"]) * sc["level"],
-        }
+        return _to_physical(columns, self.scales, self.level_names)
+
+
+def _to_physical(columns, scales, level_names) -> dict[str, np.ndarray]:
+    """Nondimensional leg columns (g, t, n, A_SL, p, q) to physical ones (µm, N)."""
+    p_name, q_name = level_names
+    return {
+        "g_T": np.asarray(columns["g"]) * scales["g"],
+        "F_T": np.asarray(columns["t"]) * scales["t"],
+        "F_N": np.asarray(columns["n"]) * scales["n"],
+        "A_SL": np.array(columns["A_SL"], dtype=float),
+        p_name: np.asarray(columns["p"]) * scales["level"],
+        q_name: np.asarray(columns["q"]) * scales["level"],
+    }
+
+
+def _point(values: dict[str, float], scales, level_names) -> dict[str, float]:
+    """One nondimensional point to a physical record."""
+    cols = _to_physical({c: [values[c]] for c in VARIABLES}, scales, level_names)
+    return {k: float(v[0]) for k, v in cols.items()}
 
 
 # ------------------------------------------------------------------------------------------
@@ -459,7 +476,7 @@ class ContactLoss:
         """Trace O→A→B→C (and D), locate the folds and integrate the released energies."""
         o = options or DEFAULT_OPTIONS
         L = self.levels
-        p0 = getattr(L, "p0", 1.0)
+        p0 = L.p0
         messages: list[str] = []
         # O -> A: slip raised at F_N0
         prob = self.problem("OA", start=0.0)
@@ -505,19 +522,16 @@ class ContactLoss:
         legs = {"OA": oa, "AB": ab, "BC": bc}
         energy, error = self._energies(legs, prob_ab, prob_bc, A, B, C, D, o)
         raw = {"O": oa.point(0), "A": A, "B": B, "C": C, "D": D}
-        result = ContactLossResult(
-            points={}, energy=energy, energy_error=error, folds=[], legs=legs,
+        points = {k: None if v is None else _point(v, self.scales, L.names)
+                  for k, v in raw.items()}
+        return ContactLossResult(
+            points=points, energy=energy, energy_error=error,
+            folds=self._folds(legs, points), legs=legs,
             gross_sliding={"force_control": not c_exists, "displacement_control": not d_exists},
             messages=messages, level_names=L.names, scales=self.scales,
             problems={"OA": prob, "AB": prob_ab, "BC": prob_bc},
             point_rows=_point_rows(legs, c_exists, d_exists),
             stats={name: _leg_stats(br) for name, br in legs.items()})
-        for key, val in raw.items():
-            result.points[key] = None if val is None else {
-                k: float(v[0]) for k, v in result._physical({
-                    c: [val[c]] for c in VARIABLES}).items()}
-        result.folds.extend(self._folds(result, raw))
-        return result
 
     def _energies(self, legs, prob_ab, prob_bc, A, B, C, D, o):
         """Areas ABD and ABC [N·µm] by Gauss–Legendre in g on the corrected branches."""
@@ -548,27 +562,26 @@ class ContactLoss:
                 error["snap_through"] = abd_err + extra_err * ft * gs
         return energy, error
 
-    def _folds(self, result: ContactLossResult, raw) -> list[dict[str, Any]]:
+    def _folds(self, legs, points) -> list[dict[str, Any]]:
         """Turning points of the controls g_T and F_T along the path."""
         out: list[dict[str, Any]] = []
         kinds = {"g": ("snap-back", "g_T"), "t": ("snap-through", "F_T")}
         order = [("A", "OA", "AB"), ("B", "AB", "BC")]
         for point, before, after in order:
-            t_before = _path_derivatives(result.legs[before], -1)
-            t_after = _path_derivatives(result.legs[after], 0)
+            t_before = _path_derivatives(legs[before], -1)
+            t_after = _path_derivatives(legs[after], 0)
             for var, (kind, control) in kinds.items():
                 if t_before[var] * t_after[var] < 0.0:
                     out.append({
                         "kind": kind, "control": control, "point": point, "corner": True,
-                        "values": result.points[point],
+                        "values": points[point],
                         "direction_before": "increasing" if t_before[var] > 0 else "decreasing",
                         "direction_after": "increasing" if t_after[var] > 0 else "decreasing",
                     })
         names = {"g": "g_T", "t": "F_T", "n": "F_N", "A_SL": "A_SL"}
-        for leg, br in result.legs.items():
+        for leg, br in legs.items():
             for sp in br.special("fold"):
-                vals = {c: [sp.values[c]] for c in VARIABLES}
-                phys = {k: float(v[0]) for k, v in result._physical(vals).items()}
+                phys = _point(sp.values, self.scales, self.levels.names)
                 wrt = sp.with_respect_to
                 kind = kinds.get(wrt, ("turning point", names.get(wrt, wrt)))
                 out.append({"kind": kind[0], "control": kind[1], "point": None,
@@ -586,7 +599,7 @@ def _unknowns(point: dict[str, float], control: str) -> list[float]:
 
 def _require_end(br: Branch, leg: str, what: str) -> None:
     if br.status != "bound":
-        raise GrossSlidingError(
+        raise PathError(
             f"the contact-loss leg {leg} ended with status {br.status!r} before reaching "
             f"{what}: {br.message}")
 

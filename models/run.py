@@ -215,6 +215,8 @@ def write_outputs(out: Path, files: dict[str, bytes]) -> None:
 def main(args) -> int:
     from continuation import ContinuationError
 
+    from .contact_loss import PathError
+
     t_start = time.perf_counter()
     bundled = args.scene is None
     path = bundled_scene() if bundled else Path(args.scene)
@@ -224,7 +226,7 @@ def main(args) -> int:
     except SceneError as exc:
         print(f"cusp run: error: {exc}", file=sys.stderr)
         return 2
-    except ContinuationError as exc:
+    except (ContinuationError, PathError) as exc:
         first = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
         print(f"cusp run: numerical failure: {first}", file=sys.stderr)
         return 1

@@ -247,3 +247,18 @@ def test_failed_write_leaves_nothing(tmp_path):
     with pytest.raises(TypeError):
         write_outputs(tmp_path / "out", files)  # type: ignore[arg-type]
     assert _leftovers(tmp_path) == []
+
+
+def test_numerical_failure_exits_1_with_one_line(tmp_path, capsys, monkeypatch):
+    from models import contact_loss
+
+    def fail(self, options=None):
+        raise contact_loss.PathError("the contact-loss leg AB ended with status 'max_steps'")
+
+    monkeypatch.setattr(contact_loss.ContactLoss, "run", fail)
+    status, stdout, err = _run(capsys, "run", str(SCENES / "fig6.toml"), "--out",
+                               str(tmp_path / "o"))
+    assert status == 1 and stdout == ""
+    assert err.strip().splitlines() == [
+        "cusp run: numerical failure: the contact-loss leg AB ended with status 'max_steps'"]
+    assert not (tmp_path / "o").exists()
