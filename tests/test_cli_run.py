@@ -143,14 +143,25 @@ def test_cusp_without_a_subcommand_is_cusp_run(tmp_path, capsys, monkeypatch):
 
 
 # ------------------------------------------------------------------ other bodies
-def test_gaussian_and_sphere_scenes_run(tmp_path, capsys):
-    for name in ("gaussian", "sphere"):
-        out = tmp_path / name
-        status, _, err = _run(capsys, "run", str(SCENES / f"{name}.toml"), "--out", str(out),
-                              "--no-plots", "--quiet")
-        assert status == 0, err
-        s = json.loads((out / "summary.json").read_text())
-        assert s["energy"]["snap_back"] > 0 and s["points"]["C"] is not None
+@pytest.mark.parametrize("name", ["gaussian", "sphere"])
+def test_gaussian_and_sphere_scenes_match_mpmath(tmp_path, capsys, name):
+    from tests.models import _contact_oracles as oracles
+
+    out = tmp_path / name
+    status, _, err = _run(capsys, "run", str(SCENES / f"{name}.toml"), "--out", str(out),
+                          "--no-plots", "--quiet")
+    assert status == 0, err
+    s = json.loads((out / "summary.json").read_text())
+    sc = {k: v["value"] for k, v in s["scene"]["surface"].items() if k != "model"}
+    ld = {k: v["value"] for k, v in s["scene"]["loading"].items()}
+    args = dict(F_N0=ld["normal_load"], g_A=ld["max_slip"], F_Np=ld["reduced_normal_load"][0])
+    ref_fn = oracles.gaussian_path if name == "gaussian" else oracles.sphere_path
+    pts, energy = ref_fn(**sc, **args)
+    for key in "ABCD":
+        for q in ("g_T", "F_T", "F_N", "A_SL"):
+            assert s["points"][key][q] == pytest.approx(float(pts[key][q]), rel=1e-10)
+    for kind in ("snap_back", "snap_through"):
+        assert s["energy"][kind] == pytest.approx(float(energy[kind]), rel=1e-8)
 
 
 # ------------------------------------------------------------------ bad scenes
