@@ -6,6 +6,8 @@ wrappers of numpy/scipy cost several times the factorization itself.
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
@@ -36,7 +38,7 @@ class DenseLU:
 
     def __init__(self, a: np.ndarray) -> None:
         lu, piv, info = _getrf(a)
-        if info > 0 or not np.isfinite(lu[-1, -1]):
+        if info > 0 or not math.isfinite(lu[-1, -1]):
             raise SingularMatrixError(f"matrix is singular (zero pivot {info})")
         self.lu, self.piv, self.n = lu, piv, a.shape[0]
 
