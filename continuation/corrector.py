@@ -8,7 +8,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .errors import SingularMatrixError
-from .linalg import factor, rounding_floor
+from .linalg import DenseLU, factor, rounding_floor
 
 
 @dataclass
@@ -39,7 +39,8 @@ def _singular_reason(a) -> str:
 
 
 def newton(system, z0: np.ndarray, row: np.ndarray, c: float, *, tol: float, step_tol: float,
-           max_iter: int, g0: np.ndarray | None = None, strict: bool = False) -> NewtonResult:
+           max_iter: int, g0: np.ndarray | None = None, strict: bool = False,
+           contract: bool = False) -> NewtonResult:
     """Solve ``G(z) = 0``, ``row·z = c`` by Newton's method from ``z0``.
 
     Converged when the max-norm of ``G`` is ≤ ``tol`` and the last update is
@@ -49,6 +50,13 @@ def newton(system, z0: np.ndarray, row: np.ndarray, c: float, *, tol: float, ste
     residuals with large terms, such as finite differences on fine grids, cannot get below
     ``tol`` in floating point). ``strict`` requires the latter (used to polish located
     special points to rounding).
+
+    ``contract``: give up (reason ``"not_contracting"``) as soon as an update, still above
+    ``sqrt(step_tol)·(1 + |z|)``, is larger than the one before. Inside its region of
+    convergence Newton's updates shrink at every iteration, so the iterates are then
+    wandering (typically a predictor beyond a fold, whose hyperplane misses the curve); the
+    continuation step uses this to halve the step at once instead of spending the whole
+    iteration budget first.
     """
     z = z0.copy()
     g = system.residual(z) if g0 is None else g0
@@ -61,17 +69,21 @@ def newton(system, z0: np.ndarray, row: np.ndarray, c: float, *, tol: float, ste
     scale = 1.0 + _norm(z)
     sq_step_tol = math.sqrt(step_tol) * scale
     rel_step_tol = step_tol * scale
+    bordered_jacobian = system.bordered_jacobian
+    residual = system.residual
+    sn_prev = math.inf
     for k in range(1, max_iter + 1):
-        a = system.bordered_jacobian(z, row)
+        a = bordered_jacobian(z, row)
         try:
-            lu = factor(a)
+            lu = DenseLU(a) if type(a) is np.ndarray else factor(a)
         except SingularMatrixError:
             return NewtonResult(z, False, k, rn, None, _singular_reason(a))
-        rhs[:m] = -g
-        rhs[m] = c - row @ z
+        # the system for minus the update (saves negating the residual; bitwise the same)
+        rhs[:m] = g
+        rhs[m] = row.dot(z) - c
         dz = lu.solve(rhs)
-        z = z + dz
-        g = system.residual(z)
+        z = z - dz
+        g = residual(z)
         rn_new = _norm(g)
         sn = _norm(dz)
         if rn_new != rn_new or sn != sn:
@@ -86,7 +98,10 @@ def newton(system, z0: np.ndarray, row: np.ndarray, c: float, *, tol: float, ste
             return NewtonResult(z, True, k, rn_new, lu)
         if k >= 3 and rn_new > 1e3 * max(rn, tol):
             return NewtonResult(z, False, k, rn_new, lu, "diverging")
+        if contract and sn > sn_prev and sn > sq_step_tol:
+            return NewtonResult(z, False, k, rn_new, lu, "not_contracting")
         rn = rn_new
+        sn_prev = sn
     return NewtonResult(z, False, max_iter, rn, lu, "max_iterations")
 
 

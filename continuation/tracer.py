@@ -563,8 +563,10 @@ class Tracer:
         while corner is None:
             z_pred = z + ds * direction
             row = W * direction
+            # above ds_min a wandering Newton gives up early (the step is halved anyway)
             res = newton(system, z_pred, row, float(row @ z_pred), tol=o.tol,
-                         step_tol=o.step_tol, max_iter=o.max_newton_iterations)
+                         step_tol=o.step_tol, max_iter=o.max_newton_iterations,
+                         contract=ds > o.ds_min)
             if not res.converged and ds <= o.ds_min:
                 res = damped_newton(system, z_pred, row, float(row @ z_pred), tol=o.tol,
                                     step_tol=o.step_tol, max_iter=5 * o.max_newton_iterations)
