@@ -48,9 +48,9 @@ class DenseLU:
 
     def sign_det(self) -> float:
         if self.n <= 16:
-            d = np.diagonal(self.lu).tolist()
-            odd = sum(1 for x in d if x < 0)
-            odd += sum(1 for i, q in enumerate(self.piv.tolist()) if i != q)
+            odd = 0
+            for i, (x, q) in enumerate(zip(self.lu.diagonal().tolist(), self.piv.tolist())):
+                odd += (x < 0) + (i != q)
         else:
             odd = np.count_nonzero(np.diagonal(self.lu) < 0)
             odd += np.count_nonzero(self.piv != np.arange(self.n))

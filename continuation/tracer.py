@@ -93,12 +93,13 @@ class _Test:
     event: Event | None = None
 
     def value(self, tracer: Tracer, z, t, sdet) -> float:
-        if self.kind == "fold":
+        kind = self.kind
+        if kind == "fold":
             return float(t[self.k])
-        if self.kind == "branch_point":
-            return sdet
-        if self.kind in ("target", "bound"):
+        if kind == "bound" or kind == "target":
             return float(z[self.k] - self.value_at)
+        if kind == "branch_point":
+            return sdet
         if self.kind == "cusp":
             return tracer.system.cusp_coefficient(z)
         if self.kind == "codim2":
@@ -319,7 +320,7 @@ class Tracer:
         return u, vals
 
     def wnorm(self, x) -> float:
-        return math.sqrt(float(x @ (self.weights * x)))
+        return math.sqrt(x.dot(self.weights * x))
 
     def bordered_det(self, z, row):
         lu = factor(bordered(self.system.jacobian(z), row))
@@ -553,6 +554,7 @@ class Tracer:
             if nd > 0:
                 secant = d / nd
         direction = t if secant is None else secant
+        row = W * direction
         used_fallback = False
         is_corner = False
         corner = None
@@ -562,22 +564,21 @@ class Tracer:
             corner = self._corner_step(z, t, ds, None if last.prev is None else last.prev.z)
         while corner is None:
             z_pred = z + ds * direction
-            row = W * direction
             # above ds_min a wandering Newton gives up early (the step is halved anyway)
-            res = newton(system, z_pred, row, float(row @ z_pred), tol=o.tol,
+            res = newton(system, z_pred, row, row.dot(z_pred), tol=o.tol,
                          step_tol=o.step_tol, max_iter=o.max_newton_iterations,
                          contract=ds > o.ds_min)
             if not res.converged and ds <= o.ds_min:
-                res = damped_newton(system, z_pred, row, float(row @ z_pred), tol=o.tol,
+                res = damped_newton(system, z_pred, row, row.dot(z_pred), tol=o.tol,
                                     step_tol=o.step_tol, max_iter=5 * o.max_newton_iterations)
                 used_fallback = True
             if res.converged:
                 t_new = res.lu.solve(self._e_last)
-                t_new /= math.sqrt(t_new @ (W * t_new))
-                cosang = float(t_new @ (W * t))
+                t_new /= math.sqrt(t_new.dot(W * t_new))
+                cosang = row.dot(t_new) if secant is None else t_new.dot(W * t)
                 angle = math.degrees(math.acos(max(-1.0, min(1.0, cosang))))
                 dc = res.z - z_pred
-                correction = math.sqrt(dc @ (W * dc))
+                correction = math.sqrt(dc.dot(W * dc))
                 if angle > o.max_angle or correction > ds:
                     reason = (f"tangent turned {angle:.1f} degrees" if angle > o.max_angle
                               else "correction larger than the step")
@@ -616,7 +617,9 @@ class Tracer:
         z1 = res.z
         sdet = None
         if self._has_bp:
-            sdet = res.lu.sign_det() * (1.0 if float(row @ t_new) > 0 else -1.0)
+            # the sign of det [∂G/∂z; (W t_new)ᵀ] from the corrector's LU with border `row`
+            # (Cramer: the two determinants differ by the factor row·t_new)
+            sdet = res.lu.sign_det() * (1.0 if row.dot(t_new) > 0 else -1.0)
         # step-size update
         k = max(res.iterations, 1)
         f_newton = o.target_newton_iterations / k
@@ -625,7 +628,7 @@ class Tracer:
         if rejected:
             factor_ = min(factor_, 1.0)
         ds_next = min(o.ds_max, max(o.ds_min, ds * factor_))
-        h = float(row @ (z1 - z))
+        h = float(row.dot(z1 - z))
         new_point = _Point(z1, t_new, last.s + h, res.iterations, rejected, res.residual_norm,
                            ds, None, last)
         if used_fallback:
@@ -634,11 +637,16 @@ class Tracer:
 
         # test functions
         new_tests = []
-        for tt in self.tests:
-            new_tests.append(None if (tt.kind == "branch_point" and sdet is None)
-                             else tt.value(self, z1, t_new, sdet))
-        crossings = [(tt, old, new) for tt, old, new in zip(self.tests, state.tests, new_tests)
-                     if tt.crossed(old, new)]
+        crossings = []
+        for tt, old in zip(self.tests, state.tests):
+            new = (None if (sdet is None and tt.kind == "branch_point")
+                   else tt.value(self, z1, t_new, sdet))
+            new_tests.append(new)
+            # the common case first: no zero and no sign change
+            if old is None or (old != 0.0 and new != 0.0 and (old < 0) == (new < 0)):
+                continue
+            if tt.crossed(old, new):
+                crossings.append((tt, old, new))
         if is_corner:
             # the tangent jumped across a corner: a fold there is non-smooth and only
             # bracketed; it is recorded on the corner step's own end point
