@@ -120,6 +120,16 @@ def bordered_square(m, b: np.ndarray, c: np.ndarray):
     return a
 
 
+def max_abs(x: np.ndarray) -> float:
+    """``float(np.max(np.abs(x)))``, in plain Python for the tiny finite vectors of most
+    problems (numpy's reductions cost more than the arithmetic there)."""
+    if x.size <= 32:
+        vals = x.tolist()
+        if vals and math.isfinite(sum(vals)):
+            return max(map(abs, vals))
+    return float(np.max(np.abs(x)))
+
+
 def rounding_floor(block, z: np.ndarray) -> float:
     """Residual size attributable to rounding: 100·eps·‖block‖∞·(1 + ‖z‖∞), with ``block``
     the state part of the Jacobian (the large terms of a fine discretisation live there; a
