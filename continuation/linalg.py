@@ -16,6 +16,7 @@ from scipy.linalg import lapack
 from .errors import SingularMatrixError
 
 _getrf = lapack.dgetrf
+_EPS = float(np.finfo(float).eps)
 _getrs = lapack.dgetrs
 
 
@@ -33,14 +34,28 @@ def permutation_parity(perm: np.ndarray) -> int:
     return 1 if (n - cycles) % 2 == 0 else -1
 
 
+def dense_factors(a: np.ndarray):
+    """LAPACK getrf of a square float array: ``(lu, piv)``; SingularMatrixError on a zero or
+    non-finite last pivot."""
+    lu, piv, info = _getrf(a)
+    if info > 0 or not math.isfinite(lu[-1, -1]):
+        raise SingularMatrixError(f"matrix is singular (zero pivot {info})")
+    return lu, piv
+
+
 class DenseLU:
     __slots__ = ("lu", "piv", "n")
 
     def __init__(self, a: np.ndarray) -> None:
-        lu, piv, info = _getrf(a)
-        if info > 0 or not math.isfinite(lu[-1, -1]):
-            raise SingularMatrixError(f"matrix is singular (zero pivot {info})")
-        self.lu, self.piv, self.n = lu, piv, a.shape[0]
+        self.lu, self.piv = dense_factors(a)
+        self.n = a.shape[0]
+
+    @classmethod
+    def from_factors(cls, lu: np.ndarray, piv: np.ndarray) -> DenseLU:
+        """Wrap the output of :func:`dense_factors` (no copy, no check)."""
+        self = object.__new__(cls)
+        self.lu, self.piv, self.n = lu, piv, lu.shape[0]
+        return self
 
     def solve(self, b: np.ndarray, trans: bool = False) -> np.ndarray:
         x, _ = _getrs(self.lu, self.piv, b, trans=1 if trans else 0)
@@ -134,6 +149,14 @@ def rounding_floor(block, z: np.ndarray) -> float:
     """Residual size attributable to rounding: 100·eps·‖block‖∞·(1 + ‖z‖∞), with ``block``
     the state part of the Jacobian (the large terms of a fine discretisation live there; a
     parameter derivative differenced across a jump of the residual would inflate it)."""
-    norm = (abs(block).sum(axis=1).max() if sp.issparse(block)
-            else np.abs(block).sum(axis=1).max())
-    return 100 * np.finfo(float).eps * float(norm) * (1.0 + float(np.max(np.abs(z))))
+    if sp.issparse(block):
+        norm = abs(block).sum(axis=1).max()
+    else:
+        norm = math.nan
+        if block.size <= 64:  # plain Python for tiny blocks; NaN/inf left to numpy
+            sums = [sum(map(abs, r)) for r in block.tolist()]
+            if math.isfinite(sum(sums)):
+                norm = max(sums, default=0.0)
+        if norm != norm:
+            norm = np.abs(block).sum(axis=1).max()
+    return 100 * _EPS * float(norm) * (1.0 + max_abs(z))

@@ -109,7 +109,7 @@ def tangent_at(system, z: np.ndarray, row: np.ndarray, weights: np.ndarray,
         if br is None:
             raise
         t = br.guess_derivative(float(np.clip(br.sigma(z) / br.h, 0.0, 1.0)))
-    return t / np.sqrt(t @ (weights * t))
+    return t / math.sqrt(t.dot(weights * t))
 
 
 def second_derivative_row(jacobian, z: np.ndarray, v: np.ndarray, w: np.ndarray) -> np.ndarray:
@@ -158,8 +158,8 @@ def locate_fold(br: Bracket, k: int, start: np.ndarray | None = None,
     o = br.options
     system = br.system
     if start is None:
-        ta, tb = br.t_a[k], br.t_b[k]
-        theta = float(np.clip(ta / (ta - tb), 0.0, 1.0)) if ta != tb else 0.5
+        ta, tb = float(br.t_a[k]), float(br.t_b[k])
+        theta = min(1.0, max(0.0, ta / (ta - tb))) if ta != tb else 0.5
         z = br.guess(theta)
         tangent = br.guess_derivative(theta)
     else:
@@ -204,9 +204,8 @@ def locate_fold(br: Bracket, k: int, start: np.ndarray | None = None,
         previous = size
     if not converged:
         return None
-    res = system.residual(z)
-    floor = max(o.tol, rounding_floor(dg[:, :-1], z))
-    if not np.all(np.isfinite(res)) or np.max(np.abs(res)) > floor:
+    rn = max_abs(system.residual(z))
+    if not rn <= max(o.tol, rounding_floor(dg[:, :-1], z)):  # NaN fails too
         return None
     sigma = br.sigma(z)
     if not (-0.05 * abs(br.h) <= sigma * np.sign(br.h) <= 1.05 * abs(br.h)):

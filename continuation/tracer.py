@@ -28,7 +28,7 @@ from .errors import (
     SingularMatrixError,
 )
 from .events import Event
-from .linalg import bordered, factor
+from .linalg import bordered, factor, max_abs
 from .locate import (
     Bracket,
     Located,
@@ -46,6 +46,8 @@ logger = logging.getLogger(__name__)
 
 _STALL_STEPS = 10  # steps at ds < _STALL_FACTOR·ds_min before a corner step is tried
 _STALL_FACTOR = 1e3
+
+_DEFAULT_OPTIONS = ContinuationOptions()  # frozen: shared (validation costs 20 µs a call)
 
 _REMEDY = ("Try a smaller ds_min or ds_max, a better starting point, an analytic jacobian, or "
            "check the residual for discontinuities; pass throw=False to keep the partial branch.")
@@ -230,7 +232,7 @@ class Tracer:
         problem = as_problem(problem)
         if not isinstance(free, str):
             raise ProblemDefinitionError(f"free must be a parameter name, got {free!r}")
-        options = options or ContinuationOptions()
+        options = options or _DEFAULT_OPTIONS
         if overrides:
             options = options.replace(**overrides)
         system = BranchSystem(problem, free, params, options.state_weight)
@@ -399,7 +401,7 @@ class Tracer:
                     iterations=res.iterations, residual_norm=res.residual_norm,
                     remedy="Give a better initial guess u0 for these parameter values.")
             z0 = res.z
-            t0 = self._initial_tangent(z0, k_free)
+            t0, sdet = self._initial_tangent(z0, k_free)
             residual = res.residual_norm
             iters = res.iterations
         else:
@@ -407,8 +409,12 @@ class Tracer:
             t0 = t0 / self.wnorm(t0)
             residual = float(np.max(np.abs(g0)))
             iters = 0
+            sdet = None
         self.system.refresh(z0)
-        sdet = None if skip_bp else self._sdet(z0, t0)
+        if skip_bp:
+            sdet = None
+        elif sdet is None:
+            sdet = self._sdet(z0, t0)
         # starting on a special point, the test functions vanish there up to rounding: their
         # signs are taken after the first step instead
         tests = tuple(None if (skip_bp and t.kind in ("branch_point", "fold"))
@@ -436,22 +442,32 @@ class Tracer:
                     f"({lo:g}, {hi:g})")
 
     def _initial_tangent(self, z0, k_free):
+        """Unit tangent at ``z0`` (the free parameter moving in ``direction``) and the sign of
+        det [∂G/∂z; (W t)ᵀ] (None if it was not available from the factorization)."""
         system = self.system
         e = np.zeros(system.dim)
         e[-1] = 1.0
         dg = system.jacobian(z0)
         row = np.zeros(system.dim)
         row[k_free] = 1.0
+        sdet = None
         try:
-            t = factor(bordered(dg, row)).solve(e)
+            lu = factor(bordered(dg, row))
+            t = lu.solve(e)
         except Exception:  # starting at a fold in the free parameter: use the kernel
             dense = dg.toarray() if hasattr(dg, "toarray") else np.asarray(dg)
             t = np.linalg.svd(dense)[2][-1]
             k_free = int(np.argmax(np.abs(t)))
+        else:
+            # t solves [∂G/∂z; e_kᵀ] t = e_last, so (determinant lemma) det [∂G/∂z; (W t')ᵀ]
+            # = det [∂G/∂z; e_kᵀ]·(W t')·t, which for t' = ±t/|t|_W has the sign ±
+            sdet = lu.sign_det()
         t = t / self.wnorm(t)
         if t[k_free] * self.direction < 0:
             t = -t
-        return t
+            if sdet is not None:
+                sdet = -sdet
+        return t, sdet
 
     def check_fold_resolution(self, found: Located, br: Bracket) -> Located:
         """With finite-difference derivatives, a fold whose radius of curvature is within
@@ -677,7 +693,7 @@ class Tracer:
                         records.append(("endpoint", tt.label, tt.wrt, loc.status, None, {}))
                 tan = tangent_at(system, loc.z, br.row, W, br)
                 prev = _Point(loc.z, tan, last.s + loc.sigma, loc.iterations, 0,
-                              float(np.max(np.abs(system.residual(loc.z)))), 0.0,
+                              max_abs(system.residual(loc.z)), 0.0,
                               tuple(records), prev)
                 n_points += 1
                 if tt.terminal:
