@@ -25,10 +25,17 @@ def _norm(x: np.ndarray) -> float:
     """Max-norm; NaN if any entry is NaN or infinite (cheap for the tiny arrays of most
     problems, which would otherwise spend more time in numpy's reductions than in algebra)."""
     if x.size <= 32:
-        if not x.size:
+        vals = x.tolist()
+        if len(vals) == 1:  # one equation
+            v = abs(vals[0])
+            return v if v - v == 0.0 else math.nan
+        if not vals:
             return 0.0
-        vals = list(map(abs, x.tolist()))
-        return max(vals) if math.isfinite(sum(vals)) else math.nan
+        total = sum(vals)  # NaN or ±inf if any entry is (or, harmlessly, on overflow)
+        if total - total != 0.0:
+            return math.nan
+        hi, lo = max(vals), min(vals)
+        return abs(hi) if hi >= -lo else -lo
     m = float(np.abs(x).max())
     return m if math.isfinite(m) else math.nan
 

@@ -303,6 +303,12 @@ class Tracer:
         tests.extend(extra_tests)
         self.tests = tuple(tests)
         self._has_bp = any(t.kind == "branch_point" for t in tests)
+        # how the step evaluates each test (as _Test.value, without a call for the common
+        # kinds): 0 a tangent component, 1 a component minus a value, 2 the branch-point
+        # sign, 3 a call to value
+        self._test_plan = tuple(
+            (tt, 0 if tt.kind == "fold" else 1 if tt.kind in ("bound", "target")
+             else 2 if tt.kind == "branch_point" else 3) for tt in tests)
         self._e_last = np.zeros(system.dim)
         self._e_last[-1] = 1.0
 
@@ -591,7 +597,8 @@ class Tracer:
             if res.converged:
                 t_new = res.lu.solve(self._e_last)
                 t_new /= math.sqrt(t_new.dot(W * t_new))
-                cosang = row.dot(t_new) if secant is None else t_new.dot(W * t)
+                rt = row.dot(t_new)
+                cosang = rt if secant is None else t_new.dot(W * t)
                 angle = math.degrees(math.acos(max(-1.0, min(1.0, cosang))))
                 dc = res.z - z_pred
                 correction = math.sqrt(dc.dot(W * dc))
@@ -630,12 +637,13 @@ class Tracer:
             res, t_new, row, angle = corner
             ds = self.wnorm(res.z - z)
             is_corner = True
+            rt = row.dot(t_new)
         z1 = res.z
         sdet = None
         if self._has_bp:
             # the sign of det [∂G/∂z; (W t_new)ᵀ] from the corrector's LU with border `row`
             # (Cramer: the two determinants differ by the factor row·t_new)
-            sdet = res.lu.sign_det() * (1.0 if row.dot(t_new) > 0 else -1.0)
+            sdet = res.lu.sign_det() * (1.0 if rt > 0 else -1.0)
         # step-size update
         k = max(res.iterations, 1)
         f_newton = o.target_newton_iterations / k
@@ -654,9 +662,15 @@ class Tracer:
         # test functions
         new_tests = []
         crossings = []
-        for tt, old in zip(self.tests, state.tests):
-            new = (None if (sdet is None and tt.kind == "branch_point")
-                   else tt.value(self, z1, t_new, sdet))
+        for (tt, how), old in zip(self._test_plan, state.tests):
+            if how == 0:
+                new = float(t_new[tt.k])
+            elif how == 1:
+                new = float(z1[tt.k] - tt.value_at)
+            elif how == 2:
+                new = sdet
+            else:
+                new = tt.value(self, z1, t_new, sdet)
             new_tests.append(new)
             # the common case first: no zero and no sign change
             if old is None or (old != 0.0 and new != 0.0 and (old < 0) == (new < 0)):
