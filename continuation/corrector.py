@@ -8,7 +8,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .errors import SingularMatrixError
-from .linalg import factor, rounding_floor
+from .linalg import DenseLU, _getrs, dense_factors, factor, rounding_floor
 
 
 @dataclass
@@ -26,9 +26,16 @@ def _norm(x: np.ndarray) -> float:
     problems, which would otherwise spend more time in numpy's reductions than in algebra)."""
     if x.size <= 32:
         vals = x.tolist()
-        total = sum(map(abs, vals)) if vals else 0.0
-        return max(map(abs, vals)) if math.isfinite(total) and vals else (
-            0.0 if not vals else math.nan)
+        if len(vals) == 1:  # one equation
+            v = abs(vals[0])
+            return v if v - v == 0.0 else math.nan
+        if not vals:
+            return 0.0
+        total = sum(vals)  # NaN or ±inf if any entry is (or, harmlessly, on overflow)
+        if total - total != 0.0:
+            return math.nan
+        hi, lo = max(vals), min(vals)
+        return abs(hi) if hi >= -lo else -lo
     m = float(np.abs(x).max())
     return m if math.isfinite(m) else math.nan
 
@@ -39,7 +46,8 @@ def _singular_reason(a) -> str:
 
 
 def newton(system, z0: np.ndarray, row: np.ndarray, c: float, *, tol: float, step_tol: float,
-           max_iter: int, g0: np.ndarray | None = None, strict: bool = False) -> NewtonResult:
+           max_iter: int, g0: np.ndarray | None = None, strict: bool = False,
+           contract: bool = False) -> NewtonResult:
     """Solve ``G(z) = 0``, ``row·z = c`` by Newton's method from ``z0``.
 
     Converged when the max-norm of ``G`` is ≤ ``tol`` and the last update is
@@ -49,6 +57,13 @@ def newton(system, z0: np.ndarray, row: np.ndarray, c: float, *, tol: float, ste
     residuals with large terms, such as finite differences on fine grids, cannot get below
     ``tol`` in floating point). ``strict`` requires the latter (used to polish located
     special points to rounding).
+
+    ``contract``: give up (reason ``"not_contracting"``) as soon as an update, still above
+    ``sqrt(step_tol)·(1 + |z|)``, is larger than the one before. Inside its region of
+    convergence Newton's updates shrink at every iteration, so the iterates are then
+    wandering (typically a predictor beyond a fold, whose hyperplane misses the curve); the
+    continuation step uses this to halve the step at once instead of spending the whole
+    iteration budget first.
     """
     z = z0.copy()
     g = system.residual(z) if g0 is None else g0
@@ -57,36 +72,56 @@ def newton(system, z0: np.ndarray, row: np.ndarray, c: float, *, tol: float, ste
         return NewtonResult(z, False, 0, rn, None, "nonfinite")
     m = g.size
     rhs = np.empty(m + 1)
-    lu = None
     scale = 1.0 + _norm(z)
     sq_step_tol = math.sqrt(step_tol) * scale
     rel_step_tol = step_tol * scale
+    bordered_jacobian = system.bordered_jacobian
+    residual = system.residual
+    sn_prev = math.inf
+    # dense matrices are factored and solved by LAPACK directly (the factors are wrapped in
+    # a DenseLU only for the result); sparse ones through `factor`
+    lu = f = piv = None
     for k in range(1, max_iter + 1):
-        a = system.bordered_jacobian(z, row)
+        a = bordered_jacobian(z, row)
+        dense = type(a) is np.ndarray
         try:
-            lu = factor(a)
+            if dense:
+                f, piv = dense_factors(a)
+            else:
+                lu = factor(a)
         except SingularMatrixError:
             return NewtonResult(z, False, k, rn, None, _singular_reason(a))
-        rhs[:m] = -g
-        rhs[m] = c - row @ z
-        dz = lu.solve(rhs)
-        z = z + dz
-        g = system.residual(z)
+        if dense:
+            lu = None
+        # the system for minus the update (saves negating the residual; bitwise the same)
+        rhs[:m] = g
+        rhs[m] = row.dot(z) - c
+        dz = _getrs(f, piv, rhs)[0] if dense else lu.solve(rhs)
+        z = z - dz
+        g = residual(z)
         rn_new = _norm(g)
         sn = _norm(dz)
         if rn_new != rn_new or sn != sn:
-            return NewtonResult(z, False, k, rn_new, lu, "nonfinite")
+            return NewtonResult(z, False, k, rn_new, lu or DenseLU.from_factors(f, piv),
+                                "nonfinite")
         if rn_new <= tol and sn <= sq_step_tol and not strict:
-            return NewtonResult(z, True, k, rn_new, lu)
+            return NewtonResult(z, True, k, rn_new, lu or DenseLU.from_factors(f, piv))
         # the relative update is below step_tol (AUTO's test) and the residual is at the
         # rounding level of its own terms (which for badly scaled residuals exceeds tol); a
         # wrong Jacobian (say, differenced across a kink) also gives tiny updates, but leaves
         # the residual above that floor
         if sn <= rel_step_tol and rn_new <= max(tol, rounding_floor(a[:-1, :-1], z)):
-            return NewtonResult(z, True, k, rn_new, lu)
+            return NewtonResult(z, True, k, rn_new, lu or DenseLU.from_factors(f, piv))
         if k >= 3 and rn_new > 1e3 * max(rn, tol):
-            return NewtonResult(z, False, k, rn_new, lu, "diverging")
+            return NewtonResult(z, False, k, rn_new, lu or DenseLU.from_factors(f, piv),
+                                "diverging")
+        if contract and sn > sn_prev and sn > sq_step_tol:
+            return NewtonResult(z, False, k, rn_new, lu or DenseLU.from_factors(f, piv),
+                                "not_contracting")
         rn = rn_new
+        sn_prev = sn
+    if lu is None and f is not None:
+        lu = DenseLU.from_factors(f, piv)
     return NewtonResult(z, False, max_iter, rn, lu, "max_iterations")
 
 

@@ -6,6 +6,8 @@ wrappers of numpy/scipy cost several times the factorization itself.
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
@@ -14,6 +16,7 @@ from scipy.linalg import lapack
 from .errors import SingularMatrixError
 
 _getrf = lapack.dgetrf
+_EPS = float(np.finfo(float).eps)
 _getrs = lapack.dgetrs
 
 
@@ -31,14 +34,28 @@ def permutation_parity(perm: np.ndarray) -> int:
     return 1 if (n - cycles) % 2 == 0 else -1
 
 
+def dense_factors(a: np.ndarray):
+    """LAPACK getrf of a square float array: ``(lu, piv)``; SingularMatrixError on a zero or
+    non-finite last pivot."""
+    lu, piv, info = _getrf(a)
+    if info > 0 or not math.isfinite(lu[-1, -1]):
+        raise SingularMatrixError(f"matrix is singular (zero pivot {info})")
+    return lu, piv
+
+
 class DenseLU:
     __slots__ = ("lu", "piv", "n")
 
     def __init__(self, a: np.ndarray) -> None:
-        lu, piv, info = _getrf(a)
-        if info > 0 or not np.isfinite(lu[-1, -1]):
-            raise SingularMatrixError(f"matrix is singular (zero pivot {info})")
-        self.lu, self.piv, self.n = lu, piv, a.shape[0]
+        self.lu, self.piv = dense_factors(a)
+        self.n = a.shape[0]
+
+    @classmethod
+    def from_factors(cls, lu: np.ndarray, piv: np.ndarray) -> DenseLU:
+        """Wrap the output of :func:`dense_factors` (no copy, no check)."""
+        self = object.__new__(cls)
+        self.lu, self.piv, self.n = lu, piv, lu.shape[0]
+        return self
 
     def solve(self, b: np.ndarray, trans: bool = False) -> np.ndarray:
         x, _ = _getrs(self.lu, self.piv, b, trans=1 if trans else 0)
@@ -46,9 +63,9 @@ class DenseLU:
 
     def sign_det(self) -> float:
         if self.n <= 16:
-            d = np.diagonal(self.lu).tolist()
-            odd = sum(1 for x in d if x < 0)
-            odd += sum(1 for i, q in enumerate(self.piv.tolist()) if i != q)
+            odd = 0
+            for i, (x, q) in enumerate(zip(self.lu.diagonal().tolist(), self.piv.tolist())):
+                odd += (x < 0) + (i != q)
         else:
             odd = np.count_nonzero(np.diagonal(self.lu) < 0)
             odd += np.count_nonzero(self.piv != np.arange(self.n))
@@ -118,10 +135,28 @@ def bordered_square(m, b: np.ndarray, c: np.ndarray):
     return a
 
 
+def max_abs(x: np.ndarray) -> float:
+    """``float(np.max(np.abs(x)))``, in plain Python for the tiny finite vectors of most
+    problems (numpy's reductions cost more than the arithmetic there)."""
+    if x.size <= 32:
+        vals = x.tolist()
+        if vals and math.isfinite(sum(vals)):
+            return max(map(abs, vals))
+    return float(np.max(np.abs(x)))
+
+
 def rounding_floor(block, z: np.ndarray) -> float:
     """Residual size attributable to rounding: 100·eps·‖block‖∞·(1 + ‖z‖∞), with ``block``
     the state part of the Jacobian (the large terms of a fine discretisation live there; a
     parameter derivative differenced across a jump of the residual would inflate it)."""
-    norm = (abs(block).sum(axis=1).max() if sp.issparse(block)
-            else np.abs(block).sum(axis=1).max())
-    return 100 * np.finfo(float).eps * float(norm) * (1.0 + float(np.max(np.abs(z))))
+    if sp.issparse(block):
+        norm = abs(block).sum(axis=1).max()
+    else:
+        norm = math.nan
+        if block.size <= 64:  # plain Python for tiny blocks; NaN/inf left to numpy
+            sums = [sum(map(abs, r)) for r in block.tolist()]
+            if math.isfinite(sum(sums)):
+                norm = max(sums, default=0.0)
+        if norm != norm:
+            norm = np.abs(block).sum(axis=1).max()
+    return 100 * _EPS * float(norm) * (1.0 + max_abs(z))

@@ -18,7 +18,14 @@ import numpy as np
 
 from .corrector import newton
 from .errors import SingularMatrixError
-from .linalg import bordered, bordered_square, delete_column, factor, rounding_floor
+from .linalg import (
+    bordered,
+    bordered_square,
+    delete_column,
+    factor,
+    max_abs,
+    rounding_floor,
+)
 
 _EPS = np.finfo(float).eps
 
@@ -102,17 +109,17 @@ def tangent_at(system, z: np.ndarray, row: np.ndarray, weights: np.ndarray,
         if br is None:
             raise
         t = br.guess_derivative(float(np.clip(br.sigma(z) / br.h, 0.0, 1.0)))
-    return t / np.sqrt(t @ (weights * t))
+    return t / math.sqrt(t.dot(weights * t))
 
 
 def second_derivative_row(jacobian, z: np.ndarray, v: np.ndarray, w: np.ndarray) -> np.ndarray:
     """``∇_z (w·J(z) v) = w·D²G(z)[v, ·]`` by central differences of ``jacobian(z)`` along
     ``v`` (exact in exact arithmetic for quadratic G; error O(h²) otherwise)."""
-    vmax = float(np.max(np.abs(v)))
+    vmax = max_abs(v)
     if vmax == 0.0:
         return np.zeros(z.size)
-    h = _EPS ** (1.0 / 3.0) * max(1.0, float(np.max(np.abs(z)))) / vmax
-    return (jacobian(z + h * v).T @ w - jacobian(z - h * v).T @ w) / (2.0 * h)
+    h = _EPS ** (1.0 / 3.0) * max(1.0, max_abs(z)) / vmax
+    return (jacobian(z + h * v).T.dot(w) - jacobian(z - h * v).T.dot(w)) / (2.0 * h)
 
 
 def minimally_augmented(system, z: np.ndarray, k: int, b: np.ndarray, c: np.ndarray):
@@ -120,7 +127,8 @@ def minimally_augmented(system, z: np.ndarray, k: int, b: np.ndarray, c: np.ndar
     Jacobian ``dg`` of G at ``z``: ``[[M, b], [c^T, 0]] [v; g] = [0; 1]`` with ``M = ∂G/∂z``
     without column ``k``."""
     dg = system.jacobian(z)
-    lu = factor(bordered_square(delete_column(dg, k), b, c))
+    m = dg[:, :-1] if k == z.size - 1 and type(dg) is np.ndarray else delete_column(dg, k)
+    lu = factor(bordered_square(m, b, c))
     e = np.zeros(b.size + 1)
     e[-1] = 1.0
     x = lu.solve(e)
@@ -131,7 +139,7 @@ def minimally_augmented(system, z: np.ndarray, k: int, b: np.ndarray, c: np.ndar
 def newton_done(it: int, size: float, previous: float, z: np.ndarray, tol: float,
                 stall: float) -> bool:
     """Stopping test of the locating Newton iterations, with update ``size`` (max-norm)."""
-    scale = 1.0 + float(np.max(np.abs(z)))
+    scale = 1.0 + max_abs(z)
     if size <= tol * scale:
         return True
     # quadratic convergence under way (the update shrank by 100 or more) and the next
@@ -150,43 +158,43 @@ def locate_fold(br: Bracket, k: int, start: np.ndarray | None = None,
     o = br.options
     system = br.system
     if start is None:
-        ta, tb = br.t_a[k], br.t_b[k]
-        theta = float(np.clip(ta / (ta - tb), 0.0, 1.0)) if ta != tb else 0.5
+        ta, tb = float(br.t_a[k]), float(br.t_b[k])
+        theta = min(1.0, max(0.0, ta / (ta - tb))) if ta != tb else 0.5
         z = br.guess(theta)
         tangent = br.guess_derivative(theta)
     else:
         z = start.copy()
     keep = np.arange(z.size) != k
     v0 = tangent[keep]
-    v0 /= np.linalg.norm(v0)
+    v0 /= math.sqrt(v0.dot(v0))
     b = c = v0
-    rhs_len = z.size
+    rhs = np.empty(z.size)
+    vt = np.zeros(z.size)
     converged = False
     it = 0
-    previous = np.inf
+    previous = math.inf
     for it in range(1, o.max_locate_iterations + 1):
         try:
             g, v, w, dg = minimally_augmented(system, z, k, b, c)
         except SingularMatrixError:
             return None
-        G = system.residual(z)
-        vt = np.zeros(z.size)
         vt[keep] = v
-        grad = -second_derivative_row(system.jacobian, z, vt, w)
-        rhs = np.empty(rhs_len)
-        rhs[:-1] = -G
+        # the Newton system [∂G/∂z; ∇g] dz = −[G; g] with ∇g = −w·D²G[v, ·], solved for
+        # d = −dz with that row negated (sign flips are exact: bitwise the same update)
+        rhs[:-1] = system.residual(z)
         rhs[-1] = -g
         try:
-            dz = factor(bordered(dg, grad)).solve(rhs)
+            d = factor(bordered(dg, second_derivative_row(system.jacobian, z, vt, w))
+                       ).solve(rhs)
         except SingularMatrixError:
             return None
-        z = z + dz
-        if not np.all(np.isfinite(z)):
+        size = max_abs(d)
+        if not math.isfinite(size):
             return None
-        nb, nc = np.linalg.norm(w), np.linalg.norm(v)
+        z = z - d
+        nb, nc = math.sqrt(w.dot(w)), math.sqrt(v.dot(v))
         if nb > 0 and nc > 0:
             b, c = w / nb, v / nc
-        size = float(np.max(np.abs(dz)))
         # stagnation accepted up to 1e-6: ill-conditioned systems (cond ~ N² for discretised
         # operators) and forward differences stall there; the fold's parameter is still
         # exact to second order, its state to the accuracy of the derivatives
@@ -196,9 +204,8 @@ def locate_fold(br: Bracket, k: int, start: np.ndarray | None = None,
         previous = size
     if not converged:
         return None
-    res = system.residual(z)
-    floor = max(o.tol, rounding_floor(dg[:, :-1], z))
-    if not np.all(np.isfinite(res)) or np.max(np.abs(res)) > floor:
+    rn = max_abs(system.residual(z))
+    if not rn <= max(o.tol, rounding_floor(dg[:, :-1], z)):  # NaN fails too
         return None
     sigma = br.sigma(z)
     if not (-0.05 * abs(br.h) <= sigma * np.sign(br.h) <= 1.05 * abs(br.h)):

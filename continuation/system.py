@@ -84,8 +84,14 @@ class BranchSystem(CurveSystem):
         p[self.free] = z[-1]
         return p
 
+    # residual and bordered_jacobian are the corrector's inner loop: the parameter dict is
+    # built inline and the dense case checked first (for the tiny systems of most problems
+    # the wrappers cost more than the user's functions)
+
     def residual(self, z):
-        r = self.problem.residual(z[:-1], self._p(z))
+        p = dict(self.params)
+        p[self.free] = z[-1]
+        r = self.problem.residual(z[:-1], p)
         if r.shape != (self.n,):
             raise ProblemDefinitionError(
                 f"residual must return {self.n} values (one per unknown), got shape {r.shape}")
@@ -93,14 +99,17 @@ class BranchSystem(CurveSystem):
 
     def _parts(self, z):
         u = z[:-1]
-        p = self._p(z)
-        j = self.problem.jacobian(u, p)
-        fp = self.problem.param_jacobian(u, p, self.free)
+        p = dict(self.params)
+        p[self.free] = z[-1]
+        problem = self.problem
+        j = problem.jacobian(u, p)
+        fp = problem.param_jacobian(u, p, self.free)
         if type(j) is not np.ndarray and sp.issparse(j):
             return j, fp, True
-        if j.shape != (self.n, self.n) or fp.shape != (self.n,):
+        n = self.n
+        if j.shape != (n, n) or fp.shape != (n,):
             raise ProblemDefinitionError(
-                f"jacobian must be {self.n}×{self.n} and param_jacobian of length {self.n}, "
+                f"jacobian must be {n}×{n} and param_jacobian of length {n}, "
                 f"got shapes {j.shape} and {fp.shape}")
         return j, fp, False
 
@@ -108,16 +117,27 @@ class BranchSystem(CurveSystem):
         j, fp, sparse = self._parts(z)
         if sparse:
             return _sparse_border(j, fp, None)
-        dg = np.empty((self.n, self.n + 1))
-        dg[:, :-1] = j
-        dg[:, -1] = fp
+        n = self.n
+        dg = np.empty((n, n + 1))
+        dg[:, :n] = j
+        dg[:, n] = fp
         return dg
 
     def bordered_jacobian(self, z, row):
-        j, fp, sparse = self._parts(z)
-        if sparse:
+        # _parts inlined: this is the corrector's inner loop
+        u = z[:-1]
+        p = dict(self.params)
+        p[self.free] = z[-1]
+        problem = self.problem
+        j = problem.jacobian(u, p)
+        fp = problem.param_jacobian(u, p, self.free)
+        if type(j) is not np.ndarray and sp.issparse(j):
             return _sparse_border(j, fp, row)
         n = self.n
+        if j.shape != (n, n) or fp.shape != (n,):
+            raise ProblemDefinitionError(
+                f"jacobian must be {n}×{n} and param_jacobian of length {n}, "
+                f"got shapes {j.shape} and {fp.shape}")
         a = np.empty((n + 1, n + 1))
         a[:n, :n] = j
         a[:n, n] = fp

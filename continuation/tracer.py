@@ -28,7 +28,7 @@ from .errors import (
     SingularMatrixError,
 )
 from .events import Event
-from .linalg import bordered, factor
+from .linalg import bordered, factor, max_abs
 from .locate import (
     Bracket,
     Located,
@@ -46,6 +46,8 @@ logger = logging.getLogger(__name__)
 
 _STALL_STEPS = 10  # steps at ds < _STALL_FACTOR·ds_min before a corner step is tried
 _STALL_FACTOR = 1e3
+
+_DEFAULT_OPTIONS = ContinuationOptions()  # frozen: shared (validation costs 20 µs a call)
 
 _REMEDY = ("Try a smaller ds_min or ds_max, a better starting point, an analytic jacobian, or "
            "check the residual for discontinuities; pass throw=False to keep the partial branch.")
@@ -93,12 +95,13 @@ class _Test:
     event: Event | None = None
 
     def value(self, tracer: Tracer, z, t, sdet) -> float:
-        if self.kind == "fold":
+        kind = self.kind
+        if kind == "fold":
             return float(t[self.k])
-        if self.kind == "branch_point":
-            return sdet
-        if self.kind in ("target", "bound"):
+        if kind == "bound" or kind == "target":
             return float(z[self.k] - self.value_at)
+        if kind == "branch_point":
+            return sdet
         if self.kind == "cusp":
             return tracer.system.cusp_coefficient(z)
         if self.kind == "codim2":
@@ -229,7 +232,7 @@ class Tracer:
         problem = as_problem(problem)
         if not isinstance(free, str):
             raise ProblemDefinitionError(f"free must be a parameter name, got {free!r}")
-        options = options or ContinuationOptions()
+        options = options or _DEFAULT_OPTIONS
         if overrides:
             options = options.replace(**overrides)
         system = BranchSystem(problem, free, params, options.state_weight)
@@ -300,6 +303,12 @@ class Tracer:
         tests.extend(extra_tests)
         self.tests = tuple(tests)
         self._has_bp = any(t.kind == "branch_point" for t in tests)
+        # how the step evaluates each test (as _Test.value, without a call for the common
+        # kinds): 0 a tangent component, 1 a component minus a value, 2 the branch-point
+        # sign, 3 a call to value
+        self._test_plan = tuple(
+            (tt, 0 if tt.kind == "fold" else 1 if tt.kind in ("bound", "target")
+             else 2 if tt.kind == "branch_point" else 3) for tt in tests)
         self._e_last = np.zeros(system.dim)
         self._e_last[-1] = 1.0
 
@@ -319,7 +328,7 @@ class Tracer:
         return u, vals
 
     def wnorm(self, x) -> float:
-        return math.sqrt(float(x @ (self.weights * x)))
+        return math.sqrt(x.dot(self.weights * x))
 
     def bordered_det(self, z, row):
         lu = factor(bordered(self.system.jacobian(z), row))
@@ -398,7 +407,7 @@ class Tracer:
                     iterations=res.iterations, residual_norm=res.residual_norm,
                     remedy="Give a better initial guess u0 for these parameter values.")
             z0 = res.z
-            t0 = self._initial_tangent(z0, k_free)
+            t0, sdet = self._initial_tangent(z0, k_free)
             residual = res.residual_norm
             iters = res.iterations
         else:
@@ -406,8 +415,12 @@ class Tracer:
             t0 = t0 / self.wnorm(t0)
             residual = float(np.max(np.abs(g0)))
             iters = 0
+            sdet = None
         self.system.refresh(z0)
-        sdet = None if skip_bp else self._sdet(z0, t0)
+        if skip_bp:
+            sdet = None
+        elif sdet is None:
+            sdet = self._sdet(z0, t0)
         # starting on a special point, the test functions vanish there up to rounding: their
         # signs are taken after the first step instead
         tests = tuple(None if (skip_bp and t.kind in ("branch_point", "fold"))
@@ -435,22 +448,32 @@ class Tracer:
                     f"({lo:g}, {hi:g})")
 
     def _initial_tangent(self, z0, k_free):
+        """Unit tangent at ``z0`` (the free parameter moving in ``direction``) and the sign of
+        det [∂G/∂z; (W t)ᵀ] (None if it was not available from the factorization)."""
         system = self.system
         e = np.zeros(system.dim)
         e[-1] = 1.0
         dg = system.jacobian(z0)
         row = np.zeros(system.dim)
         row[k_free] = 1.0
+        sdet = None
         try:
-            t = factor(bordered(dg, row)).solve(e)
+            lu = factor(bordered(dg, row))
+            t = lu.solve(e)
         except Exception:  # starting at a fold in the free parameter: use the kernel
             dense = dg.toarray() if hasattr(dg, "toarray") else np.asarray(dg)
             t = np.linalg.svd(dense)[2][-1]
             k_free = int(np.argmax(np.abs(t)))
+        else:
+            # t solves [∂G/∂z; e_kᵀ] t = e_last, so (determinant lemma) det [∂G/∂z; (W t')ᵀ]
+            # = det [∂G/∂z; e_kᵀ]·(W t')·t, which for t' = ±t/|t|_W has the sign ±
+            sdet = lu.sign_det()
         t = t / self.wnorm(t)
         if t[k_free] * self.direction < 0:
             t = -t
-        return t
+            if sdet is not None:
+                sdet = -sdet
+        return t, sdet
 
     def check_fold_resolution(self, found: Located, br: Bracket) -> Located:
         """With finite-difference derivatives, a fold whose radius of curvature is within
@@ -553,6 +576,7 @@ class Tracer:
             if nd > 0:
                 secant = d / nd
         direction = t if secant is None else secant
+        row = W * direction
         used_fallback = False
         is_corner = False
         corner = None
@@ -562,20 +586,22 @@ class Tracer:
             corner = self._corner_step(z, t, ds, None if last.prev is None else last.prev.z)
         while corner is None:
             z_pred = z + ds * direction
-            row = W * direction
-            res = newton(system, z_pred, row, float(row @ z_pred), tol=o.tol,
-                         step_tol=o.step_tol, max_iter=o.max_newton_iterations)
+            # above ds_min a wandering Newton gives up early (the step is halved anyway)
+            res = newton(system, z_pred, row, row.dot(z_pred), tol=o.tol,
+                         step_tol=o.step_tol, max_iter=o.max_newton_iterations,
+                         contract=ds > o.ds_min)
             if not res.converged and ds <= o.ds_min:
-                res = damped_newton(system, z_pred, row, float(row @ z_pred), tol=o.tol,
+                res = damped_newton(system, z_pred, row, row.dot(z_pred), tol=o.tol,
                                     step_tol=o.step_tol, max_iter=5 * o.max_newton_iterations)
                 used_fallback = True
             if res.converged:
                 t_new = res.lu.solve(self._e_last)
-                t_new /= math.sqrt(t_new @ (W * t_new))
-                cosang = float(t_new @ (W * t))
+                t_new /= math.sqrt(t_new.dot(W * t_new))
+                rt = row.dot(t_new)
+                cosang = rt if secant is None else t_new.dot(W * t)
                 angle = math.degrees(math.acos(max(-1.0, min(1.0, cosang))))
                 dc = res.z - z_pred
-                correction = math.sqrt(dc @ (W * dc))
+                correction = math.sqrt(dc.dot(W * dc))
                 if angle > o.max_angle or correction > ds:
                     reason = (f"tangent turned {angle:.1f} degrees" if angle > o.max_angle
                               else "correction larger than the step")
@@ -611,10 +637,13 @@ class Tracer:
             res, t_new, row, angle = corner
             ds = self.wnorm(res.z - z)
             is_corner = True
+            rt = row.dot(t_new)
         z1 = res.z
         sdet = None
         if self._has_bp:
-            sdet = res.lu.sign_det() * (1.0 if float(row @ t_new) > 0 else -1.0)
+            # the sign of det [∂G/∂z; (W t_new)ᵀ] from the corrector's LU with border `row`
+            # (Cramer: the two determinants differ by the factor row·t_new)
+            sdet = res.lu.sign_det() * (1.0 if rt > 0 else -1.0)
         # step-size update
         k = max(res.iterations, 1)
         f_newton = o.target_newton_iterations / k
@@ -623,7 +652,7 @@ class Tracer:
         if rejected:
             factor_ = min(factor_, 1.0)
         ds_next = min(o.ds_max, max(o.ds_min, ds * factor_))
-        h = float(row @ (z1 - z))
+        h = float(row.dot(z1 - z))
         new_point = _Point(z1, t_new, last.s + h, res.iterations, rejected, res.residual_norm,
                            ds, None, last)
         if used_fallback:
@@ -632,11 +661,22 @@ class Tracer:
 
         # test functions
         new_tests = []
-        for tt in self.tests:
-            new_tests.append(None if (tt.kind == "branch_point" and sdet is None)
-                             else tt.value(self, z1, t_new, sdet))
-        crossings = [(tt, old, new) for tt, old, new in zip(self.tests, state.tests, new_tests)
-                     if tt.crossed(old, new)]
+        crossings = []
+        for (tt, how), old in zip(self._test_plan, state.tests):
+            if how == 0:
+                new = float(t_new[tt.k])
+            elif how == 1:
+                new = float(z1[tt.k] - tt.value_at)
+            elif how == 2:
+                new = sdet
+            else:
+                new = tt.value(self, z1, t_new, sdet)
+            new_tests.append(new)
+            # the common case first: no zero and no sign change
+            if old is None or (old != 0.0 and new != 0.0 and (old < 0) == (new < 0)):
+                continue
+            if tt.crossed(old, new):
+                crossings.append((tt, old, new))
         if is_corner:
             # the tangent jumped across a corner: a fold there is non-smooth and only
             # bracketed; it is recorded on the corner step's own end point
@@ -667,7 +707,7 @@ class Tracer:
                         records.append(("endpoint", tt.label, tt.wrt, loc.status, None, {}))
                 tan = tangent_at(system, loc.z, br.row, W, br)
                 prev = _Point(loc.z, tan, last.s + loc.sigma, loc.iterations, 0,
-                              float(np.max(np.abs(system.residual(loc.z)))), 0.0,
+                              max_abs(system.residual(loc.z)), 0.0,
                               tuple(records), prev)
                 n_points += 1
                 if tt.terminal:
