@@ -9,6 +9,7 @@ import numpy as np
 
 from .errors import SingularMatrixError
 from .linalg import DenseLU, _getrs, dense_factors, factor, rounding_floor
+from .linalg import max_abs as _norm
 
 
 @dataclass
@@ -19,25 +20,6 @@ class NewtonResult:
     residual_norm: float
     lu: object | None  # factorization of the last bordered matrix (at z minus the last update)
     reason: str = ""
-
-
-def _norm(x: np.ndarray) -> float:
-    """Max-norm; NaN if any entry is NaN or infinite (cheap for the tiny arrays of most
-    problems, which would otherwise spend more time in numpy's reductions than in algebra)."""
-    if x.size <= 32:
-        vals = x.tolist()
-        if len(vals) == 1:  # one equation
-            v = abs(vals[0])
-            return v if v - v == 0.0 else math.nan
-        if not vals:
-            return 0.0
-        total = sum(vals)  # NaN or ±inf if any entry is (or, harmlessly, on overflow)
-        if total - total != 0.0:
-            return math.nan
-        hi, lo = max(vals), min(vals)
-        return abs(hi) if hi >= -lo else -lo
-    m = float(np.abs(x).max())
-    return m if math.isfinite(m) else math.nan
 
 
 def _singular_reason(a) -> str:
@@ -81,6 +63,11 @@ def newton(system, z0: np.ndarray, row: np.ndarray, c: float, *, tol: float, ste
     # dense matrices are factored and solved by LAPACK directly (the factors are wrapped in
     # a DenseLU only for the result); sparse ones through `factor`
     lu = f = piv = None
+
+    def result(converged: bool, k: int, rn_: float, reason: str = "") -> NewtonResult:
+        return NewtonResult(z, converged, k, rn_,
+                            lu if f is None else DenseLU.from_factors(f, piv), reason)
+
     for k in range(1, max_iter + 1):
         a = bordered_jacobian(z, row)
         dense = type(a) is np.ndarray
@@ -88,11 +75,9 @@ def newton(system, z0: np.ndarray, row: np.ndarray, c: float, *, tol: float, ste
             if dense:
                 f, piv = dense_factors(a)
             else:
-                lu = factor(a)
+                lu, f = factor(a), None
         except SingularMatrixError:
             return NewtonResult(z, False, k, rn, None, _singular_reason(a))
-        if dense:
-            lu = None
         # the system for minus the update (saves negating the residual; bitwise the same)
         rhs[:m] = g
         rhs[m] = row.dot(z) - c
@@ -102,27 +87,22 @@ def newton(system, z0: np.ndarray, row: np.ndarray, c: float, *, tol: float, ste
         rn_new = _norm(g)
         sn = _norm(dz)
         if rn_new != rn_new or sn != sn:
-            return NewtonResult(z, False, k, rn_new, lu or DenseLU.from_factors(f, piv),
-                                "nonfinite")
+            return result(False, k, rn_new, "nonfinite")
         if rn_new <= tol and sn <= sq_step_tol and not strict:
-            return NewtonResult(z, True, k, rn_new, lu or DenseLU.from_factors(f, piv))
+            return result(True, k, rn_new)
         # the relative update is below step_tol (AUTO's test) and the residual is at the
         # rounding level of its own terms (which for badly scaled residuals exceeds tol); a
         # wrong Jacobian (say, differenced across a kink) also gives tiny updates, but leaves
         # the residual above that floor
         if sn <= rel_step_tol and rn_new <= max(tol, rounding_floor(a[:-1, :-1], z)):
-            return NewtonResult(z, True, k, rn_new, lu or DenseLU.from_factors(f, piv))
+            return result(True, k, rn_new)
         if k >= 3 and rn_new > 1e3 * max(rn, tol):
-            return NewtonResult(z, False, k, rn_new, lu or DenseLU.from_factors(f, piv),
-                                "diverging")
+            return result(False, k, rn_new, "diverging")
         if contract and sn > sn_prev and sn > sq_step_tol:
-            return NewtonResult(z, False, k, rn_new, lu or DenseLU.from_factors(f, piv),
-                                "not_contracting")
+            return result(False, k, rn_new, "not_contracting")
         rn = rn_new
         sn_prev = sn
-    if lu is None and f is not None:
-        lu = DenseLU.from_factors(f, piv)
-    return NewtonResult(z, False, max_iter, rn, lu, "max_iterations")
+    return result(False, max_iter, rn, "max_iterations")
 
 
 def damped_newton(system, z0: np.ndarray, row: np.ndarray, c: float, *, tol: float,

@@ -115,10 +115,13 @@ def bordered(dg, row: np.ndarray):
 
 
 def delete_column(dg, k: int):
+    """``dg`` without column ``k`` (a view when ``k`` is the last column of a dense array)."""
     if sp.issparse(dg):
         keep = np.ones(dg.shape[1], dtype=bool)
         keep[k] = False
         return sp.csc_matrix(dg)[:, np.flatnonzero(keep)]
+    if k == dg.shape[1] - 1 or k == -1:
+        return dg[:, :-1]
     return np.delete(dg, k, axis=1)
 
 
@@ -136,13 +139,19 @@ def bordered_square(m, b: np.ndarray, c: np.ndarray):
 
 
 def max_abs(x: np.ndarray) -> float:
-    """``float(np.max(np.abs(x)))``, in plain Python for the tiny finite vectors of most
-    problems (numpy's reductions cost more than the arithmetic there)."""
+    """Max-norm ``max |x_i|``; NaN if any entry is NaN or infinite. Plain Python for the tiny
+    vectors of most problems (numpy's reductions cost more than the arithmetic there)."""
     if x.size <= 32:
         vals = x.tolist()
-        if vals and math.isfinite(sum(vals)):
-            return max(map(abs, vals))
-    return float(np.max(np.abs(x)))
+        if not vals:
+            return 0.0
+        total = sum(vals)  # NaN or ±inf if any entry is (or, harmlessly, on overflow)
+        if total - total != 0.0 and not all(math.isfinite(v) for v in vals):
+            return math.nan
+        hi, lo = max(vals), min(vals)
+        return abs(hi) if hi >= -lo else -lo
+    m = float(np.abs(x).max())
+    return m if math.isfinite(m) else math.nan
 
 
 def rounding_floor(block, z: np.ndarray) -> float:

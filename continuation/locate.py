@@ -127,8 +127,7 @@ def minimally_augmented(system, z: np.ndarray, k: int, b: np.ndarray, c: np.ndar
     Jacobian ``dg`` of G at ``z``: ``[[M, b], [c^T, 0]] [v; g] = [0; 1]`` with ``M = ∂G/∂z``
     without column ``k``."""
     dg = system.jacobian(z)
-    m = dg[:, :-1] if k == z.size - 1 and type(dg) is np.ndarray else delete_column(dg, k)
-    lu = factor(bordered_square(m, b, c))
+    lu = factor(bordered_square(delete_column(dg, k), b, c))
     e = np.zeros(b.size + 1)
     e[-1] = 1.0
     x = lu.solve(e)

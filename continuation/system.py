@@ -124,20 +124,10 @@ class BranchSystem(CurveSystem):
         return dg
 
     def bordered_jacobian(self, z, row):
-        # _parts inlined: this is the corrector's inner loop
-        u = z[:-1]
-        p = dict(self.params)
-        p[self.free] = z[-1]
-        problem = self.problem
-        j = problem.jacobian(u, p)
-        fp = problem.param_jacobian(u, p, self.free)
-        if type(j) is not np.ndarray and sp.issparse(j):
+        j, fp, sparse = self._parts(z)
+        if sparse:
             return _sparse_border(j, fp, row)
         n = self.n
-        if j.shape != (n, n) or fp.shape != (n,):
-            raise ProblemDefinitionError(
-                f"jacobian must be {n}×{n} and param_jacobian of length {n}, "
-                f"got shapes {j.shape} and {fp.shape}")
         a = np.empty((n + 1, n + 1))
         a[:n, :n] = j
         a[:n, n] = fp

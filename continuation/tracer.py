@@ -303,12 +303,6 @@ class Tracer:
         tests.extend(extra_tests)
         self.tests = tuple(tests)
         self._has_bp = any(t.kind == "branch_point" for t in tests)
-        # how the step evaluates each test (as _Test.value, without a call for the common
-        # kinds): 0 a tangent component, 1 a component minus a value, 2 the branch-point
-        # sign, 3 a call to value
-        self._test_plan = tuple(
-            (tt, 0 if tt.kind == "fold" else 1 if tt.kind in ("bound", "target")
-             else 2 if tt.kind == "branch_point" else 3) for tt in tests)
         self._e_last = np.zeros(system.dim)
         self._e_last[-1] = 1.0
 
@@ -662,19 +656,9 @@ class Tracer:
         # test functions
         new_tests = []
         crossings = []
-        for (tt, how), old in zip(self._test_plan, state.tests):
-            if how == 0:
-                new = float(t_new[tt.k])
-            elif how == 1:
-                new = float(z1[tt.k] - tt.value_at)
-            elif how == 2:
-                new = sdet
-            else:
-                new = tt.value(self, z1, t_new, sdet)
+        for tt, old in zip(self.tests, state.tests):
+            new = tt.value(self, z1, t_new, sdet)
             new_tests.append(new)
-            # the common case first: no zero and no sign change
-            if old is None or (old != 0.0 and new != 0.0 and (old < 0) == (new < 0)):
-                continue
             if tt.crossed(old, new):
                 crossings.append((tt, old, new))
         if is_corner:
