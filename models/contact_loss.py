@@ -54,6 +54,7 @@ Units: lengths µm, forces N, energies N·µm (= µJ).
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass, field
 from typing import Any
@@ -141,18 +142,24 @@ class _RoughLevels:
         self.j0 = math.log(F_N0 / surf.load_scale)
         self.A0 = float(surf.area_integral(d0))
 
-    def _j(self, p):
-        h = self.scale * p
-        return float(self.surf.log_load_integral(h)), self.scale * float(
-            self.surf.load_integral_derivative(h) / self.surf.load_integral(h))
+    @functools.lru_cache(maxsize=16)  # noqa: B019 - levels live as long as their model
+    def _at(self, p: float):
+        """(log J, d log J/dp, A, ∫Φ, Φ) at h = u·p: each GW integral once per level (a
+        residual and its Jacobian need them at p and q, several times over)."""
+        surf, h = self.surf, self.scale * p
+        J = float(surf.load_integral(h))
+        return (float(surf.log_load_integral(h)),
+                self.scale * float(surf.load_integral_derivative(h)) / J,
+                float(surf.area_integral(h)), float(surf.tail_probability(h)),
+                float(surf.pdf(h)))
 
     def ell(self, p):
-        j, dj = self._j(p)
+        j, dj = self._at(p)[:2]
         return j - self.j0, dj
 
     def ratio(self, p, q):
-        jp, djp = self._j(p)
-        jq, djq = self._j(q)
+        jp, djp = self._at(p)[:2]
+        jq, djq = self._at(q)[:2]
         e = math.exp(jq - jp)
         return -math.expm1(jq - jp), e * djp, -e * djq
 
@@ -160,21 +167,18 @@ class _RoughLevels:
         return self.lam * (q - p), -self.lam, self.lam
 
     def stick_area(self, p, q):
-        s, surf = self.scale, self.surf
-        h, h0 = s * p, s * q
-        tail0 = float(surf.tail_probability(h0))
-        num = float(surf.area_integral(h0)) + (h0 - h) * tail0
-        den = float(surf.area_integral(h))
-        dnum_p = -s * tail0
-        dnum_q = -s * (h0 - h) * float(surf.pdf(h0))
-        dden_p = -s * float(surf.tail_probability(h))
+        s = self.scale
+        _, _, den, tail, _ = self._at(p)
+        _, _, area0, tail0, pdf0 = self._at(q)
+        num = area0 + s * (q - p) * tail0
         val = num / den
-        return val, (dnum_p - val * dden_p) / den, dnum_q / den
+        dnum_p = -s * tail0
+        dnum_q = -s * s * (q - p) * pdf0
+        return val, (dnum_p + val * s * tail) / den, dnum_q / den
 
     def area_ratio(self, p):
-        h = self.scale * p
-        return float(self.surf.area_integral(h)) / self.A0, -self.scale * float(
-            self.surf.tail_probability(h)) / self.A0
+        _, _, area, tail, _ = self._at(p)
+        return area / self.A0, -self.scale * tail / self.A0
 
     def slip_limit(self, p) -> float:
         return math.inf

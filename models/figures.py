@@ -69,22 +69,32 @@ def _plot_path(ax, dense_legs, x: str, color, label, dashed_ab: bool) -> None:
                 label=label if leg == "OA" else None)
 
 
-def _force_slip(ax, dense) -> None:
+def _paths(ax, dense, x: str, xlabel: str) -> None:
+    """F_T against ``x`` for every case (Figs 6a, 7, 8): AB dashed when there are several
+    reductions, the points labelled for the first case (B only for the others)."""
     several = len(dense) > 1
     for i, (load, res, legs) in enumerate(dense):
         color = _COLORS[i % len(_COLORS)]
-        _plot_path(ax, legs, "g_T", color, f"$F'_N$ = {load:g} N", dashed_ab=several)
+        _plot_path(ax, legs, x, color, f"$F'_N$ = {load:g} N", dashed_ab=several)
         if not several or i == 0:
-            _label_points(ax, res, "g_T")
+            _label_points(ax, res, x)
         elif res.points["B"] is not None:
-            _label_points(ax, res, "g_T", which=("B",), color=color)
-    ax.set_xlabel(r"relative tangential displacement $g_T$ [µm]")
+            _label_points(ax, res, x, which=("B",), color=color)
+    ax.set_xlabel(xlabel)
     ax.set_ylabel(r"tangential force $F_T$ [N]")
     ax.set_xlim(left=0.0)
     ax.set_ylim(bottom=0.0)
     if several:
         ax.legend(frameon=False, loc="lower right")
     ax.grid(alpha=0.3)
+
+
+def _force_slip(ax, dense) -> None:
+    _paths(ax, dense, "g_T", r"relative tangential displacement $g_T$ [µm]")
+
+
+def _force_area(ax, dense) -> None:
+    _paths(ax, dense, "A_SL", r"total slipped contact area $\hat A_{SL} = A_{SL}/A_r$")
 
 
 def _detail(ax, dense) -> None:
@@ -124,20 +134,4 @@ def _detail(ax, dense) -> None:
     ax.set_xlabel(r"relative tangential displacement $g_T$ [µm]")
     ax.set_ylabel(r"tangential force $F_T$ [N]")
     ax.legend(frameon=False, loc="lower right", fontsize=9)
-    ax.grid(alpha=0.3)
-
-
-def _force_area(ax, dense) -> None:
-    several = len(dense) > 1
-    for i, (load, res, legs) in enumerate(dense):
-        color = _COLORS[i % len(_COLORS)]
-        _plot_path(ax, legs, "A_SL", color, f"$F'_N$ = {load:g} N", dashed_ab=several)
-        if not several or i == 0:
-            _label_points(ax, res, "A_SL")
-    ax.set_xlabel(r"total slipped contact area $\hat A_{SL} = A_{SL}/A_r$")
-    ax.set_ylabel(r"tangential force $F_T$ [N]")
-    ax.set_xlim(left=0.0)
-    ax.set_ylim(bottom=0.0)
-    if several:
-        ax.legend(frameon=False, loc="lower right")
     ax.grid(alpha=0.3)

@@ -162,11 +162,11 @@ def summary(run: SceneRun) -> dict[str, Any]:
 
 
 def _version() -> str:
-    try:
-        from importlib.metadata import version
+    from importlib.metadata import PackageNotFoundError, version
 
+    try:
         return version("cusp")
-    except Exception:  # not installed (run from a source tree)
+    except PackageNotFoundError:  # run from a source tree without installing
         return "unknown"
 
 

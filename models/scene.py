@@ -75,7 +75,7 @@ _NO_COMPLIANCE = {
             "they have no contact-loss path",
 }
 
-# key -> (unit, lower bound, lower inclusive, upper bound, upper inclusive, description)
+# key -> (unit, lower bound, lower inclusive, upper bound, upper inclusive)
 _NUMBERS: dict[str, tuple[str, float, bool, float, bool]] = {
     "sigma": ("µm", 0.0, False, math.inf, False),
     "nu": ("", -1.0, False, 0.5, True),
@@ -94,8 +94,7 @@ _NUMBERS: dict[str, tuple[str, float, bool, float, bool]] = {
 
 _SECTIONS = {
     "scene": {"name", "title"},
-    "surface": {"model", *_NUMBERS} - {"normal_load", "max_slip", "reduced_normal_load",
-                                       "ds_max", "tol"},
+    "surface": {"model", "sigma", "nu", "mu", "shape", *_LOAD_SCALE},
     "loading": {"normal_load", "max_slip", "reduced_normal_load"},
     "options": {"area_reading"},
     "solver": {"ds_max", "tol"},

@@ -52,7 +52,6 @@ g_T = sp.Symbol("g_T", positive=True)  # tangential slip
 mu = sp.Symbol("mu", positive=True)  # friction coefficient
 lam = sp.Symbol("lambda", positive=True)  # lambda = sigma* (2 - nu) / [2 (1 - nu)]
 K = sp.Symbol("K", positive=True)  # (4/3) E* sqrt(rho*) n_s A_n
-kA = sp.Symbol("k_A", positive=True)  # pi rho* n_s A_n (area prefactor)
 F_N = sp.Symbol("F_N", positive=True)
 F_hat = sp.Symbol("Fhat_T", positive=True)  # F_T / (mu F_N), in (0, 1)
 x = sp.Symbol("x", positive=True)  # g_T / (mu lambda) = g_N0 / sigma*
@@ -194,9 +193,6 @@ def _in_x(expr: sp.Expr) -> sp.Expr:
 
 def _exponential_derivations() -> list[Derivation]:
     R = _rough()
-    # d from the load: F_N = K J(d)  (Eq 11 solved; the exponential density makes it explicit)
-    d_of_load = _solve_unique(R["F_N"] - F_N, d)
-
     # Eq 9: F_T as a function of g_T at fixed F_N
     eq9 = sp.simplify((R["F_T"] / R["F_N"]) * F_N)
     eq9_printed = mu * F_N * (1 - sp.exp(-g_T / (mu * lam)))
@@ -318,28 +314,17 @@ def _exponential_derivations() -> list[Derivation]:
             change_of_variable=to_x,
         )
     )
-    out.extend(_contact_loss(R, d_of_load, eq9, ast_x))
+    out.extend(_contact_loss())
     return out
 
 
-def _contact_loss(R, d_of_load, eq9, ast_x) -> list[Derivation]:
-    """Section 4 for the exponential density: the Mindlin-Deresiewicz path A -> B."""
-    d_A = d_of_load.subs(F_N, F_N0)
-    d_B = d_of_load.subs(F_N, F_Np)
-    F_A = eq9.subs({g_T: g_A, F_N: F_N0})  # end of the loading curve O -> A
-    # MD per asperity, (F'_T)_i = (F_T)_i - mu (dF_N)_i, summed: the load lost is the
-    # difference of the GW integrals (Eq 11) at the two separations.
-    dF_N = R["F_N"].subs(d, d_A) - R["F_N"].subs(d, d_B)
-    md = sp.simplify(F_A - mu * dF_N)
+def _contact_loss() -> list[Derivation]:
+    """Section 4 for the exponential density: the Mindlin-Deresiewicz path A -> B, as derived
+    by :func:`contact_loss_path` (at B = any point of AB, the reduced load F'_N being free)."""
+    cf = contact_loss_path()
+    md, ab, asl = cf["F_B"], cf["g_B"], cf["A_SL_B"]
     md_printed = mu * F_N0 * (1 - sp.exp(-g_A / (mu * lam))) - mu * (F_N0 - F_Np)
-    # AB: g'_T is the inverse of the loading curve at F'_N: solve eq9(g, F'_N) = F'_T
-    gp = sp.Symbol("gp", positive=True)
-    ab = sp.expand_log(sp.simplify(_solve_unique(eq9.subs({g_T: gp, F_N: F_Np}) - md, gp)))
     ab_printed = g_A + mu * lam * sp.log(F_Np / F_N0)
-    # Eq 32 along AB: (1 - Ahat_ST at B) + dA_r / A_r, with A_r from Eq 13 at d_A, d_B
-    A_r = kA * R["area_all"]
-    dA_over_A = sp.simplify((A_r.subs(d, d_A) - A_r.subs(d, d_B)) / A_r.subs(d, d_A))
-    asl = sp.simplify(sp.expand(1 - ast_x.subs(x, sp.expand(ab / (mu * lam))) + dA_over_A))
     xp = g_A / (mu * lam) + sp.log(F_Np / F_N0)
     asl_printed = (1 - sp.exp(-xp) * (1 + xp)) + (F_N0 - F_Np) / F_N0
     dom = (

@@ -94,7 +94,8 @@ def test_fig8_scene_has_all_reductions_and_gross_sliding(tmp_path, capsys):
     loads = [c["reduced_normal_load"]["value"] for c in s["cases"]]
     assert loads == [900.0, 800.0, 600.0, 400.0]
     for case in s["cases"]:
-        deep = case["reduced_normal_load"]["value"] < 753.4  # F_A/mu = 753.40 N
+        # no C below F_A/mu = 753.40 N (F_A = 75.3403036 N, the sympy value of the Fig 6 test)
+        deep = case["reduced_normal_load"]["value"] < 753.4
         assert (case["points"]["C"] is None) == deep
         assert (case["energy"]["snap_through"] is None) == deep
         assert case["gross_sliding"]["force_control"] == deep
