@@ -8,7 +8,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .errors import SingularMatrixError
-from .linalg import DenseLU, _getrs, dense_factors, factor, rounding_floor
+from .linalg import DenseLU, dense_solve, factor
 from .linalg import max_abs as _norm
 
 
@@ -59,50 +59,54 @@ def newton(system, z0: np.ndarray, row: np.ndarray, c: float, *, tol: float, ste
     rel_step_tol = step_tol * scale
     bordered_jacobian = system.bordered_jacobian
     residual = system.residual
+    row_dot = row.dot
     sn_prev = math.inf
-    # dense matrices are factored and solved by LAPACK directly (the factors are wrapped in
-    # a DenseLU only for the result); sparse ones through `factor`
+    # dense matrices are factored and solved by one LAPACK gesv (the factors are wrapped in a
+    # DenseLU only for the result); sparse ones through `factor`
     lu = f = piv = None
-
-    def result(converged: bool, k: int, rn_: float, reason: str = "") -> NewtonResult:
-        return NewtonResult(z, converged, k, rn_,
-                            lu if f is None else DenseLU.from_factors(f, piv), reason)
-
+    reason = "max_iterations"
+    converged = False
+    k = 0
     for k in range(1, max_iter + 1):
         a = bordered_jacobian(z, row)
-        dense = type(a) is np.ndarray
-        try:
-            if dense:
-                f, piv = dense_factors(a)
-            else:
-                lu, f = factor(a), None
-        except SingularMatrixError:
-            return NewtonResult(z, False, k, rn, None, _singular_reason(a))
         # the system for minus the update (saves negating the residual; bitwise the same)
         rhs[:m] = g
-        rhs[m] = row.dot(z) - c
-        dz = _getrs(f, piv, rhs)[0] if dense else lu.solve(rhs)
+        rhs[m] = row_dot(z) - c
+        try:
+            if type(a) is np.ndarray:
+                f, piv, dz = dense_solve(a, rhs)
+            else:
+                lu, f = factor(a), None
+                dz = lu.solve(rhs)
+        except SingularMatrixError:
+            return NewtonResult(z, False, k, rn, None, _singular_reason(a))
         z = z - dz
         g = residual(z)
         rn_new = _norm(g)
         sn = _norm(dz)
         if rn_new != rn_new or sn != sn:
-            return result(False, k, rn_new, "nonfinite")
+            rn, reason = rn_new, "nonfinite"
+            break
         if rn_new <= tol and sn <= sq_step_tol and not strict:
-            return result(True, k, rn_new)
+            rn, converged = rn_new, True
+            break
         # the relative update is below step_tol (AUTO's test) and the residual is at the
         # rounding level of its own terms (which for badly scaled residuals exceeds tol); a
         # wrong Jacobian (say, differenced across a kink) also gives tiny updates, but leaves
         # the residual above that floor
-        if sn <= rel_step_tol and rn_new <= max(tol, rounding_floor(a[:-1, :-1], z)):
-            return result(True, k, rn_new)
+        if sn <= rel_step_tol and rn_new <= max(tol, system.residual_floor(a, z)):
+            rn, converged = rn_new, True
+            break
         if k >= 3 and rn_new > 1e3 * max(rn, tol):
-            return result(False, k, rn_new, "diverging")
+            rn, reason = rn_new, "diverging"
+            break
         if contract and sn > sn_prev and sn > sq_step_tol:
-            return result(False, k, rn_new, "not_contracting")
+            rn, reason = rn_new, "not_contracting"
+            break
         rn = rn_new
         sn_prev = sn
-    return result(False, max_iter, rn, "max_iterations")
+    return NewtonResult(z, converged, k, rn, lu if f is None else DenseLU.from_factors(f, piv),
+                        "" if converged else reason)
 
 
 def damped_newton(system, z0: np.ndarray, row: np.ndarray, c: float, *, tol: float,
@@ -130,7 +134,7 @@ def damped_newton(system, z0: np.ndarray, row: np.ndarray, c: float, *, tol: flo
         rhs[m] = c - row @ z
         dz = lu.solve(rhs)
         if _norm(dz) <= step_tol * (1.0 + _norm(z)) and _norm(g) <= max(
-                tol, rounding_floor(a[:-1, :-1], z)):
+                tol, system.residual_floor(a, z)):
             return NewtonResult(z + dz, True, k, _norm(g), lu)
         lam = 1.0
         while lam > 1e-6:

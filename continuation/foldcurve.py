@@ -163,6 +163,19 @@ class FoldSystem(CurveSystem):
     def bordered_jacobian(self, z, row):
         return bordered(self.jacobian(z), row)
 
+    def residual_floor(self, a, z) -> float:
+        """With a differenced Jacobian, ``g`` carries the differences' error: about
+        ε^{2/3} (central) or ε^{1/2} (forward) of the Jacobian's size, times |v|·|w|."""
+        floor = super().residual_floor(a, z)
+        if self._exact_jacobian:
+            return floor
+        _, v, w, _, df = self.bordered_solve(z)
+        size = abs(df).sum(axis=1).max() if sp.issparse(df) else np.abs(df).sum(axis=1).max()
+        rel = _EPS ** (0.5 if getattr(self.problem, "derivatives", "") == "forward"
+                       else 2.0 / 3.0)
+        noise = 10.0 * rel * float(size) * (1.0 + float(np.max(np.abs(z))))
+        return max(floor, noise * float(np.max(np.abs(v)) * np.max(np.abs(w))))
+
     def refresh(self, z) -> None:
         _, v, w, _, _ = self.bordered_solve(z)
         self.b, self.c = w / np.linalg.norm(w), v / np.linalg.norm(v)

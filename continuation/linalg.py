@@ -16,8 +16,9 @@ from scipy.linalg import lapack
 from .errors import SingularMatrixError
 
 _getrf = lapack.dgetrf
-_EPS = float(np.finfo(float).eps)
 _getrs = lapack.dgetrs
+_gesv = lapack.dgesv
+_EPS = float(np.finfo(float).eps)
 
 
 def permutation_parity(perm: np.ndarray) -> int:
@@ -41,6 +42,15 @@ def dense_factors(a: np.ndarray):
     if info > 0 or not math.isfinite(lu[-1, -1]):
         raise SingularMatrixError(f"matrix is singular (zero pivot {info})")
     return lu, piv
+
+
+def dense_solve(a: np.ndarray, b: np.ndarray):
+    """LAPACK gesv (factor and solve in one call) of a square float array: ``(lu, piv, x)``;
+    SingularMatrixError as :func:`dense_factors`."""
+    lu, piv, x, info = _gesv(a, b)
+    if info > 0 or not math.isfinite(lu[-1, -1]):
+        raise SingularMatrixError(f"matrix is singular (zero pivot {info})")
+    return lu, piv, x
 
 
 class DenseLU:

@@ -14,7 +14,7 @@ import numpy as np
 import scipy.sparse as sp
 
 from .errors import ProblemDefinitionError
-from .linalg import bordered
+from .linalg import bordered, rounding_floor
 
 
 class CurveSystem:
@@ -47,6 +47,11 @@ class CurveSystem:
         """The square matrix ``[∂G/∂z; row]``."""
         return bordered(self.jacobian(z), row)
 
+    def residual_floor(self, a, z: np.ndarray) -> float:
+        """The residual size attributable to rounding at ``z`` (``a``: the bordered Jacobian
+        there): Newton accepts a tiny update with a residual up to ``max(tol, this)``."""
+        return rounding_floor(a[:-1, :-1], z)
+
     def refresh(self, z: np.ndarray) -> None:
         """Called after each accepted point (augmented systems update their borders here)."""
 
@@ -78,6 +83,11 @@ class BranchSystem(CurveSystem):
         self.names = tuple(problem.unknowns) + (free,)
         self.dim = self.n + 1
         self.weights = state_weights(self.n, 1, state_weight)
+        # bound once: the corrector's inner loop calls these for every iteration
+        self._residual = problem.residual
+        self._jacobian = problem.jacobian
+        self._param_jacobian = problem.param_jacobian
+        self._shapes = ((self.n, self.n), (self.n,))
 
     def _p(self, z) -> dict[str, float]:
         p = dict(self.params)
@@ -91,48 +101,38 @@ class BranchSystem(CurveSystem):
     def residual(self, z):
         p = dict(self.params)
         p[self.free] = z[-1]
-        r = self.problem.residual(z[:-1], p)
-        if r.shape != (self.n,):
+        r = self._residual(z[:-1], p)
+        if r.shape != self._shapes[1]:
             raise ProblemDefinitionError(
                 f"residual must return {self.n} values (one per unknown), got shape {r.shape}")
         return r
 
-    def _parts(self, z):
+    def bordered_jacobian(self, z, row):
+        """``[∂R/∂u, ∂R/∂p_free]``, with ``row`` appended as a last row unless it is None."""
         u = z[:-1]
         p = dict(self.params)
         p[self.free] = z[-1]
-        problem = self.problem
-        j = problem.jacobian(u, p)
-        fp = problem.param_jacobian(u, p, self.free)
+        j = self._jacobian(u, p)
+        fp = self._param_jacobian(u, p, self.free)
         if type(j) is not np.ndarray and sp.issparse(j):
-            return j, fp, True
-        n = self.n
-        if j.shape != (n, n) or fp.shape != (n,):
+            return _sparse_border(j, fp, row)
+        if (j.shape, fp.shape) != self._shapes:
+            n = self.n
             raise ProblemDefinitionError(
                 f"jacobian must be {n}×{n} and param_jacobian of length {n}, "
                 f"got shapes {j.shape} and {fp.shape}")
-        return j, fp, False
-
-    def jacobian(self, z):
-        j, fp, sparse = self._parts(z)
-        if sparse:
-            return _sparse_border(j, fp, None)
         n = self.n
-        dg = np.empty((n, n + 1))
-        dg[:, :n] = j
-        dg[:, n] = fp
-        return dg
-
-    def bordered_jacobian(self, z, row):
-        j, fp, sparse = self._parts(z)
-        if sparse:
-            return _sparse_border(j, fp, row)
-        n = self.n
-        a = np.empty((n + 1, n + 1))
+        if row is None:
+            a = np.empty((n, n + 1))
+        else:
+            a = np.empty((n + 1, n + 1))
+            a[n] = row
         a[:n, :n] = j
         a[:n, n] = fp
-        a[n] = row
         return a
+
+    def jacobian(self, z):
+        return self.bordered_jacobian(z, None)
 
     def fixed_values(self) -> dict[str, float]:
         return {k: v for k, v in self.params.items() if k != self.free}

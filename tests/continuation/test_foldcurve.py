@@ -1,5 +1,6 @@
 """Fold curves and cusps (two-parameter continuation)."""
 
+import dataclasses
 import math
 
 import numpy as np
@@ -99,6 +100,25 @@ def test_arch_limit_point_meets_branch_point_at_sqrt22():
     np.testing.assert_allclose(fc["xi1"], fc["e"] - np.sqrt((fc["e"] ** 2 - 4) / 3),
                                atol=1e-8)
     assert np.max(np.abs(fc["xi2"])) < 1e-12
+
+
+@pytest.mark.parametrize("rel", [-3e-11, -3e-12, 3e-12, 1e-11, 3e-11])
+def test_fold_curve_starts_from_a_slightly_inexact_fold_with_differenced_jacobian(rel):
+    # The arch has no Jacobian: g on the fold curve comes from central differences and
+    # cannot get below ~1e-10. A start a few 1e-12 off the fold used to leave the corrector
+    # cycling at that noise (the starting point "did not converge", or the second zero
+    # eigenvalue was only bracketed); the noise floor of g is now part of the stopping test.
+    br = trace(arch(6.0), [0.0, 0.0], free="p", bounds={"p": (-10, 100), "xi1": (-1, 13)})
+    lp = br.special("fold")[0]
+    values = dict(lp.values)
+    values["xi1"] *= 1.0 + rel
+    start = dataclasses.replace(lp, values=values)
+    fc = fold_curve(arch(6.0), start, free=("p", "e"), bounds={"e": (3.0, 8.0)}, ds_max=2.0)
+    assert fc.success
+    codim2 = fc.special("codim2")
+    assert len(codim2) == 1 and codim2[0].status == "converged"
+    # sympy: sqrt(22) (see test_arch_limit_point_meets_branch_point_at_sqrt22)
+    assert codim2[0].values["e"] == pytest.approx(math.sqrt(22.0), rel=1e-9)
 
 
 def test_snap_back_fold_curve_closes_in_a_cusp():
