@@ -43,7 +43,7 @@ from .locate import (
 )
 from .options import ContinuationOptions
 from .problem import as_problem
-from .system import CurveSystem, state_weights
+from .system import CurveSystem, has_exact_jacobian, state_weights
 from .tracer import Tracer, _Test
 
 _EPS = np.finfo(float).eps
@@ -70,8 +70,7 @@ class FoldSystem(CurveSystem):
         self.c = None
         self._cache = None
         # differences of the Jacobian are reliable only if the Jacobian itself is exact
-        self._exact_jacobian = getattr(problem, "has_jacobian", True) or getattr(
-            problem, "derivatives", "") == "complex"
+        self._exact_jacobian = has_exact_jacobian(problem)
 
     # -- pieces
     def _p(self, z):

@@ -140,13 +140,22 @@ def tangent_at(system, z: np.ndarray, row: np.ndarray, weights: np.ndarray,
     return t / math.sqrt(t.dot(weights * t))
 
 
-def second_derivative_row(jacobian, z: np.ndarray, v: np.ndarray, w: np.ndarray) -> np.ndarray:
+def second_derivative_row(jacobian, z: np.ndarray, v: np.ndarray, w: np.ndarray,
+                          j0=None) -> np.ndarray:
     """``∇_z (w·J(z) v) = w·D²G(z)[v, ·]`` by central differences of ``jacobian(z)`` along
-    ``v`` (exact in exact arithmetic for quadratic G; error O(h²) otherwise)."""
+    ``v`` (exact in exact arithmetic for quadratic G; error O(h²) otherwise), or, given
+    ``j0 = jacobian(z)``, by a forward difference (one evaluation fewer; relative error
+    ~1e-8, enough for a Newton matrix, not for a differenced Jacobian)."""
     vmax = max_abs(v)
     if vmax == 0.0:
         return np.zeros(z.size)
-    h = _EPS ** (1.0 / 3.0) * max(1.0, max_abs(z)) / vmax
+    scale = max(1.0, max_abs(z)) / vmax
+    if j0 is not None:
+        h = _EPS ** 0.5 * scale
+        z1 = z + h * v
+        h = max_abs(z1 - z) / vmax  # the step actually taken
+        return (jacobian(z1) - j0).T.dot(w) / h
+    h = _EPS ** (1.0 / 3.0) * scale
     return (jacobian(z + h * v).T.dot(w) - jacobian(z - h * v).T.dot(w)) / (2.0 * h)
 
 
@@ -196,6 +205,7 @@ def locate_fold(br: Bracket, k: int, start: np.ndarray | None = None,
     b = c = v0
     rhs = np.empty(z.size)
     vt = np.zeros(z.size)
+    exact = getattr(system, "exact_jacobian", False)
     converged = False
     it = 0
     previous = math.inf
@@ -210,8 +220,8 @@ def locate_fold(br: Bracket, k: int, start: np.ndarray | None = None,
         rhs[:-1] = system.residual(z)
         rhs[-1] = -g
         try:
-            d = factor(bordered(dg, second_derivative_row(system.jacobian, z, vt, w))
-                       ).solve(rhs)
+            d = factor(bordered(dg, second_derivative_row(system.jacobian, z, vt, w,
+                                                          dg if exact else None))).solve(rhs)
         except SingularMatrixError:
             return None
         size = max_abs(d)

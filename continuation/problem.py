@@ -141,21 +141,26 @@ class Problem:
         new.params = {**self.params, **{k: float(v) for k, v in values.items()}}
         return new
 
+    def callbacks(self) -> tuple[Callable, Callable, Callable]:
+        """``(residual, jacobian, param_jacobian)`` for inner loops: the user's own functions
+        where given (results as returned: pass them through :func:`as_vector` and
+        :func:`as_matrix`), the finite-difference methods for derivatives not given. Saves a
+        call layer per evaluation (a third of the cost of a tiny system)."""
+        return (self._residual, self._jacobian or self.jacobian,
+                self._param_jacobian or self.param_jacobian)
+
     def residual(self, u, p):
         return np.asarray(self._residual(u, p))
 
     def jacobian(self, u, p):
         if self._jacobian is not None:
-            jac = self._jacobian(u, p)
-            if type(jac) is np.ndarray and jac.dtype == float:
-                return jac
-            return jac if sp.issparse(jac) else np.asarray(jac, dtype=float)
+            return as_matrix(self._jacobian(u, p))
         return fd_jacobian(lambda v: self._residual(v, p), u, method=self.derivatives,
                            sparsity=self.sparsity, groups=self._groups)
 
     def param_jacobian(self, u, p, name):
         if self._param_jacobian is not None:
-            return np.asarray(self._param_jacobian(u, p, name), dtype=float)
+            return as_vector(self._param_jacobian(u, p, name))
 
         def f(value):
             q = dict(p)
@@ -163,6 +168,20 @@ class Problem:
             return self._residual(u, q)
 
         return fd_derivative(f, float(p[name]), method=self.derivatives)
+
+
+def as_matrix(jac):
+    """A Jacobian as returned by a user function, as a float array (sparse ones kept)."""
+    if type(jac) is np.ndarray and jac.dtype == float:
+        return jac
+    return jac if sp.issparse(jac) else np.asarray(jac, dtype=float)
+
+
+def as_vector(x):
+    """A residual or parameter derivative as returned by a user function, as a float array."""
+    if type(x) is np.ndarray and x.dtype == float:
+        return x
+    return np.asarray(x, dtype=float)
 
 
 def as_problem(obj) -> ContinuationProblem:

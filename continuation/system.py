@@ -15,6 +15,7 @@ import scipy.sparse as sp
 
 from .errors import ProblemDefinitionError
 from .linalg import bordered, rounding_floor
+from .problem import as_matrix, as_vector
 
 
 class CurveSystem:
@@ -27,6 +28,9 @@ class CurveSystem:
     names: tuple[str, ...]
     dim: int
     weights: np.ndarray
+    exact_jacobian: bool = False
+    """True if ``jacobian`` is exact to rounding (not differenced): its own differences are
+    then accurate enough for forward differencing."""
 
     def residual(self, z: np.ndarray) -> np.ndarray:  # pragma: no cover - interface
         raise NotImplementedError
@@ -60,6 +64,12 @@ class CurveSystem:
         return {}
 
 
+def has_exact_jacobian(problem) -> bool:
+    """Whether the problem's Jacobian is analytic or by complex step (exact to rounding)."""
+    return bool(getattr(problem, "has_jacobian", True)
+                or getattr(problem, "derivatives", "") == "complex")
+
+
 def state_weights(n: int, n_params: int, state_weight: float | None) -> np.ndarray:
     w = np.ones(n + n_params)
     w[:n] = (1.0 / n) if state_weight is None else state_weight
@@ -83,10 +93,13 @@ class BranchSystem(CurveSystem):
         self.names = tuple(problem.unknowns) + (free,)
         self.dim = self.n + 1
         self.weights = state_weights(self.n, 1, state_weight)
-        # bound once: the corrector's inner loop calls these for every iteration
-        self._residual = problem.residual
-        self._jacobian = problem.jacobian
-        self._param_jacobian = problem.param_jacobian
+        self.exact_jacobian = has_exact_jacobian(problem)
+        # bound once: the corrector's inner loop calls these for every iteration (a
+        # Problem's own callbacks, skipping its normalising wrappers: see below)
+        callbacks = getattr(problem, "callbacks", None)
+        self._residual, self._jacobian, self._param_jacobian = (
+            callbacks() if callbacks is not None
+            else (problem.residual, problem.jacobian, problem.param_jacobian))
         self._shapes = ((self.n, self.n), (self.n,))
 
     def _p(self, z) -> dict[str, float]:
@@ -102,6 +115,8 @@ class BranchSystem(CurveSystem):
         p = dict(self.params)
         p[self.free] = z[-1]
         r = self._residual(z[:-1], p)
+        if type(r) is not np.ndarray or r.dtype != float:
+            r = as_vector(r)
         if r.shape != self._shapes[1]:
             raise ProblemDefinitionError(
                 f"residual must return {self.n} values (one per unknown), got shape {r.shape}")
@@ -114,8 +129,12 @@ class BranchSystem(CurveSystem):
         p[self.free] = z[-1]
         j = self._jacobian(u, p)
         fp = self._param_jacobian(u, p, self.free)
-        if type(j) is not np.ndarray and sp.issparse(j):
-            return _sparse_border(j, fp, row)
+        if type(fp) is not np.ndarray or fp.dtype != float:
+            fp = as_vector(fp)
+        if type(j) is not np.ndarray or j.dtype != float:
+            j = as_matrix(j)
+            if type(j) is not np.ndarray:
+                return _sparse_border(j, fp, row)
         if (j.shape, fp.shape) != self._shapes:
             n = self.n
             raise ProblemDefinitionError(
