@@ -19,6 +19,10 @@ Tools:
   a table per step, which we send to a StringIO (the printing is part of its cost: it cannot be
   switched off). Folds are not located by contique: we take the point with the extreme
   parameter where the parameter increment changes sign (a bracket), and report its error;
+* floor: a bare pseudo-arclength loop (about 40 lines) with the same step rules as ours
+  (tangent predictor, bordered Newton by LAPACK gesv, the same convergence test, step control
+  and angle guard) but no special points, no bookkeeping and no result: what the step
+  sequence itself costs in Python on this machine. It stops at the first point past the end;
 * SciPy natural-parameter loop: `scipy.optimize.root` (hybr) at parameter steps of 0.01 of the
   range, forward and then backward (hysteresis sweep); a fold is "detected" by the jump of the
   solution to the other sheet, and estimated by the last parameter before the jump.
@@ -176,6 +180,76 @@ def _bracketed_folds(lams):
     return out
 
 
+def run_floor(pb):
+    """The bare loop (see the module docstring): defaults of `ContinuationOptions`."""
+    from scipy.linalg import lapack
+
+    gesv, getrs = lapack.dgesv, lapack.dgetrs
+    cnt = {"f": 0}
+    f, fx, fl = pb["f"], pb["fx"], pb["fl"]
+    params = {"lam": pb["lam0"]}
+
+    def residual(z):
+        cnt["f"] += 1
+        p = dict(params)
+        p["lam"] = z[-1]
+        return np.array([f(z[0], p["lam"])])
+
+    def bordered(z, row):
+        p = dict(params)
+        p["lam"] = z[-1]
+        a = np.empty((2, 2))
+        a[:1, :1] = fx(z[0], p["lam"])
+        a[:1, 1] = fl(z[0], p["lam"])
+        a[1] = row
+        return a
+
+    def norm(x):
+        v = x.tolist()
+        return max(abs(max(v)), abs(min(v)))
+
+    e = np.array([0.0, 1.0])
+    z = np.array([pb["x0"], pb["lam0"]])
+    up = pb["lam1"] > pb["lam0"]
+    t = gesv(bordered(z, e), e)[2]
+    t /= math.copysign(math.sqrt(t.dot(t)), t[-1] if up else -t[-1])
+    ds, points, newton = 0.05, 1, 0
+    while ((z[-1] < pb["lam1"]) if up else (z[-1] > pb["lam1"])) and points < 1000:
+        while True:
+            zp = z + ds * t
+            c = t.dot(zp)
+            zz, g, ok, sn_prev, k = zp, residual(zp), False, math.inf, 0
+            sq = 1e-5 * (1.0 + norm(zp))  # √step_tol·(1 + |z|), as ours
+            while k < 10:
+                k += 1
+                rhs = np.empty(2)
+                rhs[:1] = g
+                rhs[1] = t.dot(zz) - c
+                lu, piv, dz, _ = gesv(bordered(zz, t), rhs)
+                zz = zz - dz
+                g = residual(zz)
+                sn = norm(dz)
+                if norm(g) <= TOL and sn <= sq:
+                    ok = True
+                    break
+                if sn > sn_prev:
+                    break
+                sn_prev = sn
+            newton += k
+            if ok:
+                tn = getrs(lu, piv, e)[0]
+                tn /= math.sqrt(tn.dot(tn))
+                angle = math.degrees(math.acos(max(-1.0, min(1.0, t.dot(tn)))))
+                if angle <= 30.0:
+                    break
+            ds *= 0.5
+        ds = min(0.5, ds * min(2.0, max(0.5, min(5.0 / k, 15.0 / max(angle, 1e-12)))))
+        z, t = zz, tn
+        points += 1
+    return {"points": points, "newton": newton, "nfev": cnt["f"], "folds": [],
+            "located": "none (no special points)", "ok": True}
+
+
 def run_scipy(pb, analytic):
     """Natural-parameter continuation with `scipy.optimize.root` (hybr) at steps of 1% of the
     range, forward and then backward from the end state (a hysteresis sweep). Past a fold
@@ -222,6 +296,52 @@ def run_scipy(pb, analytic):
 
 
 # ----------------------------------------------------------------------------- timing
+
+
+def phases(pb, rounds=200):
+    """Where `trace` spends its time (analytic derivatives): wall time inside the corrector of
+    the steps (and the start), inside special-point location (fold Newton, bound, and the
+    tangent there), setup and result, and the rest. The wrappers add ~0.3 µs a call, so the
+    shares are approximate."""
+    import continuation.tracer as tr
+
+    acc = {}
+    active = set()  # a phase is timed once even if its functions nest
+    saved = []
+
+    def wrap(owner, name, key):
+        fn = getattr(owner, name)
+        saved.append((owner, name, fn))
+
+        def timed(*a, **k):
+            if key in active:
+                return fn(*a, **k)
+            active.add(key)
+            t0 = time.perf_counter()
+            try:
+                return fn(*a, **k)
+            finally:
+                acc[key] = acc.get(key, 0.0) + time.perf_counter() - t0
+                active.discard(key)
+        setattr(owner, name, timed)
+
+    wrap(tr, "newton", "corrector (steps and start)")
+    wrap(tr._Test, "locate", "special-point location")
+    wrap(tr, "tangent_at", "special-point location")
+    wrap(tr.Tracer, "__init__", "setup and result")
+    wrap(tr.Tracer, "result", "setup and result")
+    try:
+        t0 = time.perf_counter()
+        for _ in range(rounds):
+            run_ours(pb, True)
+        total = time.perf_counter() - t0
+    finally:
+        for owner, name, fn in saved:
+            setattr(owner, name, fn)
+    out = {k: v / rounds for k, v in acc.items()}
+    out["the rest: start tangent, step control, test functions"] = (
+        total - sum(acc.values())) / rounds
+    return total / rounds, out
 
 
 def autorange(fn):
@@ -300,7 +420,8 @@ def main(argv=None):
                       lambda pb: run_contique(pb, True, contique)),
                      ("contique " + contique.__version__, "central FD",
                       lambda pb: run_contique(pb, False, contique))]
-    variants += [("SciPy root loop", "analytic", lambda pb: run_scipy(pb, True)),
+    variants += [("floor: bare loop", "analytic", run_floor),
+                 ("SciPy root loop", "analytic", lambda pb: run_scipy(pb, True)),
                  ("SciPy root loop", "FD (hybr)", lambda pb: run_scipy(pb, False))]
 
     rows, ratios = [], []
@@ -359,6 +480,12 @@ def main(argv=None):
         if not math.isnan(ratio):
             lines.append(f"- {name}, {deriv}: {ratio:.3f} (ours {1 / ratio:.1f}× faster)"
                          if ratio < 1 else f"- {name}, {deriv}: {ratio:.3f}")
+    total, parts = phases(PROBLEMS[0])
+    lines += ["", f"Where our time goes ({PROBLEMS[0]['name']}, analytic; per branch, "
+              f"{total * 1e3:.3f} ms with the timing wrappers):", "",
+              "| phase | time (µs) | share |", "|---|---:|---:|"]
+    for key, value in parts.items():
+        lines.append(f"| {key} | {value * 1e6:.0f} | {value / total:.0%} |")
     lines += ["", "Target for the solver: the cusp branch with both folds located in about "
               "1 ms, at least 10× faster than contique.", ""]
     text = "\n".join(lines)
