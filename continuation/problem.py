@@ -146,8 +146,9 @@ class Problem:
         where given (results as returned: pass them through :func:`as_vector` and
         :func:`as_matrix`), the finite-difference methods for derivatives not given. Saves a
         call layer per evaluation (a third of the cost of a tiny system)."""
-        return (self._residual, self._jacobian or self.jacobian,
-                self._param_jacobian or self.param_jacobian)
+        return (self._residual,
+                self.jacobian if self._jacobian is None else self._jacobian,
+                self.param_jacobian if self._param_jacobian is None else self._param_jacobian)
 
     def residual(self, u, p):
         return np.asarray(self._residual(u, p))

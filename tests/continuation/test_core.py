@@ -106,6 +106,22 @@ def test_wrong_residual_shape_is_reported():
         trace(prob, [0.0], free="a")
 
 
+def test_user_functions_may_return_lists_and_integer_arrays():
+    # the branch system calls a Problem's own functions and normalises their results itself
+    # (Problem.callbacks): lists, nested lists and integer arrays must trace exactly as floats
+    def res(u, p):
+        return [u[0] ** 3 - u[0] - p["b"]]
+
+    lists = Problem(res, ["x"], {"b": -1.0}, jacobian=lambda u, p: [[3 * u[0] ** 2 - 1]],
+                    param_jacobian=lambda u, p, n: np.array([-1]))
+    arrays = cusp_problem(analytic=True)
+    a = trace(lists, [X0], free="b", bounds={"b": (-1.0, 1.0)})
+    b = trace(arrays, [X0], free="b", bounds={"b": (-1.0, 1.0)})
+    np.testing.assert_array_equal(a["x"], b["x"])
+    np.testing.assert_array_equal(a["b"], b["b"])
+    assert [sp_.values["b"] for sp_ in folds(a, "b")] == [sp_.values["b"] for sp_ in folds(b, "b")]
+
+
 def test_bounds_on_fixed_parameter_rejected():
     with pytest.raises(ProblemDefinitionError, match="fixed parameters cannot be bounded"):
         trace(cusp_problem(), [X0], free="b", bounds={"a": (0, 2)})
