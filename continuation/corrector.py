@@ -94,7 +94,7 @@ def newton(system, z0: np.ndarray, row: np.ndarray, c: float, *, tol: float, ste
         # rounding level of its own terms (which for badly scaled residuals exceeds tol); a
         # wrong Jacobian (say, differenced across a kink) also gives tiny updates, but leaves
         # the residual above that floor
-        if sn <= rel_step_tol and rn_new <= max(tol, system.residual_floor(a, z)):
+        if sn <= rel_step_tol and rn_new <= max(tol, system.residual_floor(a[:-1], z)):
             rn, converged = rn_new, True
             break
         if k >= 3 and rn_new > 1e3 * max(rn, tol):
@@ -134,7 +134,7 @@ def damped_newton(system, z0: np.ndarray, row: np.ndarray, c: float, *, tol: flo
         rhs[m] = c - row @ z
         dz = lu.solve(rhs)
         if _norm(dz) <= step_tol * (1.0 + _norm(z)) and _norm(g) <= max(
-                tol, system.residual_floor(a, z)):
+                tol, system.residual_floor(a[:-1], z)):
             return NewtonResult(z + dz, True, k, _norm(g), lu)
         lam = 1.0
         while lam > 1e-6:

@@ -32,7 +32,7 @@ import scipy.sparse as sp
 
 from .branch import Branch, SpecialPoint
 from .errors import ProblemDefinitionError, SingularMatrixError
-from .linalg import bordered, bordered_square, factor
+from .linalg import bordered, bordered_square, factor, max_abs
 from .locate import (
     Bracket,
     Located,
@@ -162,18 +162,18 @@ class FoldSystem(CurveSystem):
     def bordered_jacobian(self, z, row):
         return bordered(self.jacobian(z), row)
 
-    def residual_floor(self, a, z) -> float:
+    def residual_floor(self, dg, z) -> float:
         """With a differenced Jacobian, ``g`` carries the differences' error: about
         ε^{2/3} (central) or ε^{1/2} (forward) of the Jacobian's size, times |v|·|w|."""
-        floor = super().residual_floor(a, z)
+        floor = super().residual_floor(dg, z)
         if self._exact_jacobian:
             return floor
         _, v, w, _, df = self.bordered_solve(z)
         size = abs(df).sum(axis=1).max() if sp.issparse(df) else np.abs(df).sum(axis=1).max()
         rel = _EPS ** (0.5 if getattr(self.problem, "derivatives", "") == "forward"
                        else 2.0 / 3.0)
-        noise = 10.0 * rel * float(size) * (1.0 + float(np.max(np.abs(z))))
-        return max(floor, noise * float(np.max(np.abs(v)) * np.max(np.abs(w))))
+        noise = 10.0 * rel * float(size) * (1.0 + max_abs(z))
+        return max(floor, noise * max_abs(v) * max_abs(w))
 
     def refresh(self, z) -> None:
         _, v, w, _, _ = self.bordered_solve(z)

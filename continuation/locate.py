@@ -24,7 +24,6 @@ from .linalg import (
     delete_column,
     factor,
     max_abs,
-    rounding_floor,
 )
 
 _EPS = np.finfo(float).eps
@@ -241,7 +240,7 @@ def locate_fold(br: Bracket, k: int, start: np.ndarray | None = None,
     if not converged:
         return None
     rn = max_abs(system.residual(z))
-    if not rn <= max(o.tol, rounding_floor(dg[:, :-1], z)):  # NaN fails too
+    if not rn <= max(o.tol, system.residual_floor(dg, z)):  # NaN fails too
         return None
     sigma = br.sigma(z)
     if not (-0.05 * abs(br.h) <= sigma * np.sign(br.h) <= 1.05 * abs(br.h)):

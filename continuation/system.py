@@ -51,10 +51,12 @@ class CurveSystem:
         """The square matrix ``[∂G/∂z; row]``."""
         return bordered(self.jacobian(z), row)
 
-    def residual_floor(self, a, z: np.ndarray) -> float:
-        """The residual size attributable to rounding at ``z`` (``a``: the bordered Jacobian
-        there): Newton accepts a tiny update with a residual up to ``max(tol, this)``."""
-        return rounding_floor(a[:-1, :-1], z)
+    def residual_floor(self, dg, z: np.ndarray) -> float:
+        """The residual size attributable to rounding at ``z`` (``dg``: ∂G/∂z there, or a
+        nearby one): Newton accepts a tiny update with a residual up to ``max(tol, this)``.
+        The last column (a parameter) is left out: a parameter derivative differenced
+        across a jump of the residual would inflate it."""
+        return rounding_floor(dg[:, :-1], z)
 
     def refresh(self, z: np.ndarray) -> None:
         """Called after each accepted point (augmented systems update their borders here)."""
@@ -101,11 +103,6 @@ class BranchSystem(CurveSystem):
             callbacks() if callbacks is not None
             else (problem.residual, problem.jacobian, problem.param_jacobian))
         self._shapes = ((self.n, self.n), (self.n,))
-
-    def _p(self, z) -> dict[str, float]:
-        p = dict(self.params)
-        p[self.free] = z[-1]
-        return p
 
     # residual and bordered_jacobian are the corrector's inner loop: the parameter dict is
     # built inline and the dense case checked first (for the tiny systems of most problems

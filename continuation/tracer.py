@@ -40,7 +40,7 @@ from .locate import (
 )
 from .options import ContinuationOptions
 from .problem import as_problem
-from .system import BranchSystem
+from .system import BranchSystem, has_exact_jacobian
 
 logger = logging.getLogger(__name__)
 
@@ -474,11 +474,9 @@ class Tracer:
         100 difference steps cannot be told from a kink smoothed by the stencil: it is then
         reported as a bracketed guess."""
         problem = self.problem
-        if problem is None or getattr(problem, "has_jacobian", True):
+        if problem is None or has_exact_jacobian(problem):
             return found
         method = getattr(problem, "derivatives", "central")
-        if method == "complex":
-            return found
         rel = np.finfo(float).eps ** (1 / 3 if method == "central" else 1 / 2)
         h_fd = rel * (1.0 + float(np.max(np.abs(found.z))))
         cos = float(br.t_a @ (self.weights * br.t_b))

@@ -920,36 +920,13 @@ def _model_checks(models) -> list[_Check]:
     loads = (F_Np, F_N0, g_A)
     ins = loads + par_syms
     checks += [
-        _Check(
-            "MD",
-            "ExponentialRoughSurface.tangential_force - mu dF_N",
-            derivation("MD").derived.subs(pars),
-            ins,
-            sec4,
-            md_call,
-            conditioned=loads,
-            n_params=3,
-        ),
-        _Check(
-            "AB",
-            "ExponentialRoughSurface.tangential_slip at (F'_T, F'_N)",
-            derivation("AB").derived.subs(pars),
-            ins,
-            sec4,
-            ab_call,
-            conditioned=loads,
-            n_params=3,
-        ),
-        _Check(
-            "32",
-            "1 - ExponentialRoughSurface.stick_area_ratio + dF_N/F_N0",
-            derivation("32").derived.subs(pars),
-            ins,
-            sec4,
-            asl_call,
-            conditioned=loads,
-            n_params=3,
-        ),
+        _Check(eq, what, derivation(eq).derived.subs(pars), ins, sec4, call,
+               conditioned=loads, n_params=3)
+        for eq, what, call in (
+            ("MD", "ExponentialRoughSurface.tangential_force - mu dF_N", md_call),
+            ("AB", "ExponentialRoughSurface.tangential_slip at (F'_T, F'_N)", ab_call),
+            ("32", "1 - ExponentialRoughSurface.stick_area_ratio + dF_N/F_N0", asl_call),
+        )
     ]
     return checks
 
