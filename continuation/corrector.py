@@ -8,7 +8,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .errors import SingularMatrixError
-from .linalg import DenseLU, dense_solve, factor
+from .linalg import DenseLU, dense_solve, factor, getrs
 from .linalg import max_abs as _norm
 
 
@@ -18,7 +18,9 @@ class NewtonResult:
     converged: bool
     iterations: int
     residual_norm: float
-    lu: object | None  # factorization of the last bordered matrix (at z minus the last update)
+    # factorization of the last bordered matrix factored: at z minus the last update, or the
+    # last two when the last step was a simplified (chord) one
+    lu: object | None
     reason: str = ""
 
 
@@ -39,6 +41,12 @@ def newton(system, z0: np.ndarray, row: np.ndarray, c: float, *, tol: float, ste
     residuals with large terms, such as finite differences on fine grids, cannot get below
     ``tol`` in floating point). ``strict`` requires the latter (used to polish located
     special points to rounding).
+
+    Once an update is ≤ ``sqrt(step_tol)·(1 + |z|)`` (Newton's quadratic regime) but the
+    residual is still above ``tol``, the next iteration is a simplified (chord) step with the
+    last factorization: it contracts the error by a factor of order that update, as a full
+    step would, without a Jacobian evaluation and factorization (a sparse LU of the bordered
+    system, on large discretisations). Full and simplified steps alternate from there.
 
     ``contract``: give up (reason ``"not_contracting"``) as soon as an update, still above
     ``sqrt(step_tol)·(1 + |z|)``, is larger than the one before. Inside its region of
@@ -63,23 +71,31 @@ def newton(system, z0: np.ndarray, row: np.ndarray, c: float, *, tol: float, ste
     sn_prev = math.inf
     # dense matrices are factored and solved by one LAPACK gesv (the factors are wrapped in a
     # DenseLU only for the result); sparse ones through `factor`
-    lu = f = piv = None
+    lu = f = piv = a = None
     reason = "max_iterations"
     converged = False
+    chord = False
     k = 0
     for k in range(1, max_iter + 1):
-        a = bordered_jacobian(z, row)
         # the system for minus the update (saves negating the residual; bitwise the same)
         rhs[:m] = g
         rhs[m] = row_dot(z) - c
-        try:
-            if type(a) is np.ndarray:
-                f, piv, dz = dense_solve(a, rhs)
-            else:
-                lu, f = factor(a), None
-                dz = lu.solve(rhs)
-        except SingularMatrixError:
-            return NewtonResult(z, False, k, rn, None, _singular_reason(a))
+        if chord:
+            # the last update was already in Newton's quadratic regime (≤ sqrt(step_tol)):
+            # one simplified step with the last factorization contracts the error by a
+            # factor of order that update, as well as a full step would, without a
+            # Jacobian evaluation and factorization
+            dz = getrs(f, piv, rhs) if f is not None else lu.solve(rhs)
+        else:
+            a = bordered_jacobian(z, row)
+            try:
+                if type(a) is np.ndarray:
+                    f, piv, dz = dense_solve(a, rhs)
+                else:
+                    lu, f = factor(a), None
+                    dz = lu.solve(rhs)
+            except SingularMatrixError:
+                return NewtonResult(z, False, k, rn, None, _singular_reason(a))
         z = z - dz
         g = residual(z)
         rn_new = _norm(g)
@@ -104,6 +120,7 @@ def newton(system, z0: np.ndarray, row: np.ndarray, c: float, *, tol: float, ste
             rn, reason = rn_new, "not_contracting"
             break
         rn = rn_new
+        chord = not chord and sn <= sq_step_tol
         sn_prev = sn
     return NewtonResult(z, converged, k, rn, lu if f is None else DenseLU.from_factors(f, piv),
                         "" if converged else reason)

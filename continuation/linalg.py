@@ -53,6 +53,11 @@ def dense_solve(a: np.ndarray, b: np.ndarray):
     return lu, piv, x
 
 
+def getrs(lu: np.ndarray, piv: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """Solve with the factors of :func:`dense_factors` or :func:`dense_solve`."""
+    return _getrs(lu, piv, b)[0]
+
+
 class DenseLU:
     __slots__ = ("lu", "piv", "n")
 

@@ -409,3 +409,31 @@ def test_start_on_bound_and_leave_through_it():
     assert br.status == "bound" and br["b"][-1] == 1.0 and np.all(br["b"] == 1.0)
     inward = trace(prob, [1.0], free="b", bounds={"b": (-1.0, 1.0)}, direction=-1)
     assert inward.status == "bound" and inward["b"][-1] == -1.0
+
+
+def test_corrector_takes_a_simplified_step_in_the_quadratic_regime():
+    """Once an update is ≤ sqrt(step_tol)(1 + |z|) with the residual still above tol, the next
+    iteration reuses the last factorization (no Jacobian evaluation) and still converges.
+
+    x³ − x − b at b = −1 from x = −1.3 (the root is minus the plastic number, −1.32471795724
+    4746..., mpmath: findroot(x**3 - x + 1, -1.3)); tol = 1e-14 keeps the residual above tol
+    after the update of ~1e-6 that enters the quadratic regime."""
+    from continuation.corrector import newton
+    from continuation.system import BranchSystem
+
+    calls = {"jacobian": 0}
+
+    def jac(u, p):
+        calls["jacobian"] += 1
+        return np.array([[3 * u[0] ** 2 - 1.0]])
+
+    prob = Problem(lambda u, p: np.array([u[0] ** 3 - u[0] - p["b"]]), unknowns=["x"],
+                   params={"b": -1.0}, jacobian=jac,
+                   param_jacobian=lambda u, p, name: np.array([-1.0]))
+    system = BranchSystem(prob, "b")
+    row = np.array([0.0, 1.0])
+    res = newton(system, np.array([-1.3, -1.0]), row, -1.0, tol=1e-14, step_tol=1e-10,
+                 max_iter=10)
+    assert res.converged
+    assert res.z[0] == pytest.approx(X0, rel=2e-16, abs=0)
+    assert calls["jacobian"] == res.iterations - 1  # the last iteration was a chord step
