@@ -53,9 +53,10 @@ def dense_solve(a: np.ndarray, b: np.ndarray):
     return lu, piv, x
 
 
-def getrs(lu: np.ndarray, piv: np.ndarray, b: np.ndarray) -> np.ndarray:
-    """Solve with the factors of :func:`dense_factors` or :func:`dense_solve`."""
-    return _getrs(lu, piv, b)[0]
+def getrs(lu: np.ndarray, piv: np.ndarray, b: np.ndarray, trans: bool = False) -> np.ndarray:
+    """Solve (the transposed system if ``trans``) with the factors of :func:`dense_factors`
+    or :func:`dense_solve`."""
+    return _getrs(lu, piv, b, trans=1 if trans else 0)[0]
 
 
 class DenseLU:
@@ -73,8 +74,7 @@ class DenseLU:
         return self
 
     def solve(self, b: np.ndarray, trans: bool = False) -> np.ndarray:
-        x, _ = _getrs(self.lu, self.piv, b, trans=1 if trans else 0)
-        return x
+        return _getrs(self.lu, self.piv, b, trans=1 if trans else 0)[0]
 
     def sign_det(self) -> float:
         if self.n <= 16:

@@ -22,7 +22,9 @@ from .linalg import (
     bordered,
     bordered_square,
     delete_column,
+    dense_solve,
     factor,
+    getrs,
     max_abs,
 )
 
@@ -119,6 +121,22 @@ class Located:
     status: str
     iterations: int
     details: dict = field(default_factory=dict)
+    tangent: np.ndarray | None = None
+    """Unit tangent at ``z`` oriented like the step, when the locating iteration gave it."""
+    residual_norm: float | None = None
+    """Max-norm of the residual at ``z``, when the locating iteration computed it."""
+
+
+def oriented_tangent(t: np.ndarray, row: np.ndarray, weights: np.ndarray) -> np.ndarray | None:
+    """``t`` scaled to unit weighted norm with ``row·t > 0``; None if ``t`` is not finite or
+    too close to orthogonal to ``row`` for the orientation to be trusted."""
+    nt = math.sqrt(t.dot(weights * t))
+    if not (math.isfinite(nt) and nt > 0.0):
+        return None
+    rt = row.dot(t) / nt
+    if abs(rt) < 1e-3 * math.sqrt(row.dot(row / weights)):
+        return None
+    return t / (nt if rt > 0 else -nt)
 
 
 def tangent_at(system, z: np.ndarray, row: np.ndarray, weights: np.ndarray,
@@ -163,11 +181,16 @@ def minimally_augmented(system, z: np.ndarray, k: int, b: np.ndarray, c: np.ndar
     Jacobian ``dg`` of G at ``z``: ``[[M, b], [c^T, 0]] [v; g] = [0; 1]`` with ``M = ∂G/∂z``
     without column ``k``."""
     dg = system.jacobian(z)
-    lu = factor(bordered_square(delete_column(dg, k), b, c))
+    a = bordered_square(delete_column(dg, k), b, c)
     e = np.zeros(b.size + 1)
     e[-1] = 1.0
-    x = lu.solve(e)
-    y = lu.solve(e, trans=True)
+    if type(a) is np.ndarray:
+        lu, piv, x = dense_solve(a, e)
+        y = getrs(lu, piv, e, trans=True)
+    else:
+        lu = factor(a)
+        x = lu.solve(e)
+        y = lu.solve(e, trans=True)
     return x[-1], x[:-1], y[:-1], dg
 
 
@@ -218,9 +241,9 @@ def locate_fold(br: Bracket, k: int, start: np.ndarray | None = None,
         # d = −dz with that row negated (sign flips are exact: bitwise the same update)
         rhs[:-1] = system.residual(z)
         rhs[-1] = -g
+        a = bordered(dg, second_derivative_row(system.jacobian, z, vt, w, dg if exact else None))
         try:
-            d = factor(bordered(dg, second_derivative_row(system.jacobian, z, vt, w,
-                                                          dg if exact else None))).solve(rhs)
+            d = dense_solve(a, rhs)[2] if type(a) is np.ndarray else factor(a).solve(rhs)
         except SingularMatrixError:
             return None
         size = max_abs(d)
@@ -240,14 +263,17 @@ def locate_fold(br: Bracket, k: int, start: np.ndarray | None = None,
     if not converged:
         return None
     rn = max_abs(system.residual(z))
-    if not rn <= max(o.tol, system.residual_floor(dg, z)):  # NaN fails too
+    if not (rn <= o.tol or rn <= system.residual_floor(dg, z)):  # NaN fails too
         return None
     sigma = br.sigma(z)
     if not (-0.05 * abs(br.h) <= sigma * np.sign(br.h) <= 1.05 * abs(br.h)):
         return None  # converged to a fold outside this step
+    # the tangent at a fold in z_k spans the kernel of ∂G/∂z, which has no k component: v
+    # (from the last iterate, one update of ≤ locate_tol away)
     return Located(z, sigma, "converged", it, {"method": "minimally augmented Newton",
                                                 "test_function": float(g),
-                                                "last_update": size})
+                                                "last_update": size},
+                   tangent=oriented_tangent(vt, br.row, br.weights), residual_norm=rn)
 
 
 def locate_component(br: Bracket, k: int, value: float) -> Located | None:
@@ -263,8 +289,13 @@ def locate_component(br: Bracket, k: int, value: float) -> Located | None:
         return None
     z = res.z
     z[k] = value  # the constraint is linear: snap away the last rounding
+    # the corrector's last factorization is [∂G/∂z; e_k] (at z up to its last update or
+    # two): its solution t of [∂G/∂z; e_k] t = e_last has ∂G/∂z t = 0, a tangent
+    e = np.zeros(z.size)
+    e[-1] = 1.0
     return Located(z, br.sigma(z), "converged", res.iterations,
-                   {"method": "Newton with the component fixed"})
+                   {"method": "Newton with the component fixed"},
+                   tangent=oriented_tangent(res.lu.solve(e), br.row, br.weights))
 
 
 def locate_on_arc(br: Bracket, f, f_a: float, f_b: float, rtol: float | None = None) -> Located:

@@ -376,7 +376,7 @@ class Tracer:
                 raise ProblemDefinitionError(
                     f"u0 must hold {n} values (one per unknown {list(system.names[:n])}), "
                     f"got shape {u.shape}")
-            if not np.all(np.isfinite(u)):
+            if not math.isfinite(max_abs(u)):
                 raise ProblemDefinitionError(f"u0 must be finite, got {u}")
             z0 = np.concatenate([u, [system.params[system.free]]])
         return self._start(z0, tangent, start_label, skip_bp)
@@ -388,7 +388,7 @@ class Tracer:
         row = np.zeros(system.dim)
         row[k_free] = 1.0
         g0 = system.residual(z0)
-        if not np.all(np.isfinite(g0)):
+        if not math.isfinite(max_abs(g0)):
             raise NonFiniteResidualError(
                 f"the residual is not finite at the starting point {system.values(z0)}",
                 values=system.values(z0))
@@ -401,7 +401,7 @@ class Tracer:
                     iterations=res.iterations, residual_norm=res.residual_norm,
                     remedy="Give a better initial guess u0 for these parameter values.")
             z0 = res.z
-            t0, sdet = self._initial_tangent(z0, k_free)
+            t0, sdet = self._initial_tangent(z0, k_free, res.lu)
             residual = res.residual_norm
             iters = res.iterations
         else:
@@ -441,20 +441,25 @@ class Tracer:
                     f"the starting point has {name}={v:.10g}, outside bounds[{name!r}] = "
                     f"({lo:g}, {hi:g})")
 
-    def _initial_tangent(self, z0, k_free):
+    def _initial_tangent(self, z0, k_free, lu=None):
         """Unit tangent at ``z0`` (the free parameter moving in ``direction``) and the sign of
-        det [∂G/∂z; (W t)ᵀ] (None if it was not available from the factorization)."""
+        det [∂G/∂z; (W t)ᵀ] (None if it was not available from the factorization).
+
+        ``lu``: a factorization of [∂G/∂z; e_kᵀ] at (or, from the corrector, one update
+        from) ``z0``, if there is one."""
         system = self.system
-        e = np.zeros(system.dim)
-        e[-1] = 1.0
-        dg = system.jacobian(z0)
-        row = np.zeros(system.dim)
-        row[k_free] = 1.0
+        e = self._e_last
         sdet = None
         try:
-            lu = factor(bordered(dg, row))
+            if lu is None:
+                row = np.zeros(system.dim)
+                row[k_free] = 1.0
+                lu = factor(bordered(system.jacobian(z0), row))
             t = lu.solve(e)
+            if not math.isfinite(max_abs(t)):
+                raise SingularMatrixError("the bordered Jacobian is singular at the start")
         except Exception:  # starting at a fold in the free parameter: use the kernel
+            dg = system.jacobian(z0)
             dense = dg.toarray() if hasattr(dg, "toarray") else np.asarray(dg)
             t = np.linalg.svd(dense)[2][-1]
             k_free = int(np.argmax(np.abs(t)))
@@ -687,9 +692,13 @@ class Tracer:
                                else f"terminal event {tt.label!r} occurred")
                     if tt.kind != "bound":
                         records.append(("endpoint", tt.label, tt.wrt, loc.status, None, {}))
-                tan = tangent_at(system, loc.z, br.row, W, br)
-                prev = _Point(loc.z, tan, last.s + loc.sigma, loc.iterations, 0,
-                              max_abs(system.residual(loc.z)), 0.0,
+                tan = loc.tangent
+                if tan is None:
+                    tan = tangent_at(system, loc.z, br.row, W, br)
+                rn = loc.residual_norm
+                if rn is None:
+                    rn = max_abs(system.residual(loc.z))
+                prev = _Point(loc.z, tan, last.s + loc.sigma, loc.iterations, 0, rn, 0.0,
                               tuple(records), prev)
                 n_points += 1
                 if tt.terminal:
