@@ -48,8 +48,9 @@ class Branch:
     ``special_points``, ``status`` (``"bound"``, ``"max_steps"``, ``"terminal_event"``,
     ``"convergence_failure"``, ``"nonfinite_residual"``, ...), ``success``,
     ``message`` (a sentence), ``stats`` (per-point arrays ``newton_iterations``,
-    ``rejected_steps``, ``residual_norm``, ``ds``), ``variables`` (the names of the traced
-    components, i.e. the unknowns and the free parameter(s)).
+    ``rejected_steps``, ``residual_norm``, ``ds``; a point inserted inside a step, such as a
+    located fold, has ``ds = 0`` and the locating method's iterations), ``variables`` (the
+    names of the traced components, i.e. the unknowns and the free parameter(s)).
     """
 
     def __init__(self, columns: dict[str, np.ndarray], *, variables: tuple[str, ...],

@@ -172,6 +172,12 @@ def test_stats_are_per_point():
     for key in ("newton_iterations", "rejected_steps", "residual_norm", "ds"):
         assert br.stats[key].shape == (len(br),)
     assert np.all(br.stats["residual_norm"] < 1e-9)
+    # points inserted inside a step (the two folds and the bound) have no step of their own
+    inserted = {sp.index for sp in br.special_points if sp.kind == "fold"}
+    inserted.add(len(br) - 1)  # the bound b = 1, located inside the last step
+    ds = br.stats["ds"]
+    assert {i for i in range(len(br)) if ds[i] == 0.0} == inserted
+    assert all(br.stats["newton_iterations"][i] >= 1 for i in inserted)
 
 
 def test_check_jacobian_finds_wrong_entry():
