@@ -32,7 +32,7 @@ import scipy.sparse as sp
 
 from .branch import Branch, SpecialPoint
 from .errors import ProblemDefinitionError, SingularMatrixError
-from .linalg import bordered, bordered_square, factor, max_abs
+from .linalg import bordered, bordered_square, factor, max_abs, unit_last
 from .locate import (
     Bracket,
     Located,
@@ -117,8 +117,7 @@ class FoldSystem(CurveSystem):
     def _bordered_solve(self, z, df=None):
         df = self.df(z) if df is None else df
         lu = factor(bordered_square(self.m_matrix(df), self.b, self.c))
-        e = np.zeros(self.n + 1)
-        e[-1] = 1.0
+        e = unit_last(self.n + 1)
         x = lu.solve(e)
         y = lu.solve(e, trans=True)
         return x[-1], x[:-1], y[:-1], lu, df

@@ -74,7 +74,8 @@ class DenseLU:
         return self
 
     def solve(self, b: np.ndarray, trans: bool = False) -> np.ndarray:
-        return _getrs(self.lu, self.piv, b, trans=1 if trans else 0)[0]
+        x, _ = _getrs(self.lu, self.piv, b, trans=1 if trans else 0)
+        return x
 
     def sign_det(self) -> float:
         if self.n <= 16:
@@ -151,6 +152,14 @@ def bordered_square(m, b: np.ndarray, c: np.ndarray):
     a[:n, n] = b
     a[n, :n] = c
     return a
+
+
+def unit_last(n: int) -> np.ndarray:
+    """The unit vector ``(0, …, 0, 1)`` of length ``n``: the right-hand side that picks the
+    border row of a bordered system."""
+    e = np.zeros(n)
+    e[-1] = 1.0
+    return e
 
 
 def max_abs(x: np.ndarray) -> float:

@@ -26,6 +26,7 @@ from .linalg import (
     factor,
     getrs,
     max_abs,
+    unit_last,
 )
 
 _EPS = np.finfo(float).eps
@@ -146,10 +147,8 @@ def tangent_at(system, z: np.ndarray, row: np.ndarray, weights: np.ndarray,
     Exactly at a branch point ``[∂G/∂z; row]`` is singular whatever the border: the tangent of
     the branch is then the limit of its tangents, taken from the step's Hermite interpolant."""
     dg = system.jacobian(z)
-    e = np.zeros(z.size)
-    e[-1] = 1.0
     try:
-        t = factor(bordered(dg, row)).solve(e)
+        t = factor(bordered(dg, row)).solve(unit_last(z.size))
     except SingularMatrixError:
         if br is None:
             raise
@@ -182,8 +181,7 @@ def minimally_augmented(system, z: np.ndarray, k: int, b: np.ndarray, c: np.ndar
     without column ``k``."""
     dg = system.jacobian(z)
     a = bordered_square(delete_column(dg, k), b, c)
-    e = np.zeros(b.size + 1)
-    e[-1] = 1.0
+    e = unit_last(b.size + 1)
     if type(a) is np.ndarray:
         lu, piv, x = dense_solve(a, e)
         y = getrs(lu, piv, e, trans=True)
@@ -291,11 +289,10 @@ def locate_component(br: Bracket, k: int, value: float) -> Located | None:
     z[k] = value  # the constraint is linear: snap away the last rounding
     # the corrector's last factorization is [∂G/∂z; e_k] (at z up to its last update or
     # two): its solution t of [∂G/∂z; e_k] t = e_last has ∂G/∂z t = 0, a tangent
-    e = np.zeros(z.size)
-    e[-1] = 1.0
     return Located(z, br.sigma(z), "converged", res.iterations,
                    {"method": "Newton with the component fixed"},
-                   tangent=oriented_tangent(res.lu.solve(e), br.row, br.weights))
+                   tangent=oriented_tangent(res.lu.solve(unit_last(z.size)), br.row,
+                                            br.weights))
 
 
 def locate_on_arc(br: Bracket, f, f_a: float, f_b: float, rtol: float | None = None) -> Located:

@@ -28,7 +28,7 @@ from .errors import (
     SingularMatrixError,
 )
 from .events import Event
-from .linalg import bordered, factor, max_abs
+from .linalg import bordered, factor, max_abs, unit_last
 from .locate import (
     Bracket,
     Located,
@@ -303,8 +303,7 @@ class Tracer:
         tests.extend(extra_tests)
         self.tests = tuple(tests)
         self._has_bp = any(t.kind == "branch_point" for t in tests)
-        self._e_last = np.zeros(system.dim)
-        self._e_last[-1] = 1.0
+        self._e_last = unit_last(system.dim)
 
     def _component(self, name: str, what: str) -> int:
         k = self.system.index(name)
