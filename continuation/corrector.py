@@ -71,7 +71,7 @@ def newton(system, z0: np.ndarray, row: np.ndarray, c: float, *, tol: float, ste
     sn_prev = math.inf
     # dense matrices are factored and solved by one LAPACK gesv (the factors are wrapped in a
     # DenseLU only for the result); sparse ones through `factor`
-    lu = f = piv = a = None
+    lu = f = piv = None
     reason = "max_iterations"
     converged = False
     chord = False

@@ -74,8 +74,7 @@ class DenseLU:
         return self
 
     def solve(self, b: np.ndarray, trans: bool = False) -> np.ndarray:
-        x, _ = _getrs(self.lu, self.piv, b, trans=1 if trans else 0)
-        return x
+        return getrs(self.lu, self.piv, b, trans)
 
     def sign_det(self) -> float:
         if self.n <= 16:

@@ -78,6 +78,19 @@ def reference_fold(n: int):
     return None, "none"
 
 
+def measure(n: int, sparse: bool, reps: int, ref) -> dict:
+    """The best of ``reps`` traces at size ``n``, as a table row (``lu_units`` NaN)."""
+    elapsed, br, folds = min((run(n, sparse) for _ in range(reps)), key=lambda r: r[0])
+    steps = br.info["steps"]
+    lam = folds[0].values["lam"] if folds else float("nan")
+    value, kind = ref
+    return {"n": n, "kind": "sparse" if sparse else "dense", "time": elapsed, "steps": steps,
+            "newton": int(np.sum(br.stats["newton_iterations"])),
+            "us_per_step_per_n": elapsed / steps / n * 1e6, "lu_units": float("nan"),
+            "lam": lam, "err": abs(lam - value) / value if value is not None else float("nan"),
+            "ref": kind, "ok": br.success and len(folds) == 1}
+
+
 def git_rev() -> str:
     try:
         return subprocess.run(["git", "rev-parse", "--short", "HEAD"], cwd=ROOT,
@@ -98,37 +111,22 @@ def main(argv=None) -> int:
             ap.error(f"--sizes: each size must be >= 3, got {n}")
 
     rows = []
-    per_step = []
     for n in args.sizes:
         reps = args.repeat if n <= 20_000 else 1
         t_lu = lu_time(n, reps)
-        best = None
-        for _ in range(reps):
-            elapsed, br, folds = run(n, sparse=True)
-            if best is None or elapsed < best[0]:
-                best = (elapsed, br, folds)
-        elapsed, br, folds = best
-        steps = br.info["steps"]
-        newton = int(np.sum(br.stats["newton_iterations"]))
-        ref, ref_kind = reference_fold(n)
-        lam = folds[0].values["lam"] if folds else float("nan")
-        err = abs(lam - ref) / ref if ref is not None else float("nan")
-        per_step.append((n, elapsed / steps))
-        rows.append({"n": n, "kind": "sparse", "time": elapsed, "steps": steps, "newton": newton,
-                     "us_per_step_per_n": elapsed / steps / n * 1e6, "lu_units": elapsed / t_lu,
-                     "t_lu": t_lu, "lam": lam, "err": err, "ref": ref_kind,
-                     "ok": br.success and len(folds) == 1})
-        print(f"N={n}: {elapsed:.3f} s, {steps} steps, {newton} Newton, "
-              f"fold λ={lam:.15g} (rel. err {err:.1e}), {elapsed / t_lu:.0f} LU", flush=True)
+        ref = reference_fold(n)
+        row = measure(n, True, reps, ref)
+        row["lu_units"] = row["time"] / t_lu
+        rows.append(row)
+        print(f"N={n}: {row['time']:.3f} s, {row['steps']} steps, {row['newton']} Newton, "
+              f"fold λ={row['lam']:.15g} (rel. err {row['err']:.1e}), "
+              f"{row['lu_units']:.0f} LU", flush=True)
         if n <= 999:
-            t_dense = min(run(n, sparse=False)[0] for _ in range(reps))
-            rows.append({"n": n, "kind": "dense", "time": t_dense, "steps": steps,
-                         "newton": newton, "us_per_step_per_n": t_dense / steps / n * 1e6,
-                         "lu_units": float("nan"), "t_lu": float("nan"), "lam": lam,
-                         "err": err, "ref": ref_kind, "ok": True})
+            rows.append(measure(n, False, reps, ref))
 
-    ns = np.array([p[0] for p in per_step], dtype=float)
-    ts = np.array([p[1] for p in per_step])
+    sparse_rows = [r for r in rows if r["kind"] == "sparse"]
+    ns = np.array([r["n"] for r in sparse_rows], dtype=float)
+    ts = np.array([r["time"] / r["steps"] for r in sparse_rows])
     slope = float(np.polyfit(np.log(ns), np.log(ts), 1)[0]) if len(ns) >= 2 else float("nan")
 
     now = datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M UTC")
@@ -154,7 +152,7 @@ def main(argv=None) -> int:
         "|---:|---|---:|---:|---:|---:|---:|---:|---:|---|",
     ]
     for r in rows:
-        lu = "—" if r["kind"] == "dense" else f"{r['lu_units']:.0f}"
+        lu = f"{r['lu_units']:.0f}" if np.isfinite(r["lu_units"]) else "—"
         err = "—" if not np.isfinite(r["err"]) else f"{r['err']:.1e}"
         lines.append(
             f"| {r['n']} | {r['kind']} | {r['time']:.3f} | {r['steps']} | {r['newton']} | "
@@ -165,7 +163,6 @@ def main(argv=None) -> int:
         f"{int(ns.min())}…{int(ns.max())} (1 is linear).",
         "",
     ]
-    sparse_rows = [r for r in rows if r["kind"] == "sparse"]
     dense_rows = {r["n"]: r for r in rows if r["kind"] == "dense"}
     if len(sparse_rows) >= 2:
         lo, hi = sparse_rows[0], sparse_rows[-1]
