@@ -55,7 +55,7 @@ def newton(system, z0: np.ndarray, row: np.ndarray, c: float, *, tol: float, ste
     continuation step uses this to halve the step at once instead of spending the whole
     iteration budget first.
     """
-    z = z0.copy()
+    z = z0  # never changed in place: each update makes a new array
     g = system.residual(z) if g0 is None else g0
     rn = _norm(g)
     if rn != rn:

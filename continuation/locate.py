@@ -47,6 +47,7 @@ class Bracket:
     h: float = field(init=False)
     d_a: np.ndarray = field(init=False)
     d_b: np.ndarray = field(init=False)
+    _basis: np.ndarray | None = field(init=False, default=None, repr=False)
 
     def __post_init__(self) -> None:
         self.row = self.weights * self.t_a
@@ -60,24 +61,29 @@ class Bracket:
     def sigma(self, z: np.ndarray) -> float:
         return float(self.row @ (z - self.z_a))
 
+    def _hermite(self, coefficients) -> np.ndarray:
+        """``c0·z_a + c1·h·d_a + c2·z_b + c3·h·d_b`` (one product with the stacked data)."""
+        basis = self._basis
+        if basis is None:
+            basis = self._basis = np.array(
+                (self.z_a, self.h * self.d_a, self.z_b, self.h * self.d_b))
+        return np.array(coefficients).dot(basis)
+
     def guess(self, theta: float) -> np.ndarray:
         """Cubic Hermite interpolation between the end points (θ ∈ [0, 1])."""
         s = theta
-        h00 = 2 * s**3 - 3 * s**2 + 1
-        h10 = s**3 - 2 * s**2 + s
-        h01 = -2 * s**3 + 3 * s**2
-        h11 = s**3 - s**2
-        return (h00 * self.z_a + h10 * self.h * self.d_a + h01 * self.z_b
-                + h11 * self.h * self.d_b)
+        s2 = s * s
+        s3 = s2 * s
+        return self._hermite((2 * s3 - 3 * s2 + 1, s3 - 2 * s2 + s, -2 * s3 + 3 * s2,
+                              s3 - s2))
 
     def guess_derivative(self, theta: float) -> np.ndarray:
+        """``dz/dσ`` of the interpolant at θ."""
         s = theta
-        d00 = 6 * s**2 - 6 * s
-        d10 = 3 * s**2 - 4 * s + 1
-        d01 = -6 * s**2 + 6 * s
-        d11 = 3 * s**2 - 2 * s
-        return (d00 * self.z_a / self.h + d10 * self.d_a + d01 * self.z_b / self.h
-                + d11 * self.d_b)
+        s2 = s * s
+        h = self.h
+        return self._hermite(((6 * s2 - 6 * s) / h, (3 * s2 - 4 * s + 1) / h,
+                              (-6 * s2 + 6 * s) / h, (3 * s2 - 2 * s) / h))
 
     def turning_theta(self, k: int) -> float:
         """θ ∈ [0, 1] where component ``k`` of the Hermite interpolant is stationary: the
@@ -152,7 +158,7 @@ def tangent_at(system, z: np.ndarray, row: np.ndarray, weights: np.ndarray,
     except SingularMatrixError:
         if br is None:
             raise
-        t = br.guess_derivative(float(np.clip(br.sigma(z) / br.h, 0.0, 1.0)))
+        t = br.guess_derivative(min(1.0, max(0.0, br.sigma(z) / br.h)))
     return t / math.sqrt(t.dot(weights * t))
 
 
@@ -278,7 +284,7 @@ def locate_component(br: Bracket, k: int, value: float) -> Located | None:
     """The curve point with ``z_k = value`` exactly (corrector with constraint row ``e_k``)."""
     o = br.options
     za, zb = br.z_a[k], br.z_b[k]
-    theta = float(np.clip((value - za) / (zb - za), 0.0, 1.0)) if zb != za else 0.5
+    theta = min(1.0, max(0.0, float((value - za) / (zb - za)))) if zb != za else 0.5
     row = np.zeros(br.z_a.size)
     row[k] = 1.0
     res = newton(br.system, br.guess(theta), row, value, tol=o.tol, step_tol=o.step_tol,

@@ -14,7 +14,6 @@ from __future__ import annotations
 import logging
 import math
 from collections.abc import Mapping, Sequence
-from dataclasses import dataclass
 from typing import Any, NamedTuple
 
 import numpy as np
@@ -83,24 +82,36 @@ class TracerState(NamedTuple):
 # --- --- test functions
 
 
-@dataclass(frozen=True)
+# where a test function's value comes from (a code, so the step's loop dispatches without
+# string comparisons): a tangent component, a component minus a value, the sign of the
+# bordered determinant, or a call
+_FROM_TANGENT, _FROM_COMPONENT, _FROM_DET, _FROM_CALL = range(4)
+
+
 class _Test:
-    kind: str
-    label: str = ""
-    wrt: str | None = None
-    k: int = -1  # component index (folds, targets, bounds)
-    value_at: float = 0.0  # target / bound value
-    direction: int = 0
-    terminal: bool = False
-    event: Event | None = None
+    """A test function of the branch: its value at each point, the sign changes that count,
+    and how a zero is located."""
+
+    __slots__ = ("kind", "label", "wrt", "k", "value_at", "direction", "terminal", "event",
+                 "source")
+
+    def __init__(self, kind: str, label: str = "", wrt: str | None = None, k: int = -1,
+                 value_at: float = 0.0, direction: int = 0, terminal: bool = False,
+                 event: Event | None = None) -> None:
+        self.kind, self.label, self.wrt, self.k = kind, label, wrt, k  # k: component index
+        self.value_at = value_at  # target / bound value
+        self.direction, self.terminal, self.event = direction, terminal, event
+        self.source = {"fold": _FROM_TANGENT, "bound": _FROM_COMPONENT,
+                       "target": _FROM_COMPONENT, "branch_point": _FROM_DET}.get(kind,
+                                                                                 _FROM_CALL)
 
     def value(self, tracer: Tracer, z, t, sdet) -> float:
-        kind = self.kind
-        if kind == "fold":
+        source = self.source
+        if source == _FROM_TANGENT:
             return float(t[self.k])
-        if kind == "bound" or kind == "target":
+        if source == _FROM_COMPONENT:
             return float(z[self.k] - self.value_at)
-        if kind == "branch_point":
+        if source == _FROM_DET:
             return sdet
         if self.kind == "cusp":
             return tracer.system.cusp_coefficient(z)
@@ -648,7 +659,9 @@ class Tracer:
         if rejected:
             factor_ = min(factor_, 1.0)
         ds_next = min(o.ds_max, max(o.ds_min, ds * factor_))
-        h = float(row.dot(z1 - z))
+        # the pseudo-arclength of the step: row·(z1 − z) = ds·(row·direction) = ds, as the
+        # corrector satisfies the (linear) hyperplane equation to rounding
+        h = float(row.dot(z1 - z)) if is_corner else ds
         new_point = _Point(z1, t_new, last.s + h, res.iterations, rejected, res.residual_norm,
                            ds, None, last)
         if used_fallback:
@@ -658,10 +671,25 @@ class Tracer:
         # test functions
         new_tests = []
         crossings = []
+        zl = tl = None
         for tt, old in zip(self.tests, state.tests):
-            new = tt.value(self, z1, t_new, sdet)
+            source = tt.source
+            if source == _FROM_TANGENT:
+                if tl is None:
+                    tl = t_new.tolist()
+                new = tl[tt.k]
+            elif source == _FROM_COMPONENT:
+                if zl is None:
+                    zl = z1.tolist()
+                new = zl[tt.k] - tt.value_at
+            elif source == _FROM_DET:
+                new = sdet
+            else:
+                new = tt.value(self, z1, t_new, sdet)
             new_tests.append(new)
-            if tt.crossed(old, new):
+            # no crossing unless the sign changed or an end is exactly zero
+            if old is not None and ((old < 0) != (new < 0) or new == 0.0 or old == 0.0) \
+                    and tt.crossed(old, new):
                 crossings.append((tt, old, new))
         if is_corner:
             # the tangent jumped across a corner: a fold there is non-smooth and only
@@ -742,8 +770,9 @@ class Tracer:
             p = p.prev
         points.reverse()
         system = self.system
-        Z = np.array([pt.z for pt in points])
-        T = np.array([pt.t for pt in points])
+        n_pts = len(points)
+        Z = np.concatenate([pt.z for pt in points]).reshape(n_pts, -1)
+        T = np.concatenate([pt.t for pt in points]).reshape(n_pts, -1)
         s = np.array([pt.s for pt in points])
         columns = {name: Z[:, i].copy() for i, name in enumerate(system.names)}
         for name, value in system.fixed_values().items():
@@ -762,9 +791,9 @@ class Tracer:
             message = "the branch is still being traced (result of an unfinished state)"
         else:
             message = state.message
-        if not any(sp.kind == "endpoint" and sp.index == len(points) - 1 for sp in specials):
+        if not any(sp.index == n_pts - 1 and sp.kind == "endpoint" for sp in specials):
             specials.append(SpecialPoint(
-                kind="endpoint", index=len(points) - 1,
+                kind="endpoint", index=n_pts - 1,
                 values={k: float(v[-1]) for k, v in columns.items()}, tangent=T[-1].copy(),
                 status="converged", label=status, s=float(s[-1])))
         stats = {
