@@ -315,6 +315,7 @@ class Tracer:
         self.tests = tuple(tests)
         self._has_bp = any(t.kind == "branch_point" for t in tests)
         self._e_last = unit_last(system.dim)
+        self._unit_weights = bool(np.all(self.weights == 1.0))
 
     def _component(self, name: str, what: str) -> int:
         k = self.system.index(name)
@@ -583,7 +584,9 @@ class Tracer:
             if nd > 0:
                 secant = d / nd
         direction = t if secant is None else secant
-        row = W * direction
+        # unit weights (one unknown): the weighted products are plain ones
+        unit_w = self._unit_weights
+        row = direction if unit_w else W * direction
         used_fallback = False
         is_corner = False
         corner = None
@@ -603,12 +606,12 @@ class Tracer:
                 used_fallback = True
             if res.converged:
                 t_new = res.lu.solve(self._e_last)
-                t_new /= math.sqrt(t_new.dot(W * t_new))
+                t_new /= math.sqrt(t_new.dot(t_new if unit_w else W * t_new))
                 rt = row.dot(t_new)
                 cosang = rt if secant is None else t_new.dot(W * t)
                 angle = math.degrees(math.acos(max(-1.0, min(1.0, cosang))))
                 dc = res.z - z_pred
-                correction = math.sqrt(dc.dot(W * dc))
+                correction = math.sqrt(dc.dot(dc if unit_w else W * dc))
                 if angle > o.max_angle or correction > ds:
                     reason = (f"tangent turned {angle:.1f} degrees" if angle > o.max_angle
                               else "correction larger than the step")
