@@ -29,7 +29,9 @@ from .linalg import (
     unit_last,
 )
 
-_EPS = np.finfo(float).eps
+_EPS = float(np.finfo(float).eps)
+_SQRT_EPS = _EPS ** 0.5
+_CBRT_EPS = _EPS ** (1.0 / 3.0)
 
 
 @dataclass
@@ -173,21 +175,22 @@ def second_derivative_row(jacobian, z: np.ndarray, v: np.ndarray, w: np.ndarray,
         return np.zeros(z.size)
     scale = max(1.0, max_abs(z)) / vmax
     if j0 is not None:
-        h = _EPS ** 0.5 * scale
-        z1 = z + h * v
+        z1 = z + (_SQRT_EPS * scale) * v
         h = max_abs(z1 - z) / vmax  # the step actually taken
         return (jacobian(z1) - j0).T.dot(w) / h
-    h = _EPS ** (1.0 / 3.0) * scale
+    h = _CBRT_EPS * scale
     return (jacobian(z + h * v).T.dot(w) - jacobian(z - h * v).T.dot(w)) / (2.0 * h)
 
 
-def minimally_augmented(system, z: np.ndarray, k: int, b: np.ndarray, c: np.ndarray):
+def minimally_augmented(system, z: np.ndarray, k: int, b: np.ndarray, c: np.ndarray,
+                        e: np.ndarray | None = None):
     """Test function ``g`` of the fold in component ``k``, its right/left null vectors and the
     Jacobian ``dg`` of G at ``z``: ``[[M, b], [c^T, 0]] [v; g] = [0; 1]`` with ``M = ∂G/∂z``
-    without column ``k``."""
+    without column ``k`` (``e``: that right-hand side, if the caller holds one)."""
     dg = system.jacobian(z)
     a = bordered_square(delete_column(dg, k), b, c)
-    e = unit_last(b.size + 1)
+    if e is None:
+        e = unit_last(b.size + 1)
     if type(a) is np.ndarray:
         lu, piv, x = dense_solve(a, e)
         y = getrs(lu, piv, e, trans=True)
@@ -231,21 +234,23 @@ def locate_fold(br: Bracket, k: int, start: np.ndarray | None = None,
     b = c = v0
     rhs = np.empty(z.size)
     vt = np.zeros(z.size)
+    e = unit_last(z.size)
     exact = getattr(system, "exact_jacobian", False)
+    jacobian, residual = system.jacobian, system.residual
     converged = False
     it = 0
     previous = math.inf
     for it in range(1, o.max_locate_iterations + 1):
         try:
-            g, v, w, dg = minimally_augmented(system, z, k, b, c)
+            g, v, w, dg = minimally_augmented(system, z, k, b, c, e)
         except SingularMatrixError:
             return None
         vt[keep] = v
         # the Newton system [∂G/∂z; ∇g] dz = −[G; g] with ∇g = −w·D²G[v, ·], solved for
         # d = −dz with that row negated (sign flips are exact: bitwise the same update)
-        rhs[:-1] = system.residual(z)
+        rhs[:-1] = residual(z)
         rhs[-1] = -g
-        a = bordered(dg, second_derivative_row(system.jacobian, z, vt, w, dg if exact else None))
+        a = bordered(dg, second_derivative_row(jacobian, z, vt, w, dg if exact else None))
         try:
             d = dense_solve(a, rhs)[2] if type(a) is np.ndarray else factor(a).solve(rhs)
         except SingularMatrixError:
@@ -270,7 +275,7 @@ def locate_fold(br: Bracket, k: int, start: np.ndarray | None = None,
     if not (rn <= o.tol or rn <= system.residual_floor(dg, z)):  # NaN fails too
         return None
     sigma = br.sigma(z)
-    if not (-0.05 * abs(br.h) <= sigma * np.sign(br.h) <= 1.05 * abs(br.h)):
+    if not (-0.05 * abs(br.h) <= (sigma if br.h >= 0 else -sigma) <= 1.05 * abs(br.h)):
         return None  # converged to a fold outside this step
     # the tangent at a fold in z_k spans the kernel of ∂G/∂z, which has no k component: v
     # (from the last iterate, one update of ≤ locate_tol away)
