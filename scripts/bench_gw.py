@@ -29,6 +29,7 @@ if str(ROOT) not in sys.path:
     sys.path.insert(0, str(ROOT))
 
 from models.gw import gw_integral, log_gw_integral  # noqa: E402
+from scripts._report import write_report  # noqa: E402
 
 N_ACC = 481  # accuracy grid
 N_TIME = 200_000  # vectorised timing sample (ours); quad/pbdv timed on fewer values
@@ -152,7 +153,7 @@ def main(argv: list[str] | None = None) -> int:
         "",
     ]
     args.out.parent.mkdir(parents=True, exist_ok=True)
-    args.out.write_text("\n".join(lines))
+    write_report(args.out, "\n".join(lines))
     print("\n".join(lines))
     return 0
 

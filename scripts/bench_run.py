@@ -30,6 +30,10 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]
 SCENE = ROOT / "scenes" / "fig6.toml"
 DOC = ROOT / "docs" / "benchmarks" / "run.md"
+if str(ROOT) not in sys.path:
+    sys.path.insert(0, str(ROOT))
+
+from scripts._report import write_report  # noqa: E402
 
 _CHILD = r"""
 import json, sys, time
@@ -126,10 +130,7 @@ def main() -> None:
     text = "\n".join(lines)
     print(text)
     if not args.no_write:
-        DOC.parent.mkdir(parents=True, exist_ok=True)
-        tmp = DOC.with_suffix(".md.tmp")
-        tmp.write_text(text, encoding="utf-8")
-        os.replace(tmp, DOC)
+        write_report(DOC, text)
         print(f"wrote {DOC.relative_to(ROOT)}")
 
 

@@ -41,6 +41,7 @@ if str(ROOT) not in sys.path:
 
 from continuation import trace  # noqa: E402
 from continuation.system import BranchSystem  # noqa: E402
+from scripts._report import write_report  # noqa: E402
 from tests.continuation import oracles as orc  # noqa: E402
 
 
@@ -185,11 +186,7 @@ def main(argv=None) -> int:
                          f"matrix) takes {d['time'] / sp_['time']:.0f}× as long as the "
                          "sparse one.")
         lines.append("")
-    out = pathlib.Path(args.out)
-    out.parent.mkdir(parents=True, exist_ok=True)
-    tmp = out.with_suffix(out.suffix + ".tmp")
-    tmp.write_text("\n".join(lines), encoding="utf-8")
-    tmp.replace(out)
+    out = write_report(args.out, "\n".join(lines))
     print(f"wrote {out}; time per step ∝ N^{slope:.2f}")
     return 0 if all(r["ok"] for r in rows) else 1
 

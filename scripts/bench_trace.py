@@ -52,6 +52,7 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
 from continuation import Problem, trace  # noqa: E402
+from scripts._report import write_report  # noqa: E402
 
 TOL = 1e-10
 
@@ -107,7 +108,9 @@ PROBLEMS = [_cusp(), _truss()]
 
 
 # ----------------------------------------------------------------------------- runners
-# Each runner returns dict(points, newton (total or None), nfev, folds=[lam estimate], status)
+# Each runner solves and returns a function that summarises the run as dict(points, newton
+# (total or None), nfev, folds=[lam estimate], located, ok): the timings cover the solve only,
+# not this harness's post-processing (which for contique scans every point for its folds)
 
 
 def _counted(fn, counter, key):
@@ -134,11 +137,14 @@ def run_ours(pb, analytic):
                        derivatives="central")
     lo, hi = sorted((pb["lam0"], pb["lam1"]))
     br = trace(prob, u0=[pb["x0"]], free="lam", bounds={"lam": (lo, hi)})
-    folds = [sp.values["lam"] for sp in br.special_points
-             if sp.kind == "fold" and sp.status == "converged"]
-    return {"points": len(br["lam"]), "newton": int(np.sum(br.stats["newton_iterations"])),
-            "nfev": cnt["f"], "folds": folds, "located": "refined (Newton)",
-            "ok": bool(br.success) and br["lam"][-1] == pb["lam1"]}
+
+    def summary():
+        folds = [sp.values["lam"] for sp in br.special_points
+                 if sp.kind == "fold" and sp.status == "converged"]
+        return {"points": len(br["lam"]), "newton": int(np.sum(br.stats["newton_iterations"])),
+                "nfev": cnt["f"], "folds": folds, "located": "refined (Newton)",
+                "ok": bool(br.success) and br["lam"][-1] == pb["lam1"]}
+    return summary
 
 
 def run_contique(pb, analytic, contique):
@@ -164,11 +170,12 @@ def run_contique(pb, analytic, contique):
             newton += res.niterations
             if (res.x[-1] >= lam1) if up else (res.x[-1] <= lam1):
                 break
-    lams = np.asarray(lams)
-    folds = _bracketed_folds(lams)
-    return {"points": len(lams), "newton": newton, "nfev": cnt["f"], "folds": folds,
-            "located": "bracketed (extreme point)",
-            "ok": bool(len(lams)) and ((lams[-1] >= lam1) if up else (lams[-1] <= lam1))}
+
+    def summary():
+        return {"points": len(lams), "newton": newton, "nfev": cnt["f"],
+                "folds": _bracketed_folds(np.asarray(lams)), "located": "bracketed (extreme point)",
+                "ok": bool(len(lams)) and ((lams[-1] >= lam1) if up else (lams[-1] <= lam1))}
+    return summary
 
 
 def _bracketed_folds(lams):
@@ -246,8 +253,8 @@ def run_floor(pb):
         ds = min(0.5, ds * min(2.0, max(0.5, min(5.0 / k, 15.0 / max(angle, 1e-12)))))
         z, t = zz, tn
         points += 1
-    return {"points": points, "newton": newton, "nfev": cnt["f"], "folds": [],
-            "located": "none (no special points)", "ok": True}
+    return lambda: {"points": points, "newton": newton, "nfev": cnt["f"], "folds": [],
+                    "located": "none (no special points)", "ok": True}
 
 
 def run_scipy(pb, analytic):
@@ -291,8 +298,8 @@ def run_scipy(pb, analytic):
             x_prev, lam_prev = x, lam
             points += 1
         ok = ok and good
-    return {"points": points, "newton": None, "nfev": cnt["f"], "folds": folds,
-            "located": "failure (Δ = 1% of range)", "ok": ok}
+    return lambda: {"points": points, "newton": None, "nfev": cnt["f"], "folds": folds,
+                    "located": "failure (Δ = 1% of range)", "ok": ok}
 
 
 # ----------------------------------------------------------------------------- timing
@@ -439,7 +446,7 @@ def main(argv=None):
         times = {}
         bests = best_times([lambda fn=fn, pb=pb: fn(pb) for _, _, fn in variants], args.repeat)
         for (tool, deriv, fn), t in zip(variants, bests, strict=True):
-            out = fn(pb)
+            out = fn(pb)()
             times[(tool.split()[0], deriv)] = t
             errs = fold_errors(out["folds"], pb["folds"])
             located = sum(e is not None and e <= 1e-12 * max(1.0, abs(lam))
@@ -467,7 +474,8 @@ def main(argv=None):
         "Reproduce from the repository root: `python scripts/bench_trace.py` "
         "(contique is optional: `pip install contique`).",
         "",
-        "Wall time per full branch: timeit-style, best of "
+        "Wall time per full branch (the solve only, not this script's summary of it): "
+        "timeit-style, best of "
         f"{args.repeat} rounds of an autoranged loop, all tools in one process, rounds "
         "interleaved across tools so that load from other jobs hits all of them alike. "
         "Newton iterations per point are each tool's own count (ours: `stats`; contique: "
@@ -499,9 +507,7 @@ def main(argv=None):
     lines += ["", "Target for the solver: the cusp branch with both folds located in about "
               "1 ms, at least 10× faster than contique.", ""]
     text = "\n".join(lines)
-    out = Path(args.out)
-    out.parent.mkdir(parents=True, exist_ok=True)
-    out.write_text(text)
+    write_report(args.out, text)
     print(text)
 
 
