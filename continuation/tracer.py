@@ -316,6 +316,7 @@ class Tracer:
         self._has_bp = any(t.kind == "branch_point" for t in tests)
         self._e_last = unit_last(system.dim)
         self._unit_weights = bool(np.all(self.weights == 1.0))
+        self._bound_tests = tuple((i, t) for i, t in enumerate(tests) if t.kind == "bound")
 
     def _component(self, name: str, what: str) -> int:
         k = self.system.index(name)
@@ -558,6 +559,56 @@ class Tracer:
                 return res, t_new, W * t_new, angle
         return None
 
+    def _aim_at_bound(self, state: TracerState, z, t, ds):
+        """A step that would cross a bound ends on it instead: from the tangent predictor's
+        crossing of the bound, Newton with that component fixed (one solve, where a step past
+        the bound and locating it would take two). Used only where the bound is transversal
+        with margin — the tangent within 90° − ``max_angle`` of the bound's normal (in the
+        weighted metric), so that the curve, turning by at most ``max_angle``, still crosses
+        it — and accepted under the same guards as any step; otherwise None (a normal step).
+
+        Returns ``(result, tangent, angle, h, rt, test)``: ``h`` the pseudo-arclength of the
+        end point along ``t``, ``rt`` the sign factor of the bordered determinant."""
+        o = self.options
+        W = self.weights
+        for i, tt in self._bound_tests:
+            old = state.tests[i]
+            k = tt.k
+            tk = float(t[k])
+            if old is None or old == 0.0 or tk == 0.0:
+                continue
+            sigma = -old / tk  # where the tangent line meets the bound
+            if not 0.0 < sigma <= ds or not tt.crossed(old, old + ds * tk):
+                continue
+            if math.sqrt(W[k]) * abs(tk) < math.sin(math.radians(o.max_angle)):
+                return None  # grazing: a normal step, then locating
+            z_pred = z + sigma * t
+            z_pred[k] = tt.value_at
+            row = np.zeros(z.size)
+            row[k] = 1.0
+            res = newton(self.system, z_pred, row, tt.value_at, tol=o.tol,
+                         step_tol=o.step_tol, max_iter=o.max_newton_iterations, contract=True)
+            if not res.converged:
+                return None
+            res.z[k] = tt.value_at  # the constraint is linear: snap away the last rounding
+            # [∂G/∂z; e_kᵀ] tan = e_last gives a tangent (with tan_k = 1), oriented like t
+            tan = res.lu.solve(self._e_last)
+            wt = W * t
+            rt = float(tan.dot(wt))
+            norm = math.sqrt(tan.dot(W * tan))
+            if not (math.isfinite(norm) and norm > 0.0 and rt != 0.0):
+                return None
+            t_new = tan / (norm if rt > 0 else -norm)
+            angle = math.degrees(math.acos(max(-1.0, min(1.0, abs(rt) / norm))))
+            dz = res.z - z
+            h = float(wt.dot(dz))
+            dc = res.z - z_pred
+            if (angle > o.max_angle or t_new[k] * tk <= 0.0 or h <= 0.0
+                    or self.wnorm(dc) > ds):
+                return None
+            return res, t_new, angle, h, rt, tt
+        return None
+
     def _sdet(self, z, t):
         lu = factor(bordered(self.system.jacobian(z), self.weights * t))
         return lu.sign_det()
@@ -590,11 +641,14 @@ class Tracer:
         used_fallback = False
         is_corner = False
         corner = None
+        aimed = None
         if state.stalled >= _STALL_STEPS:
             # creeping at ds near ds_min (say, Newton with a Jacobian differenced across a
             # kink): try to pass the corner directly
             corner = self._corner_step(z, t, ds, None if last.prev is None else last.prev.z)
-        while corner is None:
+        elif self._bound_tests and secant is None:
+            aimed = self._aim_at_bound(state, z, t, ds)
+        while corner is None and aimed is None:
             z_pred = z + ds * direction
             # above ds_min a wandering Newton gives up early (the step is halved anyway)
             res = newton(system, z_pred, row, row.dot(z_pred), tol=o.tol,
@@ -648,6 +702,8 @@ class Tracer:
             ds = self.wnorm(res.z - z)
             is_corner = True
             rt = row.dot(t_new)
+        elif aimed is not None:
+            res, t_new, angle, ds, rt, aimed = aimed
         z1 = res.z
         sdet = None
         if self._has_bp:
@@ -663,7 +719,8 @@ class Tracer:
             factor_ = min(factor_, 1.0)
         ds_next = min(o.ds_max, max(o.ds_min, ds * factor_))
         # the pseudo-arclength of the step: row·(z1 − z) = ds·(row·direction) = ds, as the
-        # corrector satisfies the (linear) hyperplane equation to rounding
+        # corrector satisfies the (linear) hyperplane equation to rounding (an aimed step
+        # returns its own)
         h = float(row.dot(z1 - z)) if is_corner else ds
         new_point = _Point(z1, t_new, last.s + h, res.iterations, rejected, res.residual_norm,
                            ds, None, last)
@@ -707,21 +764,35 @@ class Tracer:
         message = ""
         n_points = state.n_points
         if crossings:
-            br = Bracket(system, z, t, z1, t_new, W, o)
+            br = None
             found = []
             for tt, old, new in crossings:
-                loc = tt.locate(self, br, old, new)
+                if tt is aimed:  # the step ended on this bound: nothing to locate
+                    loc = Located(z1, h, "converged", res.iterations,
+                                  {"method": "step aimed at the bound"}, tangent=t_new,
+                                  residual_norm=res.residual_norm)
+                else:
+                    if br is None:
+                        br = Bracket(system, z, t, z1, t_new, W, o)
+                    loc = tt.locate(self, br, old, new)
                 found.append((loc.sigma, tt, loc))
-            found.sort(key=lambda item: item[0] * math.copysign(1.0, br.h))
+            direction = math.copysign(1.0, h if br is None else br.h)
+            found.sort(key=lambda item: item[0] * direction)
             prev = last
             for _sigma, tt, loc in found:
-                records = [self._record(tt, loc, br, last.s)]
+                records = [self._record(tt, loc, br, last.s, h)]
                 if tt.terminal:
                     status = "bound" if tt.kind == "bound" else "terminal_event"
                     message = (f"the branch reached {tt.label}" if tt.kind == "bound"
                                else f"terminal event {tt.label!r} occurred")
                     if tt.kind != "bound":
                         records.append(("endpoint", tt.label, tt.wrt, loc.status, None, {}))
+                if tt is aimed:  # the step's own end point
+                    new_point.special = tuple(records)
+                    new_point.prev = prev
+                    prev = new_point
+                    n_points += 1
+                    break
                 tan = loc.tangent
                 if tan is None:
                     tan = tangent_at(system, loc.z, br.row, W, br)
@@ -750,10 +821,10 @@ class Tracer:
         return TracerState(new_point, ds_next, tuple(new_tests), steps, status, message,
                            n_points, stalled)
 
-    def _record(self, tt: _Test, loc: Located, br: Bracket, s_a: float):
+    def _record(self, tt: _Test, loc: Located, br: Bracket | None, s_a: float, h: float):
         details = dict(loc.details)
         details["iterations"] = loc.iterations
-        interval = (s_a, s_a + br.h)
+        interval = (s_a, s_a + h)
         if tt.kind == "bound":
             return ("endpoint", tt.label, tt.wrt, loc.status, interval, details)
         if tt.kind == "branch_point":

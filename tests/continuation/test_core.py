@@ -172,12 +172,13 @@ def test_stats_are_per_point():
     for key in ("newton_iterations", "rejected_steps", "residual_norm", "ds"):
         assert br.stats[key].shape == (len(br),)
     assert np.all(br.stats["residual_norm"] < 1e-9)
-    # points inserted inside a step (the two folds and the bound) have no step of their own
+    # points inserted inside a step (the two folds) have no step of their own; the bound
+    # b = 1 ends the last step, which was aimed at it
     inserted = {sp.index for sp in br.special_points if sp.kind == "fold"}
-    inserted.add(len(br) - 1)  # the bound b = 1, located inside the last step
     ds = br.stats["ds"]
     assert {i for i in range(len(br)) if ds[i] == 0.0} == inserted
     assert all(br.stats["newton_iterations"][i] >= 1 for i in inserted)
+    assert ds[-1] == pytest.approx(br.s[-1] - br.s[-2], rel=1e-12)
 
 
 def test_check_jacobian_finds_wrong_entry():
@@ -263,6 +264,39 @@ def test_bound_on_unknown_is_exact():
     assert br["x"][-1] == 0.25
     assert br.special_points[-1].kind == "endpoint"
     assert br.special_points[-1].label == "bound x=0.25"
+
+
+def test_last_step_is_aimed_at_a_transversal_bound():
+    # b = 1 is crossed with the tangent 80° from parallel to it: the last step ends on it
+    # (Newton with b fixed from the tangent line's crossing) instead of passing and locating
+    br = trace(cusp_problem(analytic=True), [X0], free="b", bounds={"b": (-1.0, 1.0)})
+    end = br.special_points[-1]
+    assert end.label == "bound b=1" and end.status == "converged"
+    assert end.details["method"] == "step aimed at the bound"
+    assert br["b"][-1] == 1.0
+    # x^3 - x - 1 = 0 at b = 1: the plastic number (mpmath.findroot(lambda x: x**3 - x - 1,
+    # 1.3) = 1.32471795724474602596...)
+    assert br["x"][-1] == pytest.approx(1.324717957244746, abs=1e-12)
+    assert br.stats["residual_norm"][-1] <= 1e-10
+    # the tangent there is the curve's, (dx, db) ∝ (1, 3x² − 1), oriented along the branch;
+    # it comes from the corrector's last factorization, one update from the point (the
+    # accuracy of every step's tangent: 1e-5 relative here)
+    t = br.tangents[-1]
+    x = br["x"][-1]
+    assert t[1] / t[0] == pytest.approx(3 * x**2 - 1, rel=1e-4) and t[1] > 0
+
+
+def test_grazing_bound_is_located_not_aimed():
+    # x = 1.2 is met on the last stretch, where the branch runs at 73° to the x axis
+    # (db/dx = 3x² − 1 ≈ 3.3): a step aimed at it could miss it, so the crossing is located
+    # inside the step instead
+    br = trace(cusp_problem(analytic=True), [X0], free="b",
+               bounds={"b": (-1.0, 1.0), "x": (-2.0, 1.2)})
+    end = br.special_points[-1]
+    assert br.status == "bound" and end.label == "bound x=1.2" and br["x"][-1] == 1.2
+    assert end.details["method"] == "Newton with the component fixed"
+    assert br.stats["ds"][-1] == 0.0  # a point located inside the last step
+    assert br["b"][-1] == pytest.approx(1.2**3 - 1.2, abs=1e-12)  # b = x³ − x exactly
 
 
 def test_max_steps_is_a_normal_end():
