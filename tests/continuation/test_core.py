@@ -477,20 +477,3 @@ def test_corrector_takes_a_simplified_step_in_the_quadratic_regime():
     assert res.converged
     assert res.z[0] == pytest.approx(X0, rel=2e-16, abs=0)
     assert calls["jacobian"] == res.iterations - 1  # the last iteration was a chord step
-
-
-def test_fold_newton_stopping_estimate():
-    """The locating Newton stops once the estimated next update is below the tolerance. The
-    update sizes are the fold Newton's on the cusp's second fold (x = 1/√3, b = −2/(3√3)):
-    1.64e-4 then 4.68e-8. With the Newton matrix's error δ known (exact Jacobian: a forward
-    difference in its last row, δ = 1e-7) the estimate C·size² + δ·size, C = size/previous²,
-    is 8.5e-15 (the actual next update was 8.9e-16): below 1e-12·(1 + |z|). Unknown δ: the
-    linear estimate size²/previous = 1.3e-11 is not, and neither is a large δ's."""
-    from continuation.locate import newton_done
-
-    z = np.array([0.5773502691896257, -0.3849001794597505])
-    assert newton_done(2, 4.68e-8, 1.64e-4, z, 1e-12, stall=1e-6, perturbation=1e-7)
-    assert not newton_done(2, 4.68e-8, 1.64e-4, z, 1e-12, stall=1e-6)
-    assert not newton_done(2, 4.68e-8, 1.64e-4, z, 1e-12, stall=1e-6, perturbation=1e-3)
-    # not yet in the quadratic regime (the update shrank by less than 100): never stops early
-    assert not newton_done(2, 1e-6, 5e-5, z, 1e-12, stall=1e-6, perturbation=1e-7)
