@@ -76,10 +76,13 @@ def newton(system, z0: np.ndarray, row: np.ndarray, c: float, *, tol: float, ste
     converged = False
     chord = False
     k = 0
+    # the system for minus the update (saves negating the residual; bitwise the same); the
+    # bordering equation is linear, so after the first update it holds to rounding
+    rhs[m] = row_dot(z) - c
     for k in range(1, max_iter + 1):
-        # the system for minus the update (saves negating the residual; bitwise the same)
         rhs[:m] = g
-        rhs[m] = row_dot(z) - c
+        if k == 2:
+            rhs[m] = 0.0
         if chord:
             # the last update was already in Newton's quadratic regime (≤ sqrt(step_tol)):
             # one simplified step with the last factorization contracts the error by a

@@ -315,7 +315,7 @@ class Tracer:
         self.tests = tuple(tests)
         self._has_bp = any(t.kind == "branch_point" for t in tests)
         self._e_last = unit_last(system.dim)
-        self._unit_weights = bool(np.all(self.weights == 1.0))
+        self._unit_weights = bool((self.weights == 1.0).all())
         self._bound_tests = tuple((i, t) for i, t in enumerate(tests) if t.kind == "bound")
 
     def _component(self, name: str, what: str) -> int:
@@ -382,7 +382,7 @@ class Tracer:
             elif u0.kind == "fold":
                 skip_bp = True
         else:
-            u = np.atleast_1d(np.asarray(u0, dtype=float))
+            u = np.array(u0, dtype=float, ndmin=1)
             n = len(self.problem.unknowns) if self.problem is not None else system.dim - 1
             if u.shape != (n,):
                 raise ProblemDefinitionError(
@@ -397,8 +397,7 @@ class Tracer:
         o = self.options
         system = self.system
         k_free = system.dim - 1
-        row = np.zeros(system.dim)
-        row[k_free] = 1.0
+        row = self._e_last  # the free parameter (the last component) held at its value
         g0 = system.residual(z0)
         if not math.isfinite(max_abs(g0)):
             raise NonFiniteResidualError(
