@@ -132,7 +132,7 @@ class BranchSystem(CurveSystem):
             j = as_matrix(j)
             if type(j) is not np.ndarray:
                 return _sparse_border(j, fp, row)
-        if (j.shape, fp.shape) != self._shapes:
+        if j.shape != self._shapes[0] or fp.shape != self._shapes[1]:
             n = self.n
             raise ProblemDefinitionError(
                 f"jacobian must be {n}×{n} and param_jacobian of length {n}, "
