@@ -316,7 +316,10 @@ class Tracer:
         self._has_bp = any(t.kind == "branch_point" for t in tests)
         self._e_last = unit_last(system.dim)
         self._unit_weights = bool((self.weights == 1.0).all())
-        self._bound_tests = tuple((i, t) for i, t in enumerate(tests) if t.kind == "bound")
+        # (index, test, the most its component can move per unit of step: 1/√w_k, as the
+        # tangent is a unit vector in the weighted norm)
+        self._bound_tests = tuple((i, t, 1.0 / math.sqrt(self.weights[t.k]))
+                                  for i, t in enumerate(tests) if t.kind == "bound")
 
     def _component(self, name: str, what: str) -> int:
         k = self.system.index(name)
@@ -570,7 +573,7 @@ class Tracer:
         end point along ``t``, ``rt`` the sign factor of the bordered determinant."""
         o = self.options
         W = self.weights
-        for i, tt in self._bound_tests:
+        for i, tt, _reach in self._bound_tests:
             old = state.tests[i]
             k = tt.k
             tk = float(t[k])
@@ -645,8 +648,12 @@ class Tracer:
             # creeping at ds near ds_min (say, Newton with a Jacobian differenced across a
             # kink): try to pass the corner directly
             corner = self._corner_step(z, t, ds, None if last.prev is None else last.prev.z)
-        elif self._bound_tests and secant is None:
-            aimed = self._aim_at_bound(state, z, t, ds)
+        elif secant is None:
+            for i, _tt, reach in self._bound_tests:
+                old = state.tests[i]
+                if old is not None and abs(old) <= ds * reach:  # a bound within reach
+                    aimed = self._aim_at_bound(state, z, t, ds)
+                    break
         while corner is None and aimed is None:
             z_pred = z + ds * direction
             # above ds_min a wandering Newton gives up early (the step is halved anyway)
