@@ -851,36 +851,48 @@ class Tracer:
         points.reverse()
         system = self.system
         n_pts = len(points)
-        Z = np.concatenate([pt.z for pt in points]).reshape(n_pts, -1)
-        T = np.concatenate([pt.t for pt in points]).reshape(n_pts, -1)
-        s = np.array([pt.s for pt in points])
-        columns = {name: Z[:, i].copy() for i, name in enumerate(system.names)}
-        for name, value in system.fixed_values().items():
-            columns.setdefault(name, np.full(len(points), float(value)))
+        zs, ts, ss, newton, rejected, residual, dss = zip(
+            *[(pt.z, pt.t, pt.s, pt.newton, pt.rejected, pt.residual, pt.ds) for pt in points])
+        Z = np.concatenate(zs).reshape(n_pts, -1)
+        T = np.concatenate(ts).reshape(n_pts, -1)
+        s = np.array(ss)
+        names = system.names
+        columns = {name: Z[:, i].copy() for i, name in enumerate(names)}
+        fixed = {name: float(value) for name, value in system.fixed_values().items()
+                 if name not in columns}
+        for name, value in fixed.items():
+            columns[name] = np.full(n_pts, value)
         extra = system.extra_columns(Z) if hasattr(system, "extra_columns") else {}
         columns.update(extra)
+
+        def values_at(i: int) -> dict[str, float]:  # every column at row i
+            values = dict(zip(names, zs[i].tolist()))
+            values.update(fixed)
+            for name, col in extra.items():
+                values[name] = float(col[i])
+            return values
+
         specials = []
         for i, pt in enumerate(points):
             for kind, label, wrt, status, interval, details in (pt.special or ()):
                 specials.append(SpecialPoint(
-                    kind=kind, index=i, values={k: float(v[i]) for k, v in columns.items()},
-                    tangent=T[i].copy(), status=status, label=label, with_respect_to=wrt,
-                    s=float(s[i]), interval=interval, details=details))
+                    kind=kind, index=i, values=values_at(i), tangent=T[i].copy(),
+                    status=status, label=label, with_respect_to=wrt, s=ss[i],
+                    interval=interval, details=details))
         status = state.status or "running"
         if state.status is None:
             message = "the branch is still being traced (result of an unfinished state)"
         else:
             message = state.message
-        if not any(sp.index == n_pts - 1 and sp.kind == "endpoint" for sp in specials):
+        if not any(sp.kind == "endpoint" for sp in specials if sp.index == n_pts - 1):
             specials.append(SpecialPoint(
-                kind="endpoint", index=n_pts - 1,
-                values={k: float(v[-1]) for k, v in columns.items()}, tangent=T[-1].copy(),
-                status="converged", label=status, s=float(s[-1])))
+                kind="endpoint", index=n_pts - 1, values=values_at(n_pts - 1),
+                tangent=T[-1].copy(), status="converged", label=status, s=ss[-1]))
         stats = {
-            "newton_iterations": np.array([pt.newton for pt in points]),
-            "rejected_steps": np.array([pt.rejected for pt in points]),
-            "residual_norm": np.array([pt.residual for pt in points]),
-            "ds": np.array([pt.ds for pt in points]),
+            "newton_iterations": np.array(newton),
+            "rejected_steps": np.array(rejected),
+            "residual_norm": np.array(residual),
+            "ds": np.array(dss),
         }
         return Branch(columns, variables=tuple(system.names), s=s, tangents=T,
                       special_points=specials, status=status, message=message, stats=stats,
