@@ -1,4 +1,5 @@
-"""Shared by the benchmark scripts: write a report file atomically."""
+"""Shared by the figure and benchmark scripts: reports and figures written atomically, figures
+byte-for-byte reproducible."""
 
 from __future__ import annotations
 
@@ -6,15 +7,42 @@ import os
 from pathlib import Path
 
 
-def write_report(path, text: str) -> Path:
-    """Write ``text`` to ``path`` (UTF-8) through a temporary file beside it and an atomic
-    rename: an interrupted run leaves the previous report intact, never half of a new one."""
+def write_bytes(path, data: bytes) -> Path:
+    """Write ``data`` to ``path`` through a temporary file beside it and an atomic rename: an
+    interrupted run leaves the previous file intact, never half of a new one."""
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
     tmp = path.with_name(path.name + ".tmp")
     try:
-        tmp.write_text(text, encoding="utf-8")
+        tmp.write_bytes(data)
         os.replace(tmp, path)
     finally:
         tmp.unlink(missing_ok=True)
     return path
+
+
+def write_report(path, text: str) -> Path:
+    """Write ``text`` to ``path`` (UTF-8) atomically (see :func:`write_bytes`)."""
+    return write_bytes(path, text.encode("utf-8"))
+
+
+def save_figure(fig, path, **savefig_kw) -> Path:
+    """Save a matplotlib figure atomically in the format of ``path``'s suffix, without the
+    metadata that changes from run to run (the SVG date, the PNG software tag); with
+    ``svg.hashsalt`` set (by :func:`figure_style`) the SVG's ids are fixed too, so the same
+    data give the same bytes."""
+    import io
+
+    path = Path(path)
+    fmt = path.suffix.lstrip(".").lower()
+    meta = {"svg": {"Date": None}, "png": {"Software": None}}.get(fmt, {})
+    buf = io.BytesIO()
+    fig.savefig(buf, format=fmt, metadata=meta, **savefig_kw)
+    return write_bytes(path, buf.getvalue())
+
+
+def figure_style():
+    """The matplotlib settings of the repository's figures (fixed SVG ids), as a context."""
+    import matplotlib
+
+    return matplotlib.rc_context({"svg.hashsalt": "cusp"})

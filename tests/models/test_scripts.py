@@ -19,10 +19,15 @@ def load(name):
 
 def test_fig5_writes_png_and_svg(tmp_path):
     fig5 = load("fig5")
-    assert fig5.main(["--out", str(tmp_path)]) == 0
+    assert fig5.main(["--out", str(tmp_path / "one")]) == 0
+    assert fig5.main(["--out", str(tmp_path / "two")]) == 0
     for panel in "ab":
         for ext in ("png", "svg"):
-            assert (tmp_path / f"fig5{panel}.{ext}").stat().st_size > 1000
+            one = (tmp_path / "one" / f"fig5{panel}.{ext}").read_bytes()
+            assert len(one) > 1000
+            # reproducible: no date, no random SVG ids, so a rerun gives the same bytes
+            assert one == (tmp_path / "two" / f"fig5{panel}.{ext}").read_bytes()
+    assert not list(tmp_path.rglob("*.tmp"))  # written atomically
 
 
 def test_fig5_data_ordering():
