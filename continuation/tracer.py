@@ -737,17 +737,12 @@ class Tracer:
         # test functions
         new_tests = []
         crossings = []
-        zl = tl = None
         for tt, old in zip(self.tests, state.tests):
             source = tt.source
             if source == _FROM_TANGENT:
-                if tl is None:
-                    tl = t_new.tolist()
-                new = tl[tt.k]
+                new = float(t_new[tt.k])
             elif source == _FROM_COMPONENT:
-                if zl is None:
-                    zl = z1.tolist()
-                new = zl[tt.k] - tt.value_at
+                new = float(z1[tt.k]) - tt.value_at
             elif source == _FROM_DET:
                 new = sdet
             else:
