@@ -872,7 +872,7 @@ class Tracer:
             for kind, label, wrt, status, interval, details in (pt.special or ()):
                 specials.append(SpecialPoint(
                     kind=kind, index=i, values=values_at(i), tangent=T[i].copy(),
-                    status=status, label=label, with_respect_to=wrt, s=ss[i],
+                    status=status, label=label, with_respect_to=wrt, s=float(ss[i]),
                     interval=interval, details=details))
         status = state.status or "running"
         if state.status is None:
@@ -882,7 +882,7 @@ class Tracer:
         if not any(sp.kind == "endpoint" for sp in specials if sp.index == n_pts - 1):
             specials.append(SpecialPoint(
                 kind="endpoint", index=n_pts - 1, values=values_at(n_pts - 1),
-                tangent=T[-1].copy(), status="converged", label=status, s=ss[-1]))
+                tangent=T[-1].copy(), status="converged", label=status, s=float(ss[-1])))
         stats = {
             "newton_iterations": np.array(newton),
             "rejected_steps": np.array(rejected),
