@@ -120,7 +120,7 @@ def factor(a):
 
 def bordered(dg, row: np.ndarray):
     """The square matrix ``[dg; row]`` (``dg`` is m × (m+1), dense or sparse)."""
-    if sp.issparse(dg):
+    if type(dg) is not np.ndarray and sp.issparse(dg):
         return sp.vstack([dg, sp.csr_matrix(row[None, :])], format="csc")
     m, k = dg.shape
     a = np.empty((m + 1, k))
@@ -131,7 +131,7 @@ def bordered(dg, row: np.ndarray):
 
 def delete_column(dg, k: int):
     """``dg`` without column ``k`` (a view when ``k`` is the last column of a dense array)."""
-    if sp.issparse(dg):
+    if type(dg) is not np.ndarray and sp.issparse(dg):
         keep = np.ones(dg.shape[1], dtype=bool)
         keep[k] = False
         return sp.csc_matrix(dg)[:, np.flatnonzero(keep)]
@@ -142,7 +142,7 @@ def delete_column(dg, k: int):
 
 def bordered_square(m, b: np.ndarray, c: np.ndarray):
     """``[[m, b], [c^T, 0]]`` for a square ``m``."""
-    if sp.issparse(m):
+    if type(m) is not np.ndarray and sp.issparse(m):
         return sp.bmat([[m, sp.csc_matrix(b[:, None])], [sp.csr_matrix(c[None, :]), None]],
                        format="csc")
     n = m.shape[0]

@@ -64,7 +64,8 @@ class Bracket:
         return float(self.row @ (z - self.z_a))
 
     def _hermite(self, coefficients) -> np.ndarray:
-        """``c0·z_a + c1·h·d_a + c2·z_b + c3·h·d_b`` (one product with the stacked data)."""
+        """``c0·z_a + c1·h·d_a + c2·z_b + c3·h·d_b`` (one product with the stacked data; a
+        row of coefficients per result)."""
         basis = self._basis
         if basis is None:
             basis = self._basis = np.array(
@@ -73,19 +74,28 @@ class Bracket:
 
     def guess(self, theta: float) -> np.ndarray:
         """Cubic Hermite interpolation between the end points (θ ∈ [0, 1])."""
-        s = theta
-        s2 = s * s
-        s3 = s2 * s
-        return self._hermite((2 * s3 - 3 * s2 + 1, s3 - 2 * s2 + s, -2 * s3 + 3 * s2,
-                              s3 - s2))
+        return self._hermite(self._weights(theta))
 
     def guess_derivative(self, theta: float) -> np.ndarray:
         """``dz/dσ`` of the interpolant at θ."""
-        s = theta
+        return self._hermite(self._derivative_weights(theta))
+
+    def guess_and_derivative(self, theta: float) -> tuple[np.ndarray, np.ndarray]:
+        """:meth:`guess` and :meth:`guess_derivative` at θ, in one product."""
+        both = self._hermite((self._weights(theta), self._derivative_weights(theta)))
+        return both[0], both[1]
+
+    @staticmethod
+    def _weights(s: float) -> tuple[float, float, float, float]:
+        s2 = s * s
+        s3 = s2 * s
+        return (2 * s3 - 3 * s2 + 1, s3 - 2 * s2 + s, -2 * s3 + 3 * s2, s3 - s2)
+
+    def _derivative_weights(self, s: float) -> tuple[float, float, float, float]:
         s2 = s * s
         h = self.h
-        return self._hermite(((6 * s2 - 6 * s) / h, (3 * s2 - 4 * s + 1) / h,
-                              (-6 * s2 + 6 * s) / h, (3 * s2 - 2 * s) / h))
+        return ((6 * s2 - 6 * s) / h, (3 * s2 - 4 * s + 1) / h, (-6 * s2 + 6 * s) / h,
+                (3 * s2 - 2 * s) / h)
 
     def turning_theta(self, k: int) -> float:
         """θ ∈ [0, 1] where component ``k`` of the Hermite interpolant is stationary: the
@@ -223,13 +233,12 @@ def locate_fold(br: Bracket, k: int, start: np.ndarray | None = None,
     o = br.options
     system = br.system
     if start is None:
-        theta = br.turning_theta(k)
-        z = br.guess(theta)
-        tangent = br.guess_derivative(theta)
+        z, tangent = br.guess_and_derivative(br.turning_theta(k))
     else:
         z = start.copy()
-    keep = np.arange(z.size) != k
-    v0 = tangent[keep]
+    # the components other than k (a slice for the usual fold in the last one)
+    keep = slice(None, -1) if k in (-1, z.size - 1) else np.arange(z.size) != k
+    v0 = tangent[keep].copy()
     v0 /= math.sqrt(v0.dot(v0))
     b = c = v0
     rhs = np.empty(z.size)
