@@ -1,0 +1,97 @@
+"""Interleaved A/B timing of `trace` at two git revisions, in one process.
+
+Usage (from the repository root):
+
+    python scripts/bench_ab.py BASE [NEW] [--rounds 11]
+
+BASE and NEW are git revisions (NEW defaults to the working tree). The `continuation`
+package of each is loaded under its own name (it imports only relatively), and both trace
+the benchmark problems of `scripts/bench_trace.py` (cusp and truss, analytic derivatives)
+in alternating rounds of 100 branches, so load from other jobs on this shared machine hits
+both alike. Prints, per problem, each side's points, Newton iterations and folds, and the
+ratio of the best round times (NEW/BASE; < 1 means NEW is faster). Changes of a few per
+cent are only visible this way: separate runs drift by more than that.
+"""
+
+from __future__ import annotations
+
+import argparse
+import importlib
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+import numpy as np
+
+ROOT = Path(__file__).resolve().parents[1]
+if str(ROOT) not in sys.path:
+    sys.path.insert(0, str(ROOT))
+
+from scripts.bench_trace import PROBLEMS  # noqa: E402
+
+
+def load_revision(rev: str | None, into: Path, name: str):
+    """The `continuation` package at git revision ``rev`` (None: the working tree), imported
+    as module ``name``."""
+    if rev is None:
+        return importlib.import_module("continuation")
+    target = into / name
+    target.mkdir()
+    archive = subprocess.run(["git", "archive", rev, "continuation"], cwd=ROOT, check=True,
+                             capture_output=True).stdout
+    subprocess.run(["tar", "-x", "--strip-components=1", "-C", str(target)], input=archive,
+                   check=True)
+    if str(into) not in sys.path:
+        sys.path.insert(0, str(into))
+    return importlib.import_module(name)
+
+
+def runner(module, pb):
+    f, fx, fl = pb["f"], pb["fx"], pb["fl"]
+    lo, hi = sorted((pb["lam0"], pb["lam1"]))
+
+    def run():
+        prob = module.Problem(
+            lambda u, p: np.array([f(u[0], p["lam"])]), unknowns=["x"],
+            params={"lam": pb["lam0"]},
+            jacobian=lambda u, p: np.array([[fx(u[0], p["lam"])]]),
+            param_jacobian=lambda u, p, name: np.array([fl(u[0], p["lam"])]))
+        return module.trace(prob, u0=[pb["x0"]], free="lam", bounds={"lam": (lo, hi)})
+    return run
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("base")
+    ap.add_argument("new", nargs="?", default=None)
+    ap.add_argument("--rounds", type=int, default=11)
+    args = ap.parse_args(argv)
+    with tempfile.TemporaryDirectory() as tmp:
+        sides = {"base": load_revision(args.base, Path(tmp), "continuation_ab_base"),
+                 "new": load_revision(args.new, Path(tmp), "continuation_ab_new")}
+        for pb in PROBLEMS:
+            runs = {side: runner(m, pb) for side, m in sides.items()}
+            for side, run in runs.items():
+                br = run()
+                folds = [f"{sp.values['lam']:.17g}" for sp in br.special_points
+                         if sp.kind == "fold"]
+                print(f"{pb['name']} [{side}]: {len(br['lam'])} points, "
+                      f"{int(br.stats['newton_iterations'].sum())} Newton iterations, "
+                      f"folds {folds}")
+            times = {side: [] for side in runs}
+            for r in range(args.rounds):
+                for side in (("base", "new") if r % 2 == 0 else ("new", "base")):
+                    t0 = time.perf_counter()
+                    for _ in range(100):
+                        runs[side]()
+                    times[side].append((time.perf_counter() - t0) / 100 * 1e3)
+            b, n = min(times["base"]), min(times["new"])
+            print(f"  best of {args.rounds}: base {b:.3f} ms, new {n:.3f} ms, "
+                  f"ratio new/base {n / b:.3f}")
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())

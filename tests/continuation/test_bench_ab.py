@@ -1,0 +1,33 @@
+"""The A/B timing script loads a git revision of the package beside the working tree and
+times both on the benchmark problems (one round only)."""
+
+from __future__ import annotations
+
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[2]
+
+
+def _in_git_checkout() -> bool:
+    if shutil.which("git") is None:
+        return False
+    done = subprocess.run(["git", "rev-parse", "HEAD"], cwd=ROOT, capture_output=True)
+    return done.returncode == 0
+
+
+@pytest.mark.skipif(not _in_git_checkout(), reason="needs a git checkout")
+def test_bench_ab_compares_head_with_the_working_tree():
+    done = subprocess.run([sys.executable, "scripts/bench_ab.py", "HEAD", "--rounds", "1"],
+                          cwd=ROOT, capture_output=True, text=True, timeout=300)
+    assert done.returncode == 0, done.stderr
+    lines = done.stdout.splitlines()
+    # both sides trace both problems and locate both folds (cusp: b = ±2/(3√3))
+    assert sum("[base]" in line for line in lines) == 2
+    assert sum("[new]" in line for line in lines) == 2
+    assert all("0.384900179459750" in line for line in lines if line.startswith("cusp"))
+    assert sum("ratio new/base" in line for line in lines) == 2
