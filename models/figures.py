@@ -18,7 +18,7 @@ import io
 
 import numpy as np
 
-__all__ = ["render"]
+__all__ = ["figure_bytes", "render"]
 
 _COLORS = ("#1f4e79", "#c0392b", "#2e7d32", "#8e44ad", "#d35400", "#546e7a")
 
@@ -34,7 +34,7 @@ def render(cases, names, *, title: str = "") -> dict[str, dict[str, bytes]]:
     makers = {"force-slip": _force_slip, "force-slip-detail": _detail,
               "force-area": _force_area}
     out: dict[str, dict[str, bytes]] = {}
-    with matplotlib.rc_context({"svg.hashsalt": "cusp", "font.size": 10}):
+    with matplotlib.rc_context({"font.size": 10}):
         for name in names:
             fig = Figure(figsize=(6.4, 4.8), layout="constrained")
             FigureCanvasAgg(fig)
@@ -42,13 +42,21 @@ def render(cases, names, *, title: str = "") -> dict[str, dict[str, bytes]]:
             makers[name](ax, dense)
             if title:
                 ax.set_title(title)
-            blobs = {}
-            for fmt, meta in (("png", {"Software": None}), ("svg", {"Date": None})):
-                buf = io.BytesIO()
-                fig.savefig(buf, format=fmt, dpi=150, metadata=meta)
-                blobs[fmt] = buf.getvalue()
-            out[name] = blobs
+            out[name] = {fmt: figure_bytes(fig, fmt, dpi=150) for fmt in ("png", "svg")}
     return out
+
+
+def figure_bytes(fig, fmt: str, **savefig_kw) -> bytes:
+    """``fig`` saved as ``fmt`` ("png", "svg", ...) without what changes from run to run: no
+    PNG software tag, no SVG date, and SVG ids from a fixed hash salt, so the same figure
+    gives the same bytes."""
+    import matplotlib
+
+    meta = {"svg": {"Date": None}, "png": {"Software": None}}.get(fmt, {})
+    buf = io.BytesIO()
+    with matplotlib.rc_context({"svg.hashsalt": "cusp"}):
+        fig.savefig(buf, format=fmt, metadata=meta, **savefig_kw)
+    return buf.getvalue()
 
 
 def _label_points(ax, res, x: str, which=("O", "A", "B", "C", "D"), color="k") -> None:

@@ -27,22 +27,9 @@ def write_report(path, text: str) -> Path:
 
 
 def save_figure(fig, path, **savefig_kw) -> Path:
-    """Save a matplotlib figure atomically in the format of ``path``'s suffix, without the
-    metadata that changes from run to run (the SVG date, the PNG software tag); with
-    ``svg.hashsalt`` set (by :func:`figure_style`) the SVG's ids are fixed too, so the same
-    data give the same bytes."""
-    import io
+    """Save a matplotlib figure atomically, in the format of ``path``'s suffix, as the same
+    bytes on every run (:func:`models.figures.figure_bytes`)."""
+    from models.figures import figure_bytes
 
     path = Path(path)
-    fmt = path.suffix.lstrip(".").lower()
-    meta = {"svg": {"Date": None}, "png": {"Software": None}}.get(fmt, {})
-    buf = io.BytesIO()
-    fig.savefig(buf, format=fmt, metadata=meta, **savefig_kw)
-    return write_bytes(path, buf.getvalue())
-
-
-def figure_style():
-    """The matplotlib settings of the repository's figures (fixed SVG ids), as a context."""
-    import matplotlib
-
-    return matplotlib.rc_context({"svg.hashsalt": "cusp"})
+    return write_bytes(path, figure_bytes(fig, path.suffix.lstrip(".").lower(), **savefig_kw))

@@ -33,7 +33,7 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
 from continuation import Problem, fold_curve, trace  # noqa: E402
-from scripts._report import figure_style, save_figure  # noqa: E402
+from scripts._report import save_figure  # noqa: E402
 
 X0 = -1.324717957244746  # root of x³ − x + 1 (a = 1, b = −1)
 
@@ -158,9 +158,8 @@ def figure(ours, loop, path_png: Path):
     ax.set_ylabel("$b$")
     ax.set_title("Fold curve of $x^3 - a x - b = 0$ from $a = 1$ through the cusp")
     ax.legend(loc="lower left", fontsize=8)
-    with figure_style():
-        save_figure(fig, path_png, dpi=150)
-        save_figure(fig, path_png.with_suffix(".svg"))
+    save_figure(fig, path_png, dpi=150)
+    save_figure(fig, path_png.with_suffix(".svg"))
     plt.close(fig)
 
 

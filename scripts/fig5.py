@@ -21,7 +21,7 @@ if str(ROOT) not in sys.path:
     sys.path.insert(0, str(ROOT))
 
 from models import Cylinder, ExponentialRoughSurface, FlatPlane, Sphere  # noqa: E402
-from scripts._report import figure_style, save_figure  # noqa: E402
+from scripts._report import save_figure  # noqa: E402
 
 
 def curves(n: int = 801, gaussian_t: float | None = None):
@@ -78,8 +78,7 @@ def plot(out_dir: pathlib.Path, gaussian_t: float | None = None) -> list[pathlib
         fig.tight_layout()
         for ext in ("png", "svg"):
             path = out_dir / f"fig5{panel}.{ext}"
-            with figure_style():
-                save_figure(fig, path, dpi=150)
+            save_figure(fig, path, dpi=150)
             written.append(path)
         plt.close(fig)
     return written
