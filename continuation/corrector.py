@@ -6,10 +6,9 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.linalg.lapack import dgesv
 
 from .errors import SingularMatrixError
-from .linalg import DenseLU, factor, getrs
+from .linalg import DenseLU, dense_solve, factor, getrs
 from .linalg import max_abs as _norm
 
 
@@ -68,7 +67,6 @@ def newton(system, z0: np.ndarray, row: np.ndarray, c: float, *, tol: float, ste
     sq_step_tol = math.sqrt(step_tol) * scale
     rel_step_tol = step_tol * scale
     bordered_jacobian = system.bordered_jacobian
-    gesv = dgesv
     residual = system.residual
     row_dot = row.dot
     sn_prev = math.inf
@@ -94,17 +92,14 @@ def newton(system, z0: np.ndarray, row: np.ndarray, c: float, *, tol: float, ste
             dz = getrs(f, piv, rhs) if f is not None else lu.solve(rhs)
         else:
             a = bordered_jacobian(z, row)
-            if type(a) is np.ndarray:
-                # linalg.dense_solve, inlined (the corrector's innermost call)
-                f, piv, dz, info = gesv(a, rhs)
-                if info > 0 or not math.isfinite(f[-1, -1]):
-                    return NewtonResult(z, False, k, rn, None, _singular_reason(a))
-            else:
-                try:
+            try:
+                if type(a) is np.ndarray:
+                    f, piv, dz = dense_solve(a, rhs)
+                else:
                     lu, f = factor(a), None
-                except SingularMatrixError:
-                    return NewtonResult(z, False, k, rn, None, _singular_reason(a))
-                dz = lu.solve(rhs)
+                    dz = lu.solve(rhs)
+            except SingularMatrixError:
+                return NewtonResult(z, False, k, rn, None, _singular_reason(a))
         z = z - dz
         g = residual(z)
         rn_new = _norm(g)

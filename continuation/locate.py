@@ -237,7 +237,7 @@ def locate_fold(br: Bracket, k: int, start: np.ndarray | None = None,
     else:
         z = start.copy()
     # the components other than k (a slice for the usual fold in the last one)
-    keep = slice(None, -1) if k in (-1, z.size - 1) else np.arange(z.size) != k
+    keep = slice(None, -1) if k == z.size - 1 else np.arange(z.size) != k
     v0 = tangent[keep].copy()
     v0 /= math.sqrt(v0.dot(v0))
     b = c = v0

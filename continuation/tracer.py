@@ -35,6 +35,7 @@ from .locate import (
     locate_component,
     locate_fold,
     locate_on_arc,
+    oriented_tangent,
     tangent_at,
 )
 from .options import ContinuationOptions
@@ -570,7 +571,8 @@ class Tracer:
         it — and accepted under the same guards as any step; otherwise None (a normal step).
 
         Returns ``(result, tangent, angle, h, rt, test)``: ``h`` the pseudo-arclength of the
-        end point along ``t``, ``rt`` the sign factor of the bordered determinant."""
+        end point along ``t``, ``rt`` the sign of the factor by which det [∂G/∂z; (W t)ᵀ]
+        differs from that of the corrector's factorization."""
         o = self.options
         W = self.weights
         for i, tt, _reach in self._bound_tests:
@@ -596,14 +598,12 @@ class Tracer:
             # [∂G/∂z; e_kᵀ] tan = e_last gives a tangent (with tan_k = 1), oriented like t
             tan = res.lu.solve(self._e_last)
             wt = W * t
-            rt = float(tan.dot(wt))
-            norm = math.sqrt(tan.dot(W * tan))
-            if not (math.isfinite(norm) and norm > 0.0 and rt != 0.0):
+            t_new = oriented_tangent(tan, wt, W)
+            if t_new is None:
                 return None
-            t_new = tan / (norm if rt > 0 else -norm)
-            angle = math.degrees(math.acos(max(-1.0, min(1.0, abs(rt) / norm))))
-            dz = res.z - z
-            h = float(wt.dot(dz))
+            rt = float(t_new.dot(tan))  # the sign factor of det [∂G/∂z; (W t_new)ᵀ]
+            angle = math.degrees(math.acos(max(-1.0, min(1.0, float(t_new.dot(wt))))))
+            h = float(wt.dot(res.z - z))
             dc = res.z - z_pred
             if (angle > o.max_angle or t_new[k] * tk <= 0.0 or h <= 0.0
                     or self.wnorm(dc) > ds):
