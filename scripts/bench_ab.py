@@ -23,13 +23,11 @@ import tempfile
 import time
 from pathlib import Path
 
-import numpy as np
-
 ROOT = Path(__file__).resolve().parents[1]
 if str(ROOT) not in sys.path:
     sys.path.insert(0, str(ROOT))
 
-from scripts.bench_trace import PROBLEMS  # noqa: E402
+from scripts.bench_trace import PROBLEMS, run_ours  # noqa: E402
 
 
 def load_revision(rev: str | None, into: Path, name: str):
@@ -48,20 +46,6 @@ def load_revision(rev: str | None, into: Path, name: str):
     return importlib.import_module(name)
 
 
-def runner(module, pb):
-    f, fx, fl = pb["f"], pb["fx"], pb["fl"]
-    lo, hi = sorted((pb["lam0"], pb["lam1"]))
-
-    def run():
-        prob = module.Problem(
-            lambda u, p: np.array([f(u[0], p["lam"])]), unknowns=["x"],
-            params={"lam": pb["lam0"]},
-            jacobian=lambda u, p: np.array([[fx(u[0], p["lam"])]]),
-            param_jacobian=lambda u, p, name: np.array([fl(u[0], p["lam"])]))
-        return module.trace(prob, u0=[pb["x0"]], free="lam", bounds={"lam": (lo, hi)})
-    return run
-
-
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("base")
@@ -72,14 +56,13 @@ def main(argv=None) -> int:
         sides = {"base": load_revision(args.base, Path(tmp), "continuation_ab_base"),
                  "new": load_revision(args.new, Path(tmp), "continuation_ab_new")}
         for pb in PROBLEMS:
-            runs = {side: runner(m, pb) for side, m in sides.items()}
+            runs = {side: (lambda m=m, pb=pb: run_ours(pb, True, api=m))
+                    for side, m in sides.items()}
             for side, run in runs.items():
-                br = run()
-                folds = [f"{sp.values['lam']:.17g}" for sp in br.special_points
-                         if sp.kind == "fold"]
-                print(f"{pb['name']} [{side}]: {len(br['lam'])} points, "
-                      f"{int(br.stats['newton_iterations'].sum())} Newton iterations, "
-                      f"folds {folds}")
+                out = run()()
+                folds = [f"{lam:.17g}" for lam in out["folds"]]
+                print(f"{pb['name']} [{side}]: {out['points']} points, "
+                      f"{out['newton']} Newton iterations, folds {folds}")
             times = {side: [] for side in runs}
             for r in range(args.rounds):
                 for side in (("base", "new") if r % 2 == 0 else ("new", "base")):

@@ -120,7 +120,10 @@ def _counted(fn, counter, key):
     return wrapped
 
 
-def run_ours(pb, analytic):
+def run_ours(pb, analytic, api=None):
+    """``trace`` on problem ``pb``; ``api``: the module providing ``Problem`` and ``trace``
+    (default: this checkout's ``continuation``; `bench_ab.py` passes other revisions)."""
+    problem_cls, trace_fn = (Problem, trace) if api is None else (api.Problem, api.trace)
     cnt = {"f": 0}
     f, fx, fl = pb["f"], pb["fx"], pb["fl"]
 
@@ -129,14 +132,14 @@ def run_ours(pb, analytic):
         return np.array([f(u[0], p["lam"])])
 
     if analytic:
-        prob = Problem(residual, unknowns=["x"], params={"lam": pb["lam0"]},
-                       jacobian=lambda u, p: np.array([[fx(u[0], p["lam"])]]),
-                       param_jacobian=lambda u, p, name: np.array([fl(u[0], p["lam"])]))
+        prob = problem_cls(residual, unknowns=["x"], params={"lam": pb["lam0"]},
+                           jacobian=lambda u, p: np.array([[fx(u[0], p["lam"])]]),
+                           param_jacobian=lambda u, p, name: np.array([fl(u[0], p["lam"])]))
     else:
-        prob = Problem(residual, unknowns=["x"], params={"lam": pb["lam0"]},
-                       derivatives="central")
+        prob = problem_cls(residual, unknowns=["x"], params={"lam": pb["lam0"]},
+                           derivatives="central")
     lo, hi = sorted((pb["lam0"], pb["lam1"]))
-    br = trace(prob, u0=[pb["x0"]], free="lam", bounds={"lam": (lo, hi)})
+    br = trace_fn(prob, u0=[pb["x0"]], free="lam", bounds={"lam": (lo, hi)})
 
     def summary():
         folds = [sp.values["lam"] for sp in br.special_points

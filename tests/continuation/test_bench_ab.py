@@ -26,7 +26,8 @@ def test_bench_ab_compares_head_with_the_working_tree():
                           cwd=ROOT, capture_output=True, text=True, timeout=300)
     assert done.returncode == 0, done.stderr
     lines = done.stdout.splitlines()
-    # both sides trace both problems and locate both folds (cusp: b = ±2/(3√3))
+    # both sides trace both problems and locate both folds (cusp: b = ±2/(3√3) =
+    # ±0.38490017945975050..., mpmath.mpf(2)/(3*mpmath.sqrt(3)))
     assert sum("[base]" in line for line in lines) == 2
     assert sum("[new]" in line for line in lines) == 2
     assert all("0.384900179459750" in line for line in lines if line.startswith("cusp"))
