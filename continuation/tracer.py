@@ -111,7 +111,7 @@ class _Test:
         if source == _FROM_TANGENT:
             return float(t[self.k])
         if source == _FROM_COMPONENT:
-            return float(z[self.k] - self.value_at)
+            return float(z[self.k]) - self.value_at
         if source == _FROM_DET:
             return sdet
         if self.kind == "cusp":
@@ -738,15 +738,7 @@ class Tracer:
         new_tests = []
         crossings = []
         for tt, old in zip(self.tests, state.tests):
-            source = tt.source
-            if source == _FROM_TANGENT:
-                new = float(t_new[tt.k])
-            elif source == _FROM_COMPONENT:
-                new = float(z1[tt.k]) - tt.value_at
-            elif source == _FROM_DET:
-                new = sdet
-            else:
-                new = tt.value(self, z1, t_new, sdet)
+            new = tt.value(self, z1, t_new, sdet)
             new_tests.append(new)
             # no crossing unless the sign changed or an end is exactly zero
             if old is not None and ((old < 0) != (new < 0) or new == 0.0 or old == 0.0) \
