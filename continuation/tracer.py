@@ -575,11 +575,13 @@ class Tracer:
         differs from that of the corrector's factorization."""
         o = self.options
         W = self.weights
-        for i, tt, _reach in self._bound_tests:
+        for i, tt, reach in self._bound_tests:
             old = state.tests[i]
+            if old is None or old == 0.0 or abs(old) > ds * reach:  # not within reach
+                continue
             k = tt.k
             tk = float(t[k])
-            if old is None or old == 0.0 or tk == 0.0:
+            if tk == 0.0:
                 continue
             sigma = -old / tk  # where the tangent line meets the bound
             if not 0.0 < sigma <= ds or not tt.crossed(old, old + ds * tk):
@@ -648,12 +650,8 @@ class Tracer:
             # creeping at ds near ds_min (say, Newton with a Jacobian differenced across a
             # kink): try to pass the corner directly
             corner = self._corner_step(z, t, ds, None if last.prev is None else last.prev.z)
-        elif secant is None:
-            for i, _tt, reach in self._bound_tests:
-                old = state.tests[i]
-                if old is not None and abs(old) <= ds * reach:  # a bound within reach
-                    aimed = self._aim_at_bound(state, z, t, ds)
-                    break
+        elif secant is None and self._bound_tests:
+            aimed = self._aim_at_bound(state, z, t, ds)
         while corner is None and aimed is None:
             z_pred = z + ds * direction
             # above ds_min a wandering Newton gives up early (the step is halved anyway)
