@@ -83,18 +83,11 @@ class TracerState(NamedTuple):
 # --- --- test functions
 
 
-# where a test function's value comes from (a code, so the step's loop dispatches without
-# string comparisons): a tangent component, a component minus a value, the sign of the
-# bordered determinant, or a call
-_FROM_TANGENT, _FROM_COMPONENT, _FROM_DET, _FROM_CALL = range(4)
-
-
 class _Test:
     """A test function of the branch: its value at each point, the sign changes that count,
     and how a zero is located."""
 
-    __slots__ = ("kind", "label", "wrt", "k", "value_at", "direction", "terminal", "event",
-                 "source")
+    __slots__ = ("kind", "label", "wrt", "k", "value_at", "direction", "terminal", "event")
 
     def __init__(self, kind: str, label: str = "", wrt: str | None = None, k: int = -1,
                  value_at: float = 0.0, direction: int = 0, terminal: bool = False,
@@ -102,21 +95,18 @@ class _Test:
         self.kind, self.label, self.wrt, self.k = kind, label, wrt, k  # k: component index
         self.value_at = value_at  # target / bound value
         self.direction, self.terminal, self.event = direction, terminal, event
-        self.source = {"fold": _FROM_TANGENT, "bound": _FROM_COMPONENT,
-                       "target": _FROM_COMPONENT, "branch_point": _FROM_DET}.get(kind,
-                                                                                 _FROM_CALL)
 
     def value(self, tracer: Tracer, z, t, sdet) -> float:
-        source = self.source
-        if source == _FROM_TANGENT:
+        kind = self.kind
+        if kind == "fold":
             return float(t[self.k])
-        if source == _FROM_COMPONENT:
+        if kind == "bound" or kind == "target":
             return float(z[self.k]) - self.value_at
-        if source == _FROM_DET:
+        if kind == "branch_point":
             return sdet
-        if self.kind == "cusp":
+        if kind == "cusp":
             return tracer.system.cusp_coefficient(z)
-        if self.kind == "codim2":
+        if kind == "codim2":
             return tracer.system.double_zero_test(z)[0]
         u, p = tracer.split(z)
         val = float(self.event.function(u, p))
