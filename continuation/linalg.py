@@ -163,8 +163,19 @@ def unit_last(n: int) -> np.ndarray:
 
 def max_abs(x: np.ndarray) -> float:
     """Max-norm ``max |x_i|``; NaN if any entry is NaN or infinite. Plain Python for the tiny
-    vectors of most problems (numpy's reductions cost more than the arithmetic there)."""
-    if x.size <= 32:
+    vectors of most problems (numpy's reductions cost more than the arithmetic there), with
+    the one- and two-component vectors of scalar problems (state, and state with parameter)
+    spelled out: a third of the general path's cost, and these are most calls."""
+    n = x.size
+    if n == 1:
+        v = abs(x.item())
+        return v if v < math.inf else math.nan
+    if n == 2:
+        a, b = x.tolist()
+        a, b = abs(a), abs(b)
+        m = a if a >= b else b
+        return m if m < math.inf and a == a and b == b else math.nan
+    if n <= 32:
         vals = x.tolist()
         if not vals:
             return 0.0

@@ -477,3 +477,21 @@ def test_corrector_takes_a_simplified_step_in_the_quadratic_regime():
     assert res.converged
     assert res.z[0] == pytest.approx(X0, rel=2e-16, abs=0)
     assert calls["jacobian"] == res.iterations - 1  # the last iteration was a chord step
+
+
+@pytest.mark.parametrize("n", [0, 1, 2, 3, 32, 33])
+def test_max_abs_matches_numpy_and_flags_nonfinite(n):
+    """The max-norm's plain-Python paths (one, two, up to 32 entries) agree with numpy's
+    ``max(abs(x))`` and return NaN whenever an entry is NaN or ±inf, wherever it sits."""
+    from continuation.linalg import max_abs
+
+    rng = np.random.default_rng(n)
+    x = rng.standard_normal(n) * 10.0 ** rng.integers(-300, 300, n)
+    assert max_abs(x) == (float(np.max(np.abs(x))) if n else 0.0)
+    for i in range(n):
+        for bad in (math.nan, math.inf, -math.inf):
+            y = x.copy()
+            y[i] = bad
+            assert math.isnan(max_abs(y)), (n, i, bad)
+    if n:  # overflow of a sum of finite entries is not a non-finite entry
+        assert max_abs(np.full(n, 1e308)) == 1e308
