@@ -32,6 +32,9 @@ from .linalg import (
 _EPS = float(np.finfo(float).eps)
 _SQRT_EPS = _EPS ** 0.5
 _CBRT_EPS = _EPS ** (1.0 / 3.0)
+# relative error of the fold Newton's matrix when the Jacobian is exact: its last row is a
+# forward difference of the Jacobian (√ε ≈ 1.5e-8, with a margin for its truncation error)
+_FORWARD_D2_ERROR = 1e-7
 
 
 @dataclass
@@ -212,16 +215,29 @@ def minimally_augmented(system, z: np.ndarray, k: int, b: np.ndarray, c: np.ndar
 
 
 def newton_done(it: int, size: float, previous: float, z: np.ndarray, tol: float,
-                stall: float) -> bool:
-    """Stopping test of the locating Newton iterations, with update ``size`` (max-norm)."""
+                stall: float, perturbation: float | None = None,
+                k: int | None = None) -> bool:
+    """Stopping test of the locating Newton iterations, with update ``size`` (max-norm).
+
+    Once quadratic convergence is under way (the update shrank by 100 or more), the next
+    update is estimated and the iteration stops if it would be below the tolerance. With
+    ``perturbation`` None the estimate is the linear one, ``size²/previous`` (safe whatever
+    the Newton matrix's error). Given the relative error δ of the Newton matrix, it is
+    ``C·size² + δ·size`` with ``C = size/previous²`` from the last contraction: Newton's
+    quadratic term plus the linear one that the matrix error adds. Given ``k`` (the component
+    the point is located in, such as a fold's parameter), an early stop also needs the
+    estimate below ``tol·|z_k|``: that component is then exact to ``tol`` relative even when
+    it is small (the mixed tolerance ``tol·(1 + |z|)`` alone is not relative there)."""
     scale = 1.0 + max_abs(z)
     if size <= tol * scale:
         return True
-    # quadratic convergence under way (the update shrank by 100 or more) and the next
-    # update, about size²/previous, would be below the tolerance
-    if math.isfinite(previous) and size <= 1e-2 * previous and size * size / previous <= (
-            tol * scale):
-        return True
+    if math.isfinite(previous) and size <= 1e-2 * previous:
+        if perturbation is None:
+            estimate = size * size / previous
+        else:
+            estimate = size * (size * size / (previous * previous) + perturbation)
+        if estimate <= tol * scale and (k is None or estimate <= tol * abs(float(z[k]))):
+            return True
     # stagnation: the updates stopped shrinking, at a level below ``stall``
     return it >= 4 and size > 0.5 * previous and size <= stall * scale
 
@@ -274,7 +290,8 @@ def locate_fold(br: Bracket, k: int, start: np.ndarray | None = None,
         # stagnation accepted up to 1e-6: ill-conditioned systems (cond ~ N² for discretised
         # operators) and forward differences stall there; the fold's parameter is still
         # exact to second order, its state to the accuracy of the derivatives
-        if newton_done(it, size, previous, z, o.locate_tol, stall=1e-6):
+        if newton_done(it, size, previous, z, o.locate_tol, stall=1e-6,
+                       perturbation=_FORWARD_D2_ERROR if exact else None, k=k):
             converged = True
             break
         previous = size

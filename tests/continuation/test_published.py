@@ -115,6 +115,26 @@ def test_cusp_folds_over_a(a):
         assert_fold(sp, "b", ("b", b), {"x": x}, 1e-9)
 
 
+def test_cusp_fold_parameters_relative_over_a_grid():
+    """Both folds to 1e-12 *relative* in b over a ∈ [0.02, 5] (b from 1.1e-3 to 4.3), where
+    the fold Newton's mixed stopping tolerance 1e-12·(1 + |z|) alone would not be relative;
+    a = 0.2890625 is the value at which an earlier stopping rule failed. References: the
+    closed form b = ∓2 (a/3)^{3/2}, x = ±sqrt(a/3) (orc.cusp_folds)."""
+    worst = 0.0
+    for a in [*np.geomspace(0.02, 5.0, 60), 0.2890625]:
+        bmax = 2 * (a / 3) ** 1.5
+        B = 2 * bmax + 0.1
+        x0 = float(np.min(np.roots([1.0, 0.0, -a, B]).real))
+        case = orc.cusp_problem("analytic", a=a, b=-B)
+        br = trace(case.problem, u0=[x0], free="b", bounds={"b": (-B, B)})
+        folds = special(br, "fold")
+        assert len(folds) == 2, a
+        for sp, (x, b) in zip(folds, orc.cusp_folds(a), strict=True):
+            assert_fold(sp, "b", ("b", b), {"x": x}, 1e-9)
+            worst = max(worst, abs(sp.values["b"] - b) / abs(b))
+    print(f"worst relative fold parameter error over the grid: {worst:.2g}")
+
+
 # ---------------------------------------------------------------------------------------------
 # 2. Finite-difference Bratu
 # ---------------------------------------------------------------------------------------------
