@@ -98,39 +98,39 @@ def test_cusp_reverse_direction_finds_the_same_folds():
         assert_fold(sp, "b", ("b", b), {"x": x}, 1e-9)
 
 
-@settings(max_examples=12, deadline=None)
-@given(a=st.floats(min_value=0.02, max_value=5.0))
-def test_cusp_folds_over_a(a):
-    """Property: at any a > 0 the folds are at b = -+2 (a/3)^(3/2), x = -+sqrt(a/3)."""
+def trace_cusp_over_a(a):
+    """Trace x³ − a x − b over b ∈ [−B, B], B = 2·2(a/3)^{3/2} + 0.1, from the lone real root
+    at b = −B, and check both folds against the closed form b = ∓2 (a/3)^{3/2},
+    x = ±sqrt(a/3) (orc.cusp_folds). Returns the branch, B and the two folds."""
     bmax = 2 * (a / 3) ** 1.5
     B = 2 * bmax + 0.1
     x0 = float(np.min(np.roots([1.0, 0.0, -a, B]).real))  # the lone real root at b = -B
     case = orc.cusp_problem("analytic", a=a, b=-B)
     br = trace(case.problem, u0=[x0], free="b", bounds={"b": (-B, B)})
-    assert br.success, (br.status, br.message)
-    assert br["b"][-1] == B
     folds = special(br, "fold")
-    assert len(folds) == 2
+    assert len(folds) == 2, a
     for sp, (x, b) in zip(folds, orc.cusp_folds(a), strict=True):
         assert_fold(sp, "b", ("b", b), {"x": x}, 1e-9)
+    return br, B, folds
+
+
+@settings(max_examples=12, deadline=None)
+@given(a=st.floats(min_value=0.02, max_value=5.0))
+def test_cusp_folds_over_a(a):
+    """Property: at any a > 0 the folds are at b = -+2 (a/3)^(3/2), x = -+sqrt(a/3)."""
+    br, B, _ = trace_cusp_over_a(a)
+    assert br.success, (br.status, br.message)
+    assert br["b"][-1] == B
 
 
 def test_cusp_fold_parameters_relative_over_a_grid():
     """Both folds to 1e-12 *relative* in b over a ∈ [0.02, 5] (b from 1.1e-3 to 4.3), where
     the fold Newton's mixed stopping tolerance 1e-12·(1 + |z|) alone would not be relative;
-    a = 0.2890625 is the value at which an earlier stopping rule failed. References: the
-    closed form b = ∓2 (a/3)^{3/2}, x = ±sqrt(a/3) (orc.cusp_folds)."""
+    a = 0.2890625 is the value at which an earlier stopping rule failed."""
     worst = 0.0
     for a in [*np.geomspace(0.02, 5.0, 60), 0.2890625]:
-        bmax = 2 * (a / 3) ** 1.5
-        B = 2 * bmax + 0.1
-        x0 = float(np.min(np.roots([1.0, 0.0, -a, B]).real))
-        case = orc.cusp_problem("analytic", a=a, b=-B)
-        br = trace(case.problem, u0=[x0], free="b", bounds={"b": (-B, B)})
-        folds = special(br, "fold")
-        assert len(folds) == 2, a
-        for sp, (x, b) in zip(folds, orc.cusp_folds(a), strict=True):
-            assert_fold(sp, "b", ("b", b), {"x": x}, 1e-9)
+        _, _, folds = trace_cusp_over_a(a)
+        for sp, (_, b) in zip(folds, orc.cusp_folds(a), strict=True):
             worst = max(worst, abs(sp.values["b"] - b) / abs(b))
     print(f"worst relative fold parameter error over the grid: {worst:.2g}")
 
