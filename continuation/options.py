@@ -22,7 +22,8 @@ def _positive(name: str, value) -> None:
 
 @dataclass(frozen=True)
 class ContinuationOptions:
-    """Numerical settings of :func:`continuation.trace` and :func:`continuation.fold_curve`.
+    """Numerical settings of :func:`~cusp.continuation.trace` and
+    :func:`~cusp.continuation.fold_curve`.
 
     Step sizes are pseudo-arclengths measured in the weighted norm
     ``||dz||² = state_weight·Σ du_i² + Σ dp_j²`` (``state_weight`` defaults to 1/n, so the

@@ -35,7 +35,7 @@ def points_at(problem, branch: Branch, name: str, values: Sequence[float] | floa
     problem:
         the problem the branch was traced from (with the same parameter values).
     branch:
-        a branch from :func:`~continuation.trace` (one free parameter).
+        a branch from :func:`~cusp.continuation.trace` (one free parameter).
     name:
         an unknown or the free parameter of the branch.
     values:

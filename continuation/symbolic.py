@@ -1,4 +1,4 @@
-"""Build a :class:`~continuation.Problem` from sympy expressions, with exact derivatives.
+"""Build a :class:`~cusp.continuation.Problem` from sympy expressions, with exact derivatives.
 
 sympy is imported here only, when the helper is first used.
 """

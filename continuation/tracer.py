@@ -887,7 +887,7 @@ def trace(problem, u0, *, free: str, **kwargs: Any) -> Branch:
     Parameters
     ----------
     problem:
-        a :class:`~continuation.Problem` (or any object following its protocol).
+        a :class:`~cusp.continuation.Problem` (or any object following its protocol).
     u0:
         guess of the unknowns at the problem's parameter values (corrected by Newton), or a
         :class:`SpecialPoint`; a ``"branch_point"`` starts on the other branch through it.

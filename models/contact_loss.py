@@ -30,7 +30,7 @@ F'_T = F_A − μΔF_N (μF_N − F_T = μ K J(d0) for a rough surface, μ(4E*/3
 is kept). The frozen-level form is used as the residual because it stays well conditioned
 when F̂_T(A) is within rounding of 1, where F_T no longer resolves q; the force form is
 checked on every traced row in the tests.
-Each leg is a :class:`continuation.Problem` in the nondimensional unknowns
+Each leg is a :class:`cusp.continuation.Problem` in the nondimensional unknowns
 
     g = g_T/g_A,  t = F_T/(μ0 F_N0),  n = F_N/F_N0,  A_SL,  p,  q
 
@@ -40,7 +40,7 @@ of order one make the arclength metric meaningful (F_T in N and g_T in µm diffe
 
 The released energies are integrals along the traced branches, ∫ (F_AB − F_BC) dg over
 [g_B, g_A] (ABD) plus ∫ (F_A − F_BC) dg over [g_A, g_C] (ABC − ABD), by Gauss–Legendre
-quadrature in g with the nodes placed on the branches by :func:`continuation.points_at`
+quadrature in g with the nodes placed on the branches by :func:`cusp.continuation.points_at`
 (each a corrected point, not an interpolated one), doubling the nodes until two rules agree
 to 1e-13 relative. No closed form is evaluated to trace the path; the closed forms of the
 exponential surface (PHYSICS.md §7) are test oracles only.
@@ -61,7 +61,7 @@ from typing import Any
 
 import numpy as np
 
-from continuation import Branch, ContinuationOptions, Problem, points_at, trace
+from cusp.continuation import Branch, ContinuationOptions, Problem, points_at, trace
 
 from .errors import ModelParameterError, NoComplianceLawError, check_positive
 
@@ -291,7 +291,7 @@ class ContactLossResult:
 
     def dense(self, leg: str, points: int = 100) -> dict[str, np.ndarray]:
         """Physical columns of one leg at ``points`` values of its control spread evenly
-        over the leg, each corrected onto the branch (:func:`continuation.points_at`): a
+        over the leg, each corrected onto the branch (:func:`cusp.continuation.points_at`): a
         smooth curve for plotting, exact at every point whatever the step sizes were."""
         br = self.legs[leg]
         control = LEG_CONTROLS[leg]
@@ -332,10 +332,11 @@ class ContactLoss:
     Parameters
     ----------
     body:
-        an :class:`~models.ExponentialRoughSurface`, :class:`~models.GaussianRoughSurface`,
-        :class:`~models.GeneralRoughSurface` (these two need the load scale: E, radius,
-        density, nominal_area) or a :class:`~models.Sphere` with all four parameters.
-        Cylinders and flat planes raise :class:`~models.NoComplianceLawError`.
+        an :class:`~cusp.models.ExponentialRoughSurface`,
+        :class:`~cusp.models.GaussianRoughSurface`,
+        :class:`~cusp.models.GeneralRoughSurface` (these two need the load scale: E, radius,
+        density, nominal_area) or a :class:`~cusp.models.Sphere` with all four parameters.
+        Cylinders and flat planes raise :class:`~cusp.models.NoComplianceLawError`.
     normal_load:
         F_N0 [N], held on OA.
     max_slip:

@@ -12,7 +12,7 @@ F̂_T > 1/2, with v = arcsin√(1 − F̂_T), F̂_ST = (2v + sin 2v)/π − (1 �
 
 No compliance law: the paper gives none (the 2-D elastic displacement of a line contact is
 defined only up to a datum), so a cylinder cannot follow a load–displacement path; the methods
-that would need one raise :class:`models.errors.NoComplianceLawError`.
+that would need one raise :class:`cusp.models.errors.NoComplianceLawError`.
 """
 
 from __future__ import annotations

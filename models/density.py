@@ -1,7 +1,7 @@
 """Rough surface over a general, user-supplied summit-height density Φ(z) [1/µm].
 
-The same code path as every other density (:mod:`models.rough`), with all integrals by
-adaptive quadrature (:mod:`models._quadrature`, QUADPACK with the (z − h)^k end-point weight
+The same code path as every other density (:mod:`cusp.models.rough`), with all integrals by
+adaptive quadrature (:mod:`cusp.models._quadrature`, QUADPACK with the (z − h)^k end-point weight
 put into QAWS). Slower than the closed forms (~1 ms per integral) but exact to ~1e-13 for
 smooth or piecewise-smooth Φ; give the points where Φ is not smooth as ``breakpoints``
 (histogram edges are set for you).
@@ -135,7 +135,7 @@ class GeneralRoughSurface(RoughSurface):
 
     ``GeneralRoughSurface(heights, nu, mu, sigma=None, E=None, radius=None, density=None,
     nominal_area=None)``: ``sigma`` [µm] (only enters λ; defaults to the standard deviation of
-    the heights), the rest as for :class:`models.rough.RoughSurface`.
+    the heights), the rest as for :class:`cusp.models.rough.RoughSurface`.
     """
 
     load_dependent = True

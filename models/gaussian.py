@@ -1,9 +1,9 @@
 """Rough surface with Gaussian summit heights, Φ(z) = φ(z/σ*)/σ* (Sec. 2; Greenwood–Williamson).
 
 J(h) = σ*^{3/2} F_{3/2}(h/σ*), A(h) = σ* F_1(h/σ*), ∫_h^∞ Φ = F_0(h/σ*), with the GW integrals
-of :mod:`models.gw` (≤ 1e-14 relative). J(d) − J(d0) uses ``gw_difference`` (no cancellation
+of :mod:`cusp.models.gw` (≤ 1e-14 relative). J(d) − J(d0) uses ``gw_difference`` (no cancellation
 for tiny slips). The slip and stick parts S, T (Eqs 10, 7) have no GW closed form: S is
-integrated by adaptive quadrature (:mod:`models._quadrature`), and T = [J(d) − J(d0)] − S
+integrated by adaptive quadrature (:mod:`cusp.models._quadrature`), and T = [J(d) − J(d0)] − S
 while S is the smaller part, by direct quadrature of its cancellation-free bracket otherwise.
 
 Here the stick/slip split depends on the load level (through t = d/σ*), so the ratio methods
@@ -29,7 +29,7 @@ class GaussianRoughSurface(RoughSurface):
     """Composite rough surface with Gaussian summit heights (std σ* [µm], mean 0).
 
     ``GaussianRoughSurface(sigma, nu, mu, E=None, radius=None, density=None,
-    nominal_area=None)``; see :class:`models.rough.RoughSurface` for the parameters.
+    nominal_area=None)``; see :class:`cusp.models.rough.RoughSurface` for the parameters.
     """
 
     load_dependent = True

@@ -1,1 +1,1 @@
-"""Scene files (TOML) for ``cusp run``, one per figure of the paper; see ``models.scene``."""
+"""Scene files (TOML) bundled with cusp, one per figure of the paper; see :mod:`cusp.app.scene`."""

@@ -18,7 +18,7 @@ ROOT = pathlib.Path(__file__).resolve().parents[1]
 if str(ROOT) not in sys.path:
     sys.path.insert(0, str(ROOT))
 
-from models import (  # noqa: E402
+from cusp.models import (  # noqa: E402
     Cylinder,
     ExponentialRoughSurface,
     FlatPlane,

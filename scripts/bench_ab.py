@@ -4,8 +4,10 @@ Usage (from the repository root):
 
     python scripts/bench_ab.py BASE [NEW] [--rounds 11]
 
-BASE and NEW are git revisions (NEW defaults to the working tree). The `continuation`
-package of each is loaded under its own name (it imports only relatively), and both trace
+BASE and NEW are git revisions (NEW defaults to the working tree, i.e. the installed
+`cusp.continuation`). The engine folder `continuation/` of a revision is loaded under a name
+of its own (the engine imports only relatively, so this works for revisions before and after
+the `cusp` namespace), and both trace
 the benchmark problems of `scripts/bench_trace.py` (cusp and truss, analytic derivatives)
 in alternating rounds of 100 branches, so load from other jobs on this shared machine hits
 both alike. Prints, per problem, each side's points, Newton iterations and folds, and the
@@ -31,10 +33,10 @@ from scripts.bench_trace import PROBLEMS, run_ours  # noqa: E402
 
 
 def load_revision(rev: str | None, into: Path, name: str):
-    """The `continuation` package at git revision ``rev`` (None: the working tree), imported
-    as module ``name``."""
+    """The engine at git revision ``rev`` (None: the working tree, as installed), imported as
+    module ``name``."""
     if rev is None:
-        return importlib.import_module("continuation")
+        return importlib.import_module("cusp.continuation")
     target = into / name
     target.mkdir()
     archive = subprocess.run(["git", "archive", rev, "continuation"], cwd=ROOT, check=True,

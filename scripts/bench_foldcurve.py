@@ -32,7 +32,7 @@ from scipy.optimize import fsolve
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
-from continuation import Problem, fold_curve, trace  # noqa: E402
+from cusp.continuation import Problem, fold_curve, trace  # noqa: E402
 from scripts._report import save_figure  # noqa: E402
 
 X0 = -1.324717957244746  # root of x³ − x + 1 (a = 1, b = −1)

@@ -3,7 +3,7 @@
     python scripts/bench_gw.py [--out docs/benchmarks/gw.md]
 
 For n = 1/2 and 3/2 (and 0, 1 for our evaluator) on t ∈ [−10, 38], compares
-``models.gw.gw_integral`` with ``scipy.integrate.quad`` (default tolerances) and
+``cusp.models.gw.gw_integral`` with ``scipy.integrate.quad`` (default tolerances) and
 ``scipy.special.pbdv`` (F_n = Γ(n+1) e^{−t²/4} D_{−n−1}(t)/√(2π)): relative error against
 mpmath (the same parabolic-cylinder closed form at 40 digits, at the exact binary t) and
 wall time per value. Errors are taken where F_n(t) is a normal double (t ≲ 37.6).
@@ -28,7 +28,7 @@ ROOT = pathlib.Path(__file__).resolve().parents[1]
 if str(ROOT) not in sys.path:
     sys.path.insert(0, str(ROOT))
 
-from models.gw import gw_integral, log_gw_integral  # noqa: E402
+from cusp.models.gw import gw_integral, log_gw_integral  # noqa: E402
 from scripts._report import write_report  # noqa: E402
 
 N_ACC = 481  # accuracy grid
@@ -94,7 +94,7 @@ def main(argv: list[str] | None = None) -> int:
     worst_at = {}
     for n in (0, 0.5, 1, 1.5):
         ref = reference(n, t_acc)
-        methods = [("models.gw (ours)", lambda t, n=n: gw_integral(n, t), t_time)]
+        methods = [("cusp.models.gw (ours)", lambda t, n=n: gw_integral(n, t), t_time)]
         if n in (0.5, 1.5):
             methods += [
                 ("scipy.integrate.quad", lambda t, n=n: quad_eval(n, t), t_slow),

@@ -3,7 +3,7 @@
 Each repetition is a fresh Python process (imports are only paid once per process), timing:
 
 * start-up: the interpreter alone (``python -c pass``);
-* import: ``models.run`` and everything the computation imports (numpy, scipy, the solver,
+* import: ``cusp.app.run`` and everything the computation imports (numpy, scipy, the solver,
   the exponential surface, the contact-loss model);
 * compute: parse the scene, trace the three legs, place the points, integrate the energies;
 * figures: import matplotlib and render the two figures to PNG and SVG bytes;
@@ -38,13 +38,13 @@ from scripts._report import write_report  # noqa: E402
 _CHILD = r"""
 import json, sys, time
 t0 = time.perf_counter()
-import models.run as run
-import models.contact_loss, models.exponential  # what the computation imports
+import cusp.app.run as run
+import cusp.models.contact_loss, cusp.models.exponential  # what the computation imports
 t1 = time.perf_counter()
 scene = run.load_scene(sys.argv[1])
 r, _ = run.run_scene(scene, plots=False)
 t2 = time.perf_counter()
-from models.figures import render
+from cusp.app.figures import render
 figs = render(r.cases, scene.figures, title=scene.title)
 t3 = time.perf_counter()
 files = {"summary.json": json.dumps(run.summary(r)).encode(),
@@ -75,7 +75,7 @@ def measure(repeat: int) -> dict[str, list[float]]:
             for k, v in rec.items():
                 out[k].append(v)
             t = time.perf_counter()
-            _python(["-m", "models.cli", "run", str(SCENE), "--out", f"{tmp}/b{i}",
+            _python(["-m", "cusp.app.cli", "run", str(SCENE), "--out", f"{tmp}/b{i}",
                      "--quiet"])
             out["command"].append(time.perf_counter() - t)
     return out
@@ -91,7 +91,7 @@ def main() -> None:
     lo = {k: min(v) for k, v in data.items()}
     rows = [
         ("interpreter start-up (`python -c pass`)", "startup"),
-        ("import (`models.run`, numpy, scipy, solver, exponential model)", "import"),
+        ("import (`cusp.app.run`, numpy, scipy, solver, exponential model)", "import"),
         ("compute (parse scene, trace O→A→B→C, place A–D, energies)", "compute"),
         ("figures (import matplotlib, render 2 figures × PNG + SVG)", "figures"),
         ("write (summary.json, branch.csv, figures; atomic)", "write"),

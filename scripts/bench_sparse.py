@@ -39,8 +39,8 @@ ROOT = pathlib.Path(__file__).resolve().parents[1]
 if str(ROOT) not in sys.path:
     sys.path.insert(0, str(ROOT))
 
-from continuation import trace  # noqa: E402
-from continuation.system import BranchSystem  # noqa: E402
+from cusp.continuation import trace  # noqa: E402
+from cusp.continuation.system import BranchSystem  # noqa: E402
 from scripts._report import write_report  # noqa: E402
 from tests.continuation import oracles as orc  # noqa: E402
 

@@ -51,7 +51,7 @@ import scipy.optimize
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
-from continuation import Problem, trace  # noqa: E402
+from cusp.continuation import Problem, trace  # noqa: E402
 from scripts._report import write_report  # noqa: E402
 
 TOL = 1e-10
@@ -323,7 +323,7 @@ def phases(pb, rounds=100, repeat=7):
 
 
 def _phases_once(pb, rounds):
-    import continuation.tracer as tr
+    import cusp.continuation.tracer as tr
 
     acc = {}
     active = set()  # a phase is timed once even if its functions nest

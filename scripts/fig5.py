@@ -20,7 +20,7 @@ ROOT = pathlib.Path(__file__).resolve().parents[1]
 if str(ROOT) not in sys.path:
     sys.path.insert(0, str(ROOT))
 
-from models import Cylinder, ExponentialRoughSurface, FlatPlane, Sphere  # noqa: E402
+from cusp.models import Cylinder, ExponentialRoughSurface, FlatPlane, Sphere  # noqa: E402
 from scripts._report import save_figure  # noqa: E402
 
 
@@ -35,7 +35,7 @@ def curves(n: int = 801, gaussian_t: float | None = None):
     }
     out = {k: (F, b.stick_force_ratio(F), b.stick_area_ratio(F)) for k, b in bodies.items()}
     if gaussian_t is not None:
-        from models import GaussianRoughSurface
+        from cusp.models import GaussianRoughSurface
 
         g = GaussianRoughSurface(sigma=2.0, nu=0.3, mu=0.1)
         Fg = np.linspace(0.0, 1.0, 101)

@@ -44,7 +44,7 @@ class Case(NamedTuple):
 def make_problem(residual, unknowns, params, jacobian, param_jacobian, strategy):
     """The Problem a user would write: analytic derivatives or a finite-difference fallback."""
     if strategy is not None:
-        from continuation import Problem  # lazily, so the oracles' self-checks run without it
+        from cusp.continuation import Problem  # lazily, so the oracles' self-checks run without it
     if strategy == "analytic":
         prob = Problem(residual, unknowns=unknowns, params=params, jacobian=jacobian,
                        param_jacobian=param_jacobian)

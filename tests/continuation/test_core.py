@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 import scipy.sparse as sp
 
-from continuation import (
+from cusp.continuation import (
     ContinuationOptions,
     ConvergenceError,
     Event,
@@ -195,7 +195,7 @@ def test_check_jacobian_finds_wrong_entry():
 
 def test_from_sympy_gives_exact_derivatives():
     sympy = pytest.importorskip("sympy")
-    from continuation import from_sympy
+    from cusp.continuation import from_sympy
 
     x, a, b = sympy.symbols("x a b")
     prob = from_sympy([x**3 - a * x - b], [x], {a: 1.0, b: -1.0})
@@ -208,7 +208,7 @@ def test_from_sympy_gives_exact_derivatives():
 
 
 def test_import_is_light():
-    code = ("import sys, continuation; "
+    code = ("import sys, cusp.continuation; "
             "print(any(m.split('.')[0] in ('sympy', 'matplotlib') for m in sys.modules))")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
                          check=True)
@@ -458,8 +458,8 @@ def test_corrector_takes_a_simplified_step_in_the_quadratic_regime():
     x³ − x − b at b = −1 from x = −1.3 (the root is minus the plastic number, −1.32471795724
     4746..., mpmath: findroot(x**3 - x + 1, -1.3)); tol = 1e-14 keeps the residual above tol
     after the update of ~1e-6 that enters the quadratic regime."""
-    from continuation.corrector import newton
-    from continuation.system import BranchSystem
+    from cusp.continuation.corrector import newton
+    from cusp.continuation.system import BranchSystem
 
     calls = {"jacobian": 0}
 
@@ -483,7 +483,7 @@ def test_corrector_takes_a_simplified_step_in_the_quadratic_regime():
 def test_max_abs_matches_numpy_and_flags_nonfinite(n):
     """The max-norm's plain-Python paths (one, two, up to 32 entries) agree with numpy's
     ``max(abs(x))`` and return NaN whenever an entry is NaN or ±inf, wherever it sits."""
-    from continuation.linalg import max_abs
+    from cusp.continuation.linalg import max_abs
 
     rng = np.random.default_rng(n)
     x = rng.standard_normal(n) * 10.0 ** rng.integers(-300, 300, n)
@@ -505,7 +505,7 @@ def test_fold_newton_stopping_estimate():
     difference in its last row, δ = 1e-7) the estimate C·size² + δ·size, C = size/previous²,
     is 8.5e-15 (the actual next update was 8.9e-16): below 1e-12·|b| = 3.8e-13. Unknown δ:
     the linear estimate size²/previous = 1.3e-11 is not, and neither is a large δ's."""
-    from continuation.locate import newton_done
+    from cusp.continuation.locate import newton_done
 
     z = np.array([0.5773502691896257, -0.3849001794597505])
     assert newton_done(2, 4.68e-8, 1.64e-4, z, 1e-12, stall=1e-6, perturbation=1e-7, k=1)

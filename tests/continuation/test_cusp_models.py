@@ -20,7 +20,7 @@ import numpy as np
 import pytest
 import sympy as sy
 
-from continuation import Problem, fold_curve, trace
+from cusp.continuation import Problem, fold_curve, trace
 
 
 def mp_cusp_conditions(F, unknowns, params, point, dps=40):

@@ -6,7 +6,7 @@ import math
 import numpy as np
 import pytest
 
-from continuation import Event, Problem, fold_curve, trace
+from cusp.continuation import Event, Problem, fold_curve, trace
 
 X0 = -1.324717957244746  # root of x^3 - x + 1
 

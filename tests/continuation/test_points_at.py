@@ -6,7 +6,7 @@ import mpmath as mp
 import numpy as np
 import pytest
 
-from continuation import Problem, ProblemDefinitionError, points_at, trace
+from cusp.continuation import Problem, ProblemDefinitionError, points_at, trace
 
 
 def _cusp(a=1.0):

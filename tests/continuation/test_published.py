@@ -23,7 +23,7 @@ MAX_STEPS = 5000  # generous: these tests are about accuracy, not about the defa
 
 
 def trace(*args, **kwargs):
-    from continuation import trace as _trace
+    from cusp.continuation import trace as _trace
 
     kwargs.setdefault("max_steps", MAX_STEPS)
     return _trace(*args, **kwargs)
@@ -499,7 +499,7 @@ def test_cohesive_linear_softening_under_crack_opening_control():
     """The same bilinear law with W as the free parameter and U the unknown (U - l s(W) - W = 0):
     W never turns, and the kinked maximum of U is a turning point w.r.t. the monitored U.
     The branch must pass it and both kinks; a converged fold w.r.t. U must sit on a kink."""
-    from continuation import Problem
+    from cusp.continuation import Problem
 
     ell, w0 = 2.0, 0.01
     lin = orc.cohesive_linear_problem(ell, w0, None)

@@ -18,7 +18,7 @@ BOUNDS = {"b": (-1.0, 1.0)}
 
 
 def _cusp(**kw):
-    from continuation import trace
+    from cusp.continuation import trace
 
     case = orc.cusp_problem("analytic")
     kw.setdefault("bounds", BOUNDS)
@@ -31,7 +31,7 @@ def _cusp(**kw):
 # ---------------------------------------------------------------------------------------------
 
 def test_user_event_located_and_inserted():
-    from continuation import Event
+    from cusp.continuation import Event
 
     case, br = _cusp(events=[Event(lambda u, p: u[0], direction=0, label="x0", terminal=False)])
     assert br.success, (br.status, br.message)
@@ -53,7 +53,7 @@ def test_user_event_located_and_inserted():
 def test_event_direction(direction, count):
     """b - 0.25 changes sign three times: upward on the lower and upper sheets, downward on the
     middle one. direction=+1 keeps only negative-to-positive crossings (scipy convention)."""
-    from continuation import Event
+    from cusp.continuation import Event
 
     case, br = _cusp(events=[Event(lambda u, p: p["b"] - 0.25, direction=direction,
                                    label="quarter")])
@@ -71,7 +71,7 @@ def test_event_direction(direction, count):
 
 
 def test_terminal_event_ends_the_branch_there():
-    from continuation import Event
+    from cusp.continuation import Event
 
     case, br = _cusp(events=[Event(lambda u, p: u[0], terminal=True, label="x0")])
     ev = special(br, "event")
@@ -121,7 +121,7 @@ def test_max_steps_ends_normally_with_a_status():
 
 
 def _nan_beyond_half():
-    from continuation import Problem
+    from cusp.continuation import Problem
 
     def residual(u, p):
         if p["b"] > 0.5:
@@ -132,7 +132,7 @@ def _nan_beyond_half():
 
 
 def test_nan_residual_stops_the_branch_with_a_clear_status():
-    from continuation import trace
+    from cusp.continuation import trace
 
     br = trace(_nan_beyond_half(), u0=[-1.3247], free="b", bounds=BOUNDS, throw=False,
                max_steps=5000)
@@ -148,8 +148,8 @@ def test_nan_residual_stops_the_branch_with_a_clear_status():
 def test_nan_residual_raises_with_throw():
     """The spec only says "raises": require the package's typed numerical-failure exception
     (ConvergenceError or a sibling under continuation's own base class), naming the cause."""
-    import continuation
-    from continuation import trace
+    import cusp.continuation as continuation
+    from cusp.continuation import trace
 
     base = getattr(continuation, "ContinuationError", continuation.ConvergenceError)
     with pytest.raises(base, match=r"(?i)nan|non-?finite|not finite"):
@@ -172,7 +172,7 @@ def test_nan_residual_raises_with_throw():
     ({"max_steps": -3}, "max_steps"),
 ])
 def test_bad_options_raise_value_error_naming_the_field(kwargs, field):
-    from continuation import ContinuationOptions
+    from cusp.continuation import ContinuationOptions
 
     with pytest.raises(ValueError, match=rf"\b{field}\b"):
         ContinuationOptions(**kwargs)
@@ -181,7 +181,7 @@ def test_bad_options_raise_value_error_naming_the_field(kwargs, field):
 def test_options_are_frozen_and_keywords_override():
     import dataclasses
 
-    from continuation import ContinuationOptions, trace
+    from cusp.continuation import ContinuationOptions, trace
 
     opts = ContinuationOptions(ds=0.01, ds_max=0.05, max_steps=1000)
     with pytest.raises(dataclasses.FrozenInstanceError):
@@ -195,7 +195,7 @@ def test_options_are_frozen_and_keywords_override():
 
 
 def test_bad_trace_keywords_raise_value_error():
-    from continuation import trace
+    from cusp.continuation import trace
 
     case = orc.cusp_problem("analytic")
     with pytest.raises(ValueError, match=r"\bds\b"):
@@ -209,7 +209,7 @@ def test_bad_trace_keywords_raise_value_error():
 
 
 def test_bad_derivatives_strategy_raises():
-    from continuation import Problem
+    from cusp.continuation import Problem
 
     with pytest.raises(ValueError, match="derivatives"):
         Problem(orc.cusp_residual, unknowns=["x"], params={"a": 1.0, "b": 0.0},
@@ -236,7 +236,7 @@ def test_stats_are_per_point_arrays():
 # ---------------------------------------------------------------------------------------------
 
 def test_import_does_not_pull_sympy_or_matplotlib():
-    code = ("import sys, continuation; "
+    code = ("import sys, cusp.continuation; "
             "print(sorted(m for m in ('sympy', 'matplotlib') if m in sys.modules))")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
                          check=True, cwd=str(__import__("pathlib").Path(__file__).parents[2]))
@@ -248,7 +248,7 @@ def test_import_does_not_pull_sympy_or_matplotlib():
 # ---------------------------------------------------------------------------------------------
 
 def test_check_jacobian_accepts_correct_and_flags_wrong():
-    from continuation import Problem, check_jacobian
+    from cusp.continuation import Problem, check_jacobian
 
     res, jac, pjac = orc.truss_2dof_residual_factory()
     u, p = np.array([0.2, 0.7]), {"P": 0.1}
@@ -275,7 +275,7 @@ def test_check_jacobian_accepts_correct_and_flags_wrong():
 
 
 def test_check_jacobian_sparse():
-    from continuation import check_jacobian
+    from cusp.continuation import check_jacobian
 
     case = orc.bratu_problem(7, "analytic", sparse=True)
     rep = check_jacobian(case.problem, np.linspace(0.1, 0.7, 7), {"lam": 2.0})

@@ -1,6 +1,6 @@
-"""The contact-loss path (models.contact_loss) against closed forms and mpmath references.
+"""The contact-loss path (cusp.models.contact_loss) against closed forms and mpmath references.
 
-Exponential heights: the sympy closed forms of :func:`models.symbolic.contact_loss_path`
+Exponential heights: the sympy closed forms of :func:`cusp.verification.symbolic.contact_loss_path`
 evaluated at 50+ digits (derived from the GW integrals, not from the traced path).
 Gaussian heights and spheres: the independent mpmath computations of ``_contact_oracles``.
 Tolerances are the issue's: points ≤ 1e-10 relative, energies ≤ 1e-8 relative.
@@ -14,7 +14,7 @@ import mpmath as mp
 import numpy as np
 import pytest
 
-from models import (
+from cusp.models import (
     Cylinder,
     ExponentialRoughSurface,
     FlatPlane,
@@ -25,7 +25,7 @@ from models import (
     NoComplianceLawError,
     Sphere,
 )
-from models.contact_loss import ContactLoss
+from cusp.models.contact_loss import ContactLoss
 from tests.models import _contact_oracles as oracles
 
 POINT_RTOL = 1e-10
@@ -62,7 +62,7 @@ def _check_energies(res, ref, rtol=ENERGY_RTOL):
 
 
 # ------------------------------------------------------------------ exponential: sympy
-symbolic = pytest.importorskip("models.symbolic")
+symbolic = pytest.importorskip("cusp.verification.symbolic")
 
 
 def _exponential_reference(sigma, nu, mu, F_N0, g_A, F_Np):

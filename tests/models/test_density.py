@@ -8,8 +8,8 @@ import mpmath as mp
 import numpy as np
 import pytest
 
-from models import ExponentialRoughSurface, GeneralRoughSurface, HeightDensity
-from models.errors import ModelParameterError
+from cusp.models import ExponentialRoughSurface, GeneralRoughSurface, HeightDensity
+from cusp.models.errors import ModelParameterError
 
 
 def exp_heights(sigma=2.0):

@@ -10,8 +10,8 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from models import ExponentialRoughSurface
-from models.errors import GrossSlidingError, MissingLoadScaleError, ModelParameterError
+from cusp.models import ExponentialRoughSurface
+from cusp.models.errors import GrossSlidingError, MissingLoadScaleError, ModelParameterError
 
 SCALE = dict(E=210.0e-6 * 1e6, radius=100.0, density=1e-4, nominal_area=1e6)
 

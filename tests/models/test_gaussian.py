@@ -13,8 +13,13 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from models import ExponentialRoughSurface, GaussianRoughSurface, GeneralRoughSurface, HeightDensity
-from models.errors import GrossSlidingError, MissingLoadScaleError, ModelParameterError
+from cusp.models import (
+    ExponentialRoughSurface,
+    GaussianRoughSurface,
+    GeneralRoughSurface,
+    HeightDensity,
+)
+from cusp.models.errors import GrossSlidingError, MissingLoadScaleError, ModelParameterError
 
 from ._reference import rel_err, table
 

@@ -13,8 +13,8 @@ import mpmath as mp
 import numpy as np
 import pytest
 
-from models.errors import ModelParameterError
-from models.gw import gw_difference, gw_integral, log_gw_integral
+from cusp.models.errors import ModelParameterError
+from cusp.models.gw import gw_difference, gw_integral, log_gw_integral
 
 ORDERS = [0, 0.5, 1, 1.5]
 T = np.concatenate([np.linspace(-10.0, 38.0, 49), [-9.99, -1e-9, 1e-9, 1.999, 2.0, 5.3, 6.7]])

@@ -11,7 +11,7 @@ ROOT = pathlib.Path(__file__).resolve().parents[2]
 
 CODE = """
 import json, sys
-import models
+import cusp.models as models
 before = sorted(sys.modules)
 s = models.ExponentialRoughSurface(sigma=2.0, nu=0.3, mu=0.1, E=0.2, radius=100.0,
                                    density=1e-4, nominal_area=1e6)
@@ -29,27 +29,28 @@ def test_exponential_work_imports_no_quadrature():
         [sys.executable, "-c", CODE], capture_output=True, text=True, check=True, cwd=ROOT
     ).stdout
     mods = set(json.loads(out))
-    heavy = ("scipy.integrate", "scipy.optimize", "models.gaussian", "models.gw")
-    heavy += ("models._quadrature", "models.density", "matplotlib", "sympy", "mpmath")
+    heavy = ("scipy.integrate", "scipy.optimize", "cusp.models.gaussian", "cusp.models.gw")
+    heavy += ("cusp.models._quadrature", "cusp.models.density", "matplotlib", "sympy", "mpmath")
     for name in heavy:
         assert name not in mods, name
 
 
 def test_import_models_is_light():
     code = (
-        "import sys, models; print(sorted(m for m in sys.modules if m[:6] in ('models', 'scipy.')))"
+        "import sys, cusp.models; "
+        "print(sorted(m for m in sys.modules if m.startswith(('cusp', 'scipy.'))))"
     )
     out = subprocess.run(
         [sys.executable, "-c", code], capture_output=True, text=True, check=True, cwd=ROOT
     )
-    assert out.stdout.strip() == "['models']"
+    assert out.stdout.strip() == "['cusp', 'cusp.models']"
 
 
 def test_lazy_names():
-    import models
+    import cusp.models as models
 
     assert "GaussianRoughSurface" in dir(models)
-    assert models.Sphere.__module__ == "models.sphere"
+    assert models.Sphere.__module__ == "cusp.models.sphere"
     try:
         models.NoSuchThing  # noqa: B018
     except AttributeError as exc:

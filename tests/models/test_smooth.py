@@ -8,9 +8,9 @@ import mpmath as mp
 import numpy as np
 import pytest
 
-from models import Cylinder, FlatPlane, Sphere
-from models.cylinder import u_minus_sin_u
-from models.errors import GrossSlidingError, ModelParameterError, NoComplianceLawError
+from cusp.models import Cylinder, FlatPlane, Sphere
+from cusp.models.cylinder import u_minus_sin_u
+from cusp.models.errors import GrossSlidingError, ModelParameterError, NoComplianceLawError
 
 STEEL = dict(radius=5000.0, E=0.21, nu=0.3, mu=0.1)  # R = 5 mm, E = 210 GPa = 0.21 N/µm²
 

@@ -14,7 +14,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from models import Cylinder, ExponentialRoughSurface, FlatPlane, Sphere
+from cusp.models import Cylinder, ExponentialRoughSurface, FlatPlane, Sphere
 
 from ._reference import HERE, rel_err, table
 

@@ -10,7 +10,7 @@ and cylinders (Eqs 24-25, 27), and solves the resulting relations. Each result i
 derived expression, evaluated with mpmath at high precision, with the float code in
 ``models``.
 
-This module imports sympy at import time; ``import models`` does not import it.
+This module imports sympy at import time; ``import cusp.models`` does not import it.
 Equation ids are the paper's numbers ("9", "12", ...) plus three ids for Section 4:
 ``"MD"`` (Mindlin-Deresiewicz force F'_T along AB), ``"AB"`` (the slip g'_T along AB) and
 ``"32"`` (the total slipped area along AB). Ids of the form ``"12 (reading b)"`` are
@@ -378,7 +378,7 @@ def contact_loss_path() -> dict[str, sp.Expr]:
     integrals of F_T dg_T. Every expression is derived from the GW integrals: the loading
     curve (Eq 9), its inverse, the MD rule summed over the asperities and Eq 32, then
     integrated by sympy; symbols are those of :data:`SYMBOLS` (``sigma``, ``mu``, ``lambda``,
-    ``F_N0``, ``Fp_N``, ``g_A``). Used as test oracles for :mod:`models.contact_loss`, which
+    ``F_N0``, ``Fp_N``, ``g_A``). Used as test oracles for :mod:`cusp.models.contact_loss`, which
     traces the path from residuals instead.
     """
     R = _rough()
@@ -987,11 +987,11 @@ def _run_check(chk: _Check) -> ImplementationVerdict:
 def check_implementation(models=None) -> dict[str, list[ImplementationVerdict]]:
     """Compare the derived expressions with the float code; equation id -> verdicts.
 
-    ``models`` is the package (default: ``import models``). If the model classes cannot be
+    ``models`` is the package (default: :mod:`cusp.models`). If the model classes cannot be
     imported, a single verdict under key ``"*"`` says so.
     """
     if models is None:
-        import models as models_pkg
+        import cusp.models as models_pkg
 
         models = models_pkg
     try:

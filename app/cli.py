@@ -14,12 +14,12 @@ import sys
 #: subcommand name -> (module path, one-line help)
 COMMANDS: dict[str, tuple[str, str]] = {
     "run": (
-        "models.run",
+        "cusp.app.run",
         "trace the contact-loss path of a scene (TOML); default: the paper's Fig 6 scene",
     ),
-    "demo": ("models.demo", "trace the cusp normal form x^3 - a x - b = 0 and print its folds"),
+    "demo": ("cusp.app.demo", "trace the cusp normal form x^3 - a x - b = 0 and print its folds"),
     "verify": (
-        "models.verify",
+        "cusp.app.verify",
         "derive the paper's closed forms with sympy; compare printed, derived and implemented",
     ),
 }

@@ -1,4 +1,4 @@
-"""The sympy derivations (models.symbolic) and the verifier's verdicts."""
+"""The sympy derivations (cusp.verification.symbolic) and the verifier's verdicts."""
 
 from __future__ import annotations
 
@@ -10,7 +10,7 @@ import mpmath
 import pytest
 
 sp = pytest.importorskip("sympy")
-symbolic = pytest.importorskip("models.symbolic")
+symbolic = pytest.importorskip("cusp.verification.symbolic")
 
 F = symbolic.F_hat
 X = sp.sqrt(-sp.log(1 - F))
@@ -25,7 +25,7 @@ def test_import_models_does_not_import_sympy():
     import subprocess
     import sys
 
-    code = "import sys, models; print('sympy' in sys.modules)"
+    code = "import sys, cusp.models; print('sympy' in sys.modules)"
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert out.stdout.strip() == "False"
 

@@ -51,7 +51,7 @@ def bundled_scene(name: str = DEFAULT_SCENE) -> Path:
     """Path of a scene shipped with the package (the ``scenes`` directory)."""
     from importlib import resources
 
-    return Path(str(resources.files("scenes") / name))
+    return Path(str(resources.files("cusp.scenes") / name))
 
 
 @dataclass
@@ -70,22 +70,22 @@ def build_body(scene: Scene):
     model = s.pop("model")
     try:
         if model == "rough-exponential":
-            from .exponential import ExponentialRoughSurface
+            from cusp.models.exponential import ExponentialRoughSurface
 
             return ExponentialRoughSurface(**s)
         if model == "rough-gaussian":
-            from .gaussian import GaussianRoughSurface
+            from cusp.models.gaussian import GaussianRoughSurface
 
             return GaussianRoughSurface(**s)
         if model == "rough-weibull":
-            from .density import GeneralRoughSurface, HeightDensity
+            from cusp.models.density import GeneralRoughSurface, HeightDensity
 
             k = s.pop("shape")
             # Weibull scale such that the heights have standard deviation sigma
             spread = math.sqrt(math.gamma(1 + 2 / k) - math.gamma(1 + 1 / k) ** 2)
             heights = HeightDensity.weibull(k, s["sigma"] / spread)
             return GeneralRoughSurface(heights, **s)
-        from .sphere import Sphere
+        from cusp.models.sphere import Sphere
 
         return Sphere(**s)
     except ValueError as exc:
@@ -94,8 +94,8 @@ def build_body(scene: Scene):
 
 def run_scene(scene: Scene, *, plots: bool = True) -> tuple[SceneRun, dict]:
     """Trace every case of a scene; returns the run and the rendered figures (bytes)."""
-    from .contact_loss import DEFAULT_OPTIONS, ContactLoss
-    from .errors import ModelParameterError
+    from cusp.models.contact_loss import DEFAULT_OPTIONS, ContactLoss
+    from cusp.models.errors import ModelParameterError
 
     t0 = time.perf_counter()
     body = build_body(scene)
@@ -213,9 +213,8 @@ def write_outputs(out: Path, files: dict[str, bytes]) -> None:
 
 
 def main(args) -> int:
-    from continuation import ContinuationError
-
-    from .contact_loss import PathError
+    from cusp.continuation import ContinuationError
+    from cusp.models.contact_loss import PathError
 
     t_start = time.perf_counter()
     bundled = args.scene is None

@@ -3,7 +3,7 @@
 import subprocess
 import sys
 
-from models.cli import main
+from cusp.app.cli import main
 
 
 def test_cusp_demo_prints_both_folds(capsys):
@@ -22,7 +22,7 @@ def test_demo_bad_argument_exits_2(capsys):
 
 
 def test_console_entry_point_runs():
-    out = subprocess.run([sys.executable, "-m", "models.cli", "demo", "--a", "3"],
+    out = subprocess.run([sys.executable, "-m", "cusp.app.cli", "demo", "--a", "3"],
                          capture_output=True, text=True, check=True).stdout
     # at a = 3 the folds are at b = ∓2 (a/3)^{3/2} = ∓2
     assert "-2.000000000000000" in out and " 2.000000000000000" in out

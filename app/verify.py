@@ -34,7 +34,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 def records(models=None) -> list[dict]:
     """Derive, verify and compare; one JSON-ready dict per equation."""
-    from models import symbolic
+    from cusp.verification import symbolic
 
     impl = symbolic.check_implementation(models)
     unavailable = impl.get("*")

@@ -14,7 +14,7 @@ def add_arguments(parser) -> None:
 def main(args) -> int:
     import numpy as np
 
-    from continuation import Problem, trace
+    from cusp.continuation import Problem, trace
 
     a = args.a
     if not (math.isfinite(a) and a > 0):

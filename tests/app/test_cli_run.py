@@ -10,10 +10,10 @@ from pathlib import Path
 
 import pytest
 
-from models import cli
-from models.run import bundled_scene, write_outputs
+from cusp.app import cli
+from cusp.app.run import bundled_scene, write_outputs
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 SCENES = ROOT / "scenes"
 
 FIG6_TEXT = (SCENES / "fig6.toml").read_text(encoding="utf-8")
@@ -44,7 +44,7 @@ def test_fig6_scene_writes_summary_csv_and_figures(tmp_path, capsys):
     for key in "OABCD":
         assert set(s["points"][key]) >= {"g_T", "F_T", "F_N", "A_SL"}
     # the closed forms (tests/models/test_contact_loss.py checks them to 1e-10 at 50 digits;
-    # these literals are the sympy values printed by models.symbolic.contact_loss_path())
+    # these literals are the sympy values printed by cusp.verification.symbolic.contact_loss_path())
     assert s["points"]["C"]["g_T"] == pytest.approx(0.52813876635581604949, rel=1e-10)
     assert s["points"]["D"]["F_T"] == pytest.approx(64.039258064963450428, rel=1e-10)
     assert s["energy"]["snap_back"] == pytest.approx(0.21302894093713884714, rel=1e-8)
@@ -110,11 +110,12 @@ def test_fig8_scene_has_all_reductions_and_gross_sliding(tmp_path, capsys):
 
 def test_no_plots_loads_neither_matplotlib_nor_gaussian_code(tmp_path):
     code = (
-        "import sys; from models import cli; "
+        "import sys; from cusp.app import cli; "
         f"rc = cli.main(['run', {str(SCENES / 'fig6.toml')!r}, '--out', "
         f"{str(tmp_path / 'o')!r}, '--no-plots', '--quiet']); "
-        "heavy = [m for m in ('matplotlib', 'sympy', 'models.gaussian', 'models.gw', "
-        "'models._quadrature', 'models.density', 'models.figures') if m in sys.modules]; "
+        "heavy = [m for m in ('matplotlib', 'sympy', 'cusp.models.gaussian', 'cusp.models.gw', "
+        "'cusp.models._quadrature', 'cusp.models.density', 'cusp.app.figures') "
+        "if m in sys.modules]; "
         "print(rc, heavy)"
     )
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
@@ -124,7 +125,7 @@ def test_no_plots_loads_neither_matplotlib_nor_gaussian_code(tmp_path):
 
 def test_cusp_run_without_arguments_runs_the_bundled_fig6_scene(tmp_path):
     assert bundled_scene().read_text(encoding="utf-8") == FIG6_TEXT
-    proc = subprocess.run([sys.executable, "-c", "import sys; from models import cli; "
+    proc = subprocess.run([sys.executable, "-c", "import sys; from cusp.app import cli; "
                            "sys.exit(cli.main(['run', '--no-plots']))"],
                           capture_output=True, text=True, cwd=tmp_path,
                           env={"PYTHONPATH": str(ROOT), "PATH": "/usr/bin:/bin"})
@@ -247,7 +248,7 @@ def test_binary_and_missing_scene_files(tmp_path, capsys):
 def test_bad_scene_through_the_console_script_has_no_traceback(tmp_path):
     scene = tmp_path / "bad.toml"
     scene.write_text(_scene(nu="nu = 0.7"), encoding="utf-8")
-    proc = subprocess.run([sys.executable, "-m", "models.cli", "run", str(scene)],
+    proc = subprocess.run([sys.executable, "-m", "cusp.app.cli", "run", str(scene)],
                           capture_output=True, text=True, cwd=ROOT)
     assert proc.returncode == 2
     assert proc.stderr.count("\n") == 1 and "Traceback" not in proc.stderr
@@ -262,7 +263,7 @@ def test_failed_write_leaves_nothing(tmp_path):
 
 
 def test_numerical_failure_exits_1_with_one_line(tmp_path, capsys, monkeypatch):
-    from models import contact_loss
+    from cusp.models import contact_loss
 
     def fail(self, options=None):
         raise contact_loss.PathError("the contact-loss leg AB ended with status 'max_steps'")

@@ -12,10 +12,10 @@ from pathlib import Path
 import pytest
 
 sp = pytest.importorskip("sympy")
-symbolic = pytest.importorskip("models.symbolic")
+symbolic = pytest.importorskip("cusp.verification.symbolic")
 
-from models import cli  # noqa: E402
-from tests.models.test_symbolic import _fake, _NaiveRough  # noqa: E402
+from cusp.app import cli  # noqa: E402
+from tests.verification.test_symbolic import _fake, _NaiveRough  # noqa: E402
 
 REQUIRED = {
     "equation": str,
@@ -30,7 +30,7 @@ REQUIRED = {
 
 def _models_available() -> bool:
     try:
-        import models
+        import cusp.models as models
 
         models.ExponentialRoughSurface  # noqa: B018
         return True
@@ -135,11 +135,11 @@ def test_wrong_printed_form_gives_nonzero_exit(capsys, monkeypatch):
 def test_cusp_verify_runs_in_under_60_s():
     start = time.perf_counter()
     proc = subprocess.run(
-        [sys.executable, "-m", "models.cli", "verify"],
+        [sys.executable, "-m", "cusp.app.cli", "verify"],
         capture_output=True,
         text=True,
         timeout=120,
-        cwd=Path(__file__).resolve().parents[1],
+        cwd=Path(__file__).resolve().parents[2],
     )
     elapsed = time.perf_counter() - start
     assert elapsed < 60

@@ -1,0 +1,7 @@
+"""``python -m cusp``: the ``cusp`` command."""
+
+import sys
+
+from cusp.app.cli import main
+
+sys.exit(main())
