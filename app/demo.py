@@ -22,7 +22,8 @@ def main(args) -> int:
         return 2
     prob = Problem(
         lambda u, p: np.array([u[0] ** 3 - p["a"] * u[0] - p["b"]]),
-        unknowns=["x"], params={"a": a, "b": -1.0},
+        unknowns=["x"],
+        params={"a": a, "b": -1.0},
         jacobian=lambda u, p: np.array([[3.0 * u[0] ** 2 - p["a"]]]),
         param_jacobian=lambda u, p, name: np.array([-1.0]) if name == "b" else -u[:1],
     )
@@ -41,6 +42,8 @@ def main(args) -> int:
         if sp.kind != "fold":
             continue
         err = abs(sp.values["b"]) - exact
-        print(f"  {sp.kind:<10}{sp.values['x']:>22.15f}{sp.values['b']:>22.15f}{err:>20.2e}  "
-              f"{sp.status}")
+        print(
+            f"  {sp.kind:<10}{sp.values['x']:>22.15f}{sp.values['b']:>22.15f}{err:>20.2e}  "
+            f"{sp.status}"
+        )
     return 0 if br.success else 1

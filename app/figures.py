@@ -31,8 +31,7 @@ def render(cases, names, *, title: str = "") -> dict[str, dict[str, bytes]]:
     from matplotlib.figure import Figure
 
     dense = [(load, res, {leg: res.dense(leg) for leg in res.legs}) for load, res in cases]
-    makers = {"force-slip": _force_slip, "force-slip-detail": _detail,
-              "force-area": _force_area}
+    makers = {"force-slip": _force_slip, "force-slip-detail": _detail, "force-area": _force_area}
     out: dict[str, dict[str, bytes]] = {}
     with matplotlib.rc_context({"font.size": 10}):
         for name in names:
@@ -66,15 +65,22 @@ def _label_points(ax, res, x: str, which=("O", "A", "B", "C", "D"), color="k") -
         if pt is None:
             continue
         ax.plot(pt[x], pt["F_T"], "o", color=color, ms=4, zorder=5)
-        ax.annotate(key, (pt[x], pt["F_T"]), textcoords="offset points",
-                    xytext=offsets[key], fontsize=10, fontweight="bold")
+        ax.annotate(
+            key,
+            (pt[x], pt["F_T"]),
+            textcoords="offset points",
+            xytext=offsets[key],
+            fontsize=10,
+            fontweight="bold",
+        )
 
 
 def _plot_path(ax, dense_legs, x: str, color, label, dashed_ab: bool) -> None:
     for leg, cols in dense_legs.items():
         style = "--" if (leg == "AB" and dashed_ab) else "-"
-        ax.plot(cols[x], cols["F_T"], style, color=color, lw=1.6,
-                label=label if leg == "OA" else None)
+        ax.plot(
+            cols[x], cols["F_T"], style, color=color, lw=1.6, label=label if leg == "OA" else None
+        )
 
 
 def _paths(ax, dense, x: str, xlabel: str) -> None:
@@ -119,18 +125,38 @@ def _detail(ax, dense) -> None:
         g = np.linspace(B["g_T"], A["g_T"], 200)
         upper = np.interp(g, ab["g_T"][::-1], ab["F_T"][::-1])
         lower = np.interp(g, bc["g_T"], bc["F_T"])
-        ax.fill_between(g, lower, upper, color=_COLORS[1], alpha=0.35,
-                        label=f"area ABD = snap-back energy, {res.energy['snap_back']:.6g} N·µm")
-        ax.annotate("", xy=(D["g_T"], D["F_T"]), xytext=(A["g_T"], A["F_T"]),
-                    arrowprops={"arrowstyle": "->", "color": _COLORS[1], "lw": 1.4})
+        ax.fill_between(
+            g,
+            lower,
+            upper,
+            color=_COLORS[1],
+            alpha=0.35,
+            label=f"area ABD = snap-back energy, {res.energy['snap_back']:.6g} N·µm",
+        )
+        ax.annotate(
+            "",
+            xy=(D["g_T"], D["F_T"]),
+            xytext=(A["g_T"], A["F_T"]),
+            arrowprops={"arrowstyle": "->", "color": _COLORS[1], "lw": 1.4},
+        )
     if C is not None:
         g = np.linspace(A["g_T"], C["g_T"], 200)
         lower = np.interp(g, bc["g_T"], bc["F_T"])
-        ax.fill_between(g, lower, np.full_like(g, A["F_T"]), color=_COLORS[2], alpha=0.3,
-                        label="area ABC = ABD + ADC = snap-through energy, "
-                              f"{res.energy['snap_through']:.6g} N·µm")
-        ax.annotate("", xy=(C["g_T"], C["F_T"]), xytext=(A["g_T"], A["F_T"]),
-                    arrowprops={"arrowstyle": "->", "color": _COLORS[2], "lw": 1.4})
+        ax.fill_between(
+            g,
+            lower,
+            np.full_like(g, A["F_T"]),
+            color=_COLORS[2],
+            alpha=0.3,
+            label="area ABC = ABD + ADC = snap-through energy, "
+            f"{res.energy['snap_through']:.6g} N·µm",
+        )
+        ax.annotate(
+            "",
+            xy=(C["g_T"], C["F_T"]),
+            xytext=(A["g_T"], A["F_T"]),
+            arrowprops={"arrowstyle": "->", "color": _COLORS[2], "lw": 1.4},
+        )
     _label_points(ax, res, "g_T", which=("A", "B", "C", "D"))
     g_lo = B["g_T"]
     span = g_hi - g_lo

@@ -33,16 +33,32 @@ __all__ = ["run_scene", "SceneRun", "summary", "branch_csv", "write_outputs", "D
 #: the scene ``cusp run`` runs without an argument (the paper's Fig 6)
 DEFAULT_SCENE = "fig6.toml"
 
-_UNITS = {"g_T": "µm", "F_T": "N", "F_N": "N", "A_SL": "1", "d": "µm", "d0": "µm",
-          "a": "µm", "c": "µm", "energy": "N·µm (= µJ)"}
+_UNITS = {
+    "g_T": "µm",
+    "F_T": "N",
+    "F_N": "N",
+    "A_SL": "1",
+    "d": "µm",
+    "d0": "µm",
+    "a": "µm",
+    "c": "µm",
+    "energy": "N·µm (= µJ)",
+}
 
 
 def add_arguments(parser) -> None:
-    parser.add_argument("scene", nargs="?", default=None,
-                        help=f"scene file (TOML); default: the bundled {DEFAULT_SCENE} "
-                             "(the paper's Fig 6)")
-    parser.add_argument("--out", default=None, metavar="DIR",
-                        help="output directory (default: cusp-out/<scene name>)")
+    parser.add_argument(
+        "scene",
+        nargs="?",
+        default=None,
+        help=f"scene file (TOML); default: the bundled {DEFAULT_SCENE} (the paper's Fig 6)",
+    )
+    parser.add_argument(
+        "--out",
+        default=None,
+        metavar="DIR",
+        help="output directory (default: cusp-out/<scene name>)",
+    )
     parser.add_argument("--no-plots", action="store_true", help="write no figures")
     parser.add_argument("--quiet", action="store_true", help="print only errors")
 
@@ -108,8 +124,13 @@ def run_scene(scene: Scene, *, plots: bool = True) -> tuple[SceneRun, dict]:
     cases = []
     for load in scene.reduced_normal_loads:
         try:
-            model = ContactLoss(body, scene.loading["normal_load"], scene.loading["max_slip"],
-                                load, area_reading=scene.options["area_reading"])
+            model = ContactLoss(
+                body,
+                scene.loading["normal_load"],
+                scene.loading["max_slip"],
+                load,
+                area_reading=scene.options["area_reading"],
+            )
         except ModelParameterError as exc:
             raise SceneError(f"{scene.source}: [loading] {exc}") from None
         cases.append((load, model.run(options)))
@@ -128,8 +149,7 @@ def _case_summary(load: float, res) -> dict[str, Any]:
     return {
         "reduced_normal_load": {"value": load, "unit": "N"},
         "points": res.points,
-        "energy": {**energy, "unit": _UNITS["energy"],
-                   "error_estimate": dict(res.energy_error)},
+        "energy": {**energy, "unit": _UNITS["energy"], "error_estimate": dict(res.energy_error)},
         "folds": res.folds,
         "gross_sliding": res.gross_sliding,
         "messages": res.messages,
@@ -154,10 +174,13 @@ def summary(run: SceneRun) -> dict[str, Any]:
         "messages": first["messages"],
         "solver": first["solver"],
         "cases": cases,
-        "units": {k: _UNITS[k] for k in ("g_T", "F_T", "F_N", "A_SL", *level_names,
-                                         "energy")},
-        "software": {"python": platform.python_version(), "numpy": numpy.__version__,
-                     "scipy": scipy.__version__, "cusp": _version()},
+        "units": {k: _UNITS[k] for k in ("g_T", "F_T", "F_N", "A_SL", *level_names, "energy")},
+        "software": {
+            "python": platform.python_version(),
+            "numpy": numpy.__version__,
+            "scipy": scipy.__version__,
+            "cusp": _version(),
+        },
     }
 
 
@@ -175,8 +198,18 @@ def branch_csv(run: SceneRun) -> str:
     buf = io.StringIO()
     first = run.cases[0][1]
     p_name, q_name = first.level_names
-    cols = ["case", "reduced_normal_load", "leg", "point", "g_T", "F_T", "F_N", "A_SL",
-            p_name, q_name]
+    cols = [
+        "case",
+        "reduced_normal_load",
+        "leg",
+        "point",
+        "g_T",
+        "F_T",
+        "F_N",
+        "A_SL",
+        p_name,
+        q_name,
+    ]
     w = csv.writer(buf, lineterminator="\n")
     w.writerow(cols)
     for i, (load, res) in enumerate(run.cases):
@@ -184,8 +217,15 @@ def branch_csv(run: SceneRun) -> str:
         for leg in res.legs:
             path = res.path(leg)
             for j in range(len(path["g_T"])):
-                w.writerow([i, repr(load), leg, labels.get((leg, j), ""),
-                            *(repr(float(path[c][j])) for c in cols[4:])])
+                w.writerow(
+                    [
+                        i,
+                        repr(load),
+                        leg,
+                        labels.get((leg, j), ""),
+                        *(repr(float(path[c][j])) for c in cols[4:]),
+                    ]
+                )
     return buf.getvalue()
 
 
@@ -230,8 +270,9 @@ def main(args) -> int:
         print(f"cusp run: numerical failure: {first}", file=sys.stderr)
         return 1
     files = {
-        "summary.json": (json.dumps(summary(run), indent=2, ensure_ascii=False,
-                                    allow_nan=False) + "\n").encode(),
+        "summary.json": (
+            json.dumps(summary(run), indent=2, ensure_ascii=False, allow_nan=False) + "\n"
+        ).encode(),
         "branch.csv": branch_csv(run).encode(),
     }
     for name, blobs in figures.items():
@@ -250,8 +291,10 @@ def main(args) -> int:
 
 def _report(run: SceneRun, out: Path, files: list[str], total: float) -> None:
     sc = run.scene
-    print(f"scene {sc.name} ({sc.source}): {sc.surface['model']}, F_N0 = "
-          f"{sc.loading['normal_load']:g} N, g_A = {sc.loading['max_slip']:g} µm")
+    print(
+        f"scene {sc.name} ({sc.source}): {sc.surface['model']}, F_N0 = "
+        f"{sc.loading['normal_load']:g} N, g_A = {sc.loading['max_slip']:g} µm"
+    )
     for load, res in run.cases:
         print(f"  F'_N = {load:g} N")
         for key in "OABCD":
@@ -259,8 +302,10 @@ def _report(run: SceneRun, out: Path, files: list[str], total: float) -> None:
             if pt is None:
                 print(f"    {key}: none")
                 continue
-            print(f"    {key}: g_T = {pt['g_T']:.10g} µm, F_T = {pt['F_T']:.10g} N, "
-                  f"F_N = {pt['F_N']:.10g} N, A_SL = {pt['A_SL']:.10g}")
+            print(
+                f"    {key}: g_T = {pt['g_T']:.10g} µm, F_T = {pt['F_T']:.10g} N, "
+                f"F_N = {pt['F_N']:.10g} N, A_SL = {pt['A_SL']:.10g}"
+            )
         for kind in ("snap_back", "snap_through"):
             val = res.energy[kind]
             text = "none (gross sliding)" if val is None else f"{val:.10g} N·µm"
@@ -268,6 +313,8 @@ def _report(run: SceneRun, out: Path, files: list[str], total: float) -> None:
         for msg in res.messages:
             print(f"    note: {msg}")
     t = run.timing
-    print(f"compute {t['compute_s'] * 1e3:.1f} ms, figures {t['render_s'] * 1e3:.1f} ms, "
-          f"total {total * 1e3:.1f} ms (after imports)")
+    print(
+        f"compute {t['compute_s'] * 1e3:.1f} ms, figures {t['render_s'] * 1e3:.1f} ms, "
+        f"total {total * 1e3:.1f} ms (after imports)"
+    )
     print(f"wrote {out}/: {', '.join(files)}")

@@ -70,9 +70,9 @@ MODELS: dict[str, tuple[tuple[str, ...], tuple[str, ...]]] = {
 }
 _NO_COMPLIANCE = {
     "cylinder": "a cylinder has no compliance law in the paper (its 2-D elastic displacement is "
-                "defined only up to a datum), so it has no contact-loss path",
+    "defined only up to a datum), so it has no contact-loss path",
     "flat": "flat planes have no compliance law (they slide as a whole at F_T = mu F_N), so "
-            "they have no contact-loss path",
+    "they have no contact-loss path",
 }
 
 # key -> (unit, lower bound, lower inclusive, upper bound, upper inclusive)
@@ -135,8 +135,7 @@ class Scene:
         for section in ("surface", "loading", "options", "solver"):
             block = getattr(self, section)
             out[section] = {
-                k: ({"value": v, "unit": UNITS[k]} if k in UNITS else v)
-                for k, v in block.items()
+                k: ({"value": v, "unit": UNITS[k]} if k in UNITS else v) for k, v in block.items()
             }
         out["output"] = {"figures": list(self.figures)}
         return out
@@ -179,13 +178,17 @@ def parse_scene(text: str, *, source: str = "<scene>", default_name: str = "scen
         if section not in _SECTIONS:
             chk.fail(f"unknown section [{section}]", f"sections are {_list(_SECTIONS)}")
         if not isinstance(value, dict):
-            chk.fail(f"{section} = {value!r} must be a [{section}] table",
-                     f"write it as a section [{section}]")
+            chk.fail(
+                f"{section} = {value!r} must be a [{section}] table",
+                f"write it as a section [{section}]",
+            )
         unknown = set(value) - _SECTIONS[section]
         if unknown:
             key = sorted(unknown)[0]
-            chk.fail(f"[{section}] unknown key {key!r}",
-                     f"keys of [{section}] are {_list(_SECTIONS[section])}")
+            chk.fail(
+                f"[{section}] unknown key {key!r}",
+                f"keys of [{section}] are {_list(_SECTIONS[section])}",
+            )
     for section in _REQUIRED_SECTIONS:
         if section not in data:
             chk.fail(f"missing section [{section}]", "a scene needs [surface] and [loading]")
@@ -201,27 +204,35 @@ def parse_scene(text: str, *, source: str = "<scene>", default_name: str = "scen
         chk.fail("[surface] missing key 'model'", f"one of {_list(MODELS)}")
     model = chk.string("surface", "model", surf_in["model"])
     if model in _NO_COMPLIANCE:
-        chk.fail(f"[surface] model = {model!r}: {_NO_COMPLIANCE[model]}",
-                 f"models with a contact-loss path are {_list(MODELS)}")
+        chk.fail(
+            f"[surface] model = {model!r}: {_NO_COMPLIANCE[model]}",
+            f"models with a contact-loss path are {_list(MODELS)}",
+        )
     if model not in MODELS:
         chk.fail(f"[surface] model = {model!r} is not a known model", f"one of {_list(MODELS)}")
     required, optional = MODELS[model]
     extra = set(surf_in) - {"model", *required, *optional}
     if extra:
         key = sorted(extra)[0]
-        chk.fail(f"[surface] key {key!r} does not apply to model {model!r}",
-                 f"{model} takes {_list(required + optional)}")
+        chk.fail(
+            f"[surface] key {key!r} does not apply to model {model!r}",
+            f"{model} takes {_list(required + optional)}",
+        )
     surface: dict[str, Any] = {"model": model}
     for key in required:
         if key not in surf_in:
-            chk.fail(f"[surface] missing key {key!r} for model {model!r}",
-                     f"{model} needs {_list(required)}")
+            chk.fail(
+                f"[surface] missing key {key!r} for model {model!r}",
+                f"{model} needs {_list(required)}",
+            )
         surface[key] = chk.number("surface", key, surf_in[key])
     given = [k for k in optional if k in surf_in]
     if given and len(given) != len(optional):
         missing = [k for k in optional if k not in surf_in]
-        chk.fail(f"[surface] {', '.join(given)} given without {', '.join(missing)}",
-                 f"the load scale needs all of {_list(optional)} or none")
+        chk.fail(
+            f"[surface] {', '.join(given)} given without {', '.join(missing)}",
+            f"the load scale needs all of {_list(optional)} or none",
+        )
     for key in given:
         surface[key] = chk.number("surface", key, surf_in[key])
 
@@ -229,20 +240,23 @@ def parse_scene(text: str, *, source: str = "<scene>", default_name: str = "scen
     loading: dict[str, Any] = {}
     for key in ("normal_load", "max_slip", "reduced_normal_load"):
         if key not in load_in:
-            chk.fail(f"[loading] missing key {key!r}",
-                     "[loading] needs normal_load, max_slip and reduced_normal_load")
+            chk.fail(
+                f"[loading] missing key {key!r}",
+                "[loading] needs normal_load, max_slip and reduced_normal_load",
+            )
     loading["normal_load"] = chk.number("loading", "normal_load", load_in["normal_load"])
     loading["max_slip"] = chk.number("loading", "max_slip", load_in["max_slip"])
     red = load_in["reduced_normal_load"]
     reds = red if isinstance(red, list) else [red]
     if not reds:
         chk.fail("[loading] reduced_normal_load = []", "a number or a non-empty list of numbers")
-    loading["reduced_normal_load"] = [chk.number("loading", "reduced_normal_load", v)
-                                      for v in reds]
+    loading["reduced_normal_load"] = [chk.number("loading", "reduced_normal_load", v) for v in reds]
     for v in loading["reduced_normal_load"]:
         if v >= loading["normal_load"]:
-            chk.fail(f"[loading] reduced_normal_load = {v!r} N",
-                     f"less than normal_load = {loading['normal_load']!r} N (a reduction)")
+            chk.fail(
+                f"[loading] reduced_normal_load = {v!r} N",
+                f"less than normal_load = {loading['normal_load']!r} N (a reduction)",
+            )
 
     opts_in = data.get("options", {})
     reading = chk.string("options", "area_reading", opts_in.get("area_reading", "printed"))
@@ -256,9 +270,16 @@ def parse_scene(text: str, *, source: str = "<scene>", default_name: str = "scen
     for f in figs:
         if f not in FIGURES:
             chk.fail(f"[output] figures contains {f!r}", f"names from {_list(FIGURES)}")
-    return Scene(source=source, name=name, title=title, surface=surface, loading=loading,
-                 options={"area_reading": reading}, solver=solver,
-                 figures=tuple(dict.fromkeys(figs)))
+    return Scene(
+        source=source,
+        name=name,
+        title=title,
+        surface=surface,
+        loading=loading,
+        options={"area_reading": reading},
+        solver=solver,
+        figures=tuple(dict.fromkeys(figs)),
+    )
 
 
 class _Checker:
@@ -270,21 +291,27 @@ class _Checker:
 
     def string(self, section: str, key: str, value) -> str:
         if not isinstance(value, str):
-            self.fail(f"[{section}] {key} = {value!r} has the wrong type "
-                      f"({type(value).__name__})", "a string")
+            self.fail(
+                f"[{section}] {key} = {value!r} has the wrong type ({type(value).__name__})",
+                "a string",
+            )
         return value
 
     def number(self, section: str, key: str, value) -> float:
         unit, lo, lo_in, hi, hi_in = _NUMBERS[key]
         u = f" [{unit}]" if unit else ""
-        rng = (f"{'[' if lo_in else '('}{lo:g}, {hi:g}{']' if hi_in else ')'}"
-               if math.isfinite(hi) else f"{'>=' if lo_in else '>'} {lo:g}")
+        rng = (
+            f"{'[' if lo_in else '('}{lo:g}, {hi:g}{']' if hi_in else ')'}"
+            if math.isfinite(hi)
+            else f"{'>=' if lo_in else '>'} {lo:g}"
+        )
         if isinstance(value, bool) or not isinstance(value, (int, float)):
-            self.fail(f"[{section}] {key} = {value!r} has the wrong type "
-                      f"({type(value).__name__})", f"a finite number {rng}{u}")
+            self.fail(
+                f"[{section}] {key} = {value!r} has the wrong type ({type(value).__name__})",
+                f"a finite number {rng}{u}",
+            )
         v = float(value)
-        ok = (math.isfinite(v) and (v >= lo if lo_in else v > lo)
-              and (v <= hi if hi_in else v < hi))
+        ok = math.isfinite(v) and (v >= lo if lo_in else v > lo) and (v <= hi if hi_in else v < hi)
         if not ok:
             self.fail(f"[{section}] {key} = {value!r}{u}", f"a finite number {rng}{u}")
         return v

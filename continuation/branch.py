@@ -53,10 +53,19 @@ class Branch:
     names of the traced components, i.e. the unknowns and the free parameter(s)).
     """
 
-    def __init__(self, columns: dict[str, np.ndarray], *, variables: tuple[str, ...],
-                 s: np.ndarray, tangents: np.ndarray, special_points: list[SpecialPoint],
-                 status: str, message: str, stats: dict[str, np.ndarray],
-                 info: dict[str, Any] | None = None) -> None:
+    def __init__(
+        self,
+        columns: dict[str, np.ndarray],
+        *,
+        variables: tuple[str, ...],
+        s: np.ndarray,
+        tangents: np.ndarray,
+        special_points: list[SpecialPoint],
+        status: str,
+        message: str,
+        stats: dict[str, np.ndarray],
+        info: dict[str, Any] | None = None,
+    ) -> None:
         self._columns = columns
         self.variables = variables
         self.s = s
@@ -75,8 +84,9 @@ class Branch:
         try:
             return self._columns[name]
         except KeyError:
-            raise KeyError(f"{name!r} is not on this branch; columns are "
-                           f"{sorted(self._columns)}") from None
+            raise KeyError(
+                f"{name!r} is not on this branch; columns are {sorted(self._columns)}"
+            ) from None
 
     def __contains__(self, name: str) -> bool:
         return name in self._columns
@@ -102,8 +112,7 @@ class Branch:
         kinds: dict[str, int] = {}
         for sp in self.special_points:
             kinds[sp.kind] = kinds.get(sp.kind, 0) + 1
-        return (f"<Branch {len(self)} points, status={self.status!r}, "
-                f"special points {kinds}>")
+        return f"<Branch {len(self)} points, status={self.status!r}, special points {kinds}>"
 
     def plot(self, x: str, y: str, ax=None, *, special: bool = True, **kwargs):
         """Plot column ``y`` against ``x`` (matplotlib imported lazily); returns the Axes."""

@@ -29,9 +29,19 @@ def _singular_reason(a) -> str:
     return "singular" if np.all(np.isfinite(data)) else "nonfinite"
 
 
-def newton(system, z0: np.ndarray, row: np.ndarray, c: float, *, tol: float, step_tol: float,
-           max_iter: int, g0: np.ndarray | None = None, strict: bool = False,
-           contract: bool = False) -> NewtonResult:
+def newton(
+    system,
+    z0: np.ndarray,
+    row: np.ndarray,
+    c: float,
+    *,
+    tol: float,
+    step_tol: float,
+    max_iter: int,
+    g0: np.ndarray | None = None,
+    strict: bool = False,
+    contract: bool = False,
+) -> NewtonResult:
     """Solve ``G(z) = 0``, ``row·z = c`` by Newton's method from ``z0``.
 
     Converged when the max-norm of ``G`` is ≤ ``tol`` and the last update is
@@ -126,12 +136,19 @@ def newton(system, z0: np.ndarray, row: np.ndarray, c: float, *, tol: float, ste
         rn = rn_new
         chord = not chord and sn <= sq_step_tol
         sn_prev = sn
-    return NewtonResult(z, converged, k, rn, lu if f is None else DenseLU.from_factors(f, piv),
-                        "" if converged else reason)
+    return NewtonResult(
+        z,
+        converged,
+        k,
+        rn,
+        lu if f is None else DenseLU.from_factors(f, piv),
+        "" if converged else reason,
+    )
 
 
-def damped_newton(system, z0: np.ndarray, row: np.ndarray, c: float, *, tol: float,
-                  step_tol: float, max_iter: int) -> NewtonResult:
+def damped_newton(
+    system, z0: np.ndarray, row: np.ndarray, c: float, *, tol: float, step_tol: float, max_iter: int
+) -> NewtonResult:
     """Fallback corrector: Newton with Armijo backtracking on ``||[G; r·z − c]||²``."""
     z = z0.copy()
     g = system.residual(z)
@@ -155,7 +172,8 @@ def damped_newton(system, z0: np.ndarray, row: np.ndarray, c: float, *, tol: flo
         rhs[m] = c - row @ z
         dz = lu.solve(rhs)
         if _norm(dz) <= step_tol * (1.0 + _norm(z)) and _norm(g) <= max(
-                tol, system.residual_floor(a[:-1], z)):
+            tol, system.residual_floor(a[:-1], z)
+        ):
             return NewtonResult(z + dz, True, k, _norm(g), lu)
         lam = 1.0
         while lam > 1e-6:

@@ -29,7 +29,7 @@ def column_groups(pattern) -> list[np.ndarray]:
     pat = sp.csc_matrix(pattern)
     pat.data[:] = 1
     n = pat.shape[1]
-    rows_of = [pat.indices[pat.indptr[j]:pat.indptr[j + 1]] for j in range(n)]
+    rows_of = [pat.indices[pat.indptr[j] : pat.indptr[j + 1]] for j in range(n)]
     groups: list[list[int]] = []
     used: list[np.ndarray] = []
     for j in range(n):
@@ -98,7 +98,7 @@ def fd_jacobian(
         d[g] = h[g]
         df = directional(d)
         for j in g:
-            rows = pat.indices[pat.indptr[j]:pat.indptr[j + 1]]
+            rows = pat.indices[pat.indptr[j] : pat.indptr[j + 1]]
             rows_list.append(rows)
             cols_list.append(np.full(rows.size, j))
             vals_list.append(df[rows] / h[j])
@@ -142,8 +142,9 @@ class JacobianCheck:
         return self.message
 
 
-def check_jacobian(problem, u, p=None, *, rtol: float = 1e-6, atol: float = 1e-8,
-                   show: int = 5) -> JacobianCheck:
+def check_jacobian(
+    problem, u, p=None, *, rtol: float = 1e-6, atol: float = 1e-8, show: int = 5
+) -> JacobianCheck:
     """Compare a problem's Jacobian and parameter derivatives with central differences.
 
     The error of an entry is ``|supplied − fd| / (atol + rtol·max(|fd|, scale))`` with
@@ -155,8 +156,9 @@ def check_jacobian(problem, u, p=None, *, rtol: float = 1e-6, atol: float = 1e-8
     supplied = problem.jacobian(u, p)
     supplied = supplied.toarray() if sp.issparse(supplied) else np.asarray(supplied, float)
     cols = [supplied]
-    fd_cols = [fd_jacobian(lambda v: np.asarray(problem.residual(v, p), float), u,
-                           method="central")]
+    fd_cols = [
+        fd_jacobian(lambda v: np.asarray(problem.residual(v, p), float), u, method="central")
+    ]
     for name in p:
         cols.append(np.asarray(problem.param_jacobian(u, p, name), float)[:, None])
 
@@ -181,8 +183,12 @@ def check_jacobian(problem, u, p=None, *, rtol: float = 1e-6, atol: float = 1e-8
     if ok:
         message = f"Jacobian agrees with central differences (max scaled error {max_error:.3g})"
     else:
-        lines = [f"row {i}, d/d{n}: supplied {x:.10g}, finite differences {y:.10g}"
-                 for i, n, x, y in worst]
-        message = (f"Jacobian disagrees with central differences (max scaled error "
-                   f"{max_error:.3g} with rtol={rtol}, atol={atol}):\n  " + "\n  ".join(lines))
+        lines = [
+            f"row {i}, d/d{n}: supplied {x:.10g}, finite differences {y:.10g}"
+            for i, n, x, y in worst
+        ]
+        message = (
+            f"Jacobian disagrees with central differences (max scaled error "
+            f"{max_error:.3g} with rtol={rtol}, atol={atol}):\n  " + "\n  ".join(lines)
+        )
     return JacobianCheck(ok=ok, max_error=max_error, worst=worst, message=message)

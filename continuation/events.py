@@ -28,4 +28,5 @@ class Event:
             raise ProblemDefinitionError(f"Event function must be callable, got {self.function!r}")
         if self.direction not in (-1, 0, 1):
             raise ProblemDefinitionError(
-                f"Event direction must be -1, 0 or +1, got {self.direction!r}")
+                f"Event direction must be -1, 0 or +1, got {self.direction!r}"
+            )

@@ -53,8 +53,15 @@ class FoldSystem(CurveSystem):
     """``[F; g]`` over ``z = (u, p1, p2)``; ``k`` is the index (in ``(u, p1)``) of the variable
     that turns at the fold."""
 
-    def __init__(self, problem, p1: str, p2: str, k: int, params: Mapping[str, float],
-                 state_weight: float | None) -> None:
+    def __init__(
+        self,
+        problem,
+        p1: str,
+        p2: str,
+        k: int,
+        params: Mapping[str, float],
+        state_weight: float | None,
+    ) -> None:
         self.problem = problem
         self.p1, self.p2 = p1, p2
         self.params = dict(params)
@@ -169,8 +176,7 @@ class FoldSystem(CurveSystem):
             return floor
         _, v, w, _, df = self.bordered_solve(z)
         size = abs(df).sum(axis=1).max() if sp.issparse(df) else np.abs(df).sum(axis=1).max()
-        rel = _EPS ** (0.5 if getattr(self.problem, "derivatives", "") == "forward"
-                       else 2.0 / 3.0)
+        rel = _EPS ** (0.5 if getattr(self.problem, "derivatives", "") == "forward" else 2.0 / 3.0)
         noise = 10.0 * rel * float(size) * (1.0 + max_abs(z))
         return max(floor, noise * max_abs(v) * max_abs(w))
 
@@ -203,7 +209,7 @@ class FoldSystem(CurveSystem):
         if self._exact_jacobian:
             return 0.5 * float(second_derivative_row(self.df, z, vt, w) @ vt)
         vmax = float(np.max(np.abs(vt)))
-        h = _EPS ** 0.25 * max(1.0, float(np.max(np.abs(z)))) / vmax
+        h = _EPS**0.25 * max(1.0, float(np.max(np.abs(z)))) / vmax
         second = w @ (self.f(z + h * vt) - 2.0 * self.f(z) + self.f(z - h * vt)) / (h * h)
         return 0.5 * float(second)
 
@@ -255,20 +261,25 @@ def _locate_cusp(system: FoldSystem, br: Bracket, f_a: float, f_b: float) -> Loc
             break
         previous = size
     if converged:
-        found = Located(z, br.sigma(z), "converged", it, {"method": "Newton on [F; g; a]",
-                                                          "last_update": size})
+        found = Located(
+            z, br.sigma(z), "converged", it, {"method": "Newton on [F; g; a]", "last_update": size}
+        )
     else:
         found = locate_on_arc(br, system.cusp_coefficient, f_a, f_b)
         found.details["method"] = "Illinois on the cusp coefficient"
     tan = tangent_at(system, found.z, br.row, system.weights, br)
     found.details.update(
-        coefficient_before=float(f_a), coefficient_after=float(f_b),
+        coefficient_before=float(f_a),
+        coefficient_after=float(f_b),
         # the unfolding parameters of the cusp: the variable that turns and p2 (both
         # components of the fold curve's tangent vanish there)
-        tangent_parameters={system.names[system.k]: float(tan[system.k]),
-                            system.p2: float(tan[-1])},
+        tangent_parameters={
+            system.names[system.k]: float(tan[system.k]),
+            system.p2: float(tan[-1]),
+        },
         fold_branches=(system.values(br.z_a), system.values(br.z_b)),
-        residual=float(np.max(np.abs(system.residual(found.z)))))
+        residual=float(np.max(np.abs(system.residual(found.z)))),
+    )
     return found
 
 
@@ -284,8 +295,10 @@ def _locate_codim2(system: FoldSystem, br: Bracket, f_a: float, f_b: float) -> L
 
     fb = f(br.z_b)
     found = locate_on_arc(br, f, ref[0], fb if fb * ref[0] < 0 else -ref[0])
-    found.details.update(type="second zero eigenvalue of the fold's matrix",
-                         method="Illinois on det[[M, b], [c^T, 0]]")
+    found.details.update(
+        type="second zero eigenvalue of the fold's matrix",
+        method="Illinois on det[[M, b], [c^T, 0]]",
+    )
     return found
 
 
@@ -333,17 +346,20 @@ def fold_curve(
     if not isinstance(fold_point, SpecialPoint) or fold_point.kind != "fold":
         raise ProblemDefinitionError(
             f"fold_point must be a SpecialPoint of kind 'fold' returned by trace, "
-            f"got {fold_point!r}")
+            f"got {fold_point!r}"
+        )
     try:
         p1, p2 = free
     except (TypeError, ValueError):
         raise ProblemDefinitionError(
-            f"free must be a pair (branch parameter, second parameter), got {free!r}") from None
+            f"free must be a pair (branch parameter, second parameter), got {free!r}"
+        ) from None
     params = dict(problem.params)
     for name in (p1, p2):
         if name not in params:
             raise ProblemDefinitionError(
-                f"{name!r} is not a parameter of the problem; parameters are {sorted(params)}")
+                f"{name!r} is not a parameter of the problem; parameters are {sorted(params)}"
+            )
     if p1 == p2:
         raise ProblemDefinitionError(f"the two free parameters must differ, got {free!r}")
     for key in params:
@@ -354,7 +370,8 @@ def fold_curve(
     if wrt not in names_y:
         raise ProblemDefinitionError(
             f"the fold is a turning point of {wrt!r}, which is neither an unknown nor {p1!r}: "
-            f"was it traced with free={wrt!r}? Pass free=({wrt!r}, second parameter)")
+            f"was it traced with free={wrt!r}? Pass free=({wrt!r}, second parameter)"
+        )
     k = names_y.index(wrt)
     options = options or ContinuationOptions(detect_branch_points=False)
     if overrides:
@@ -362,16 +379,28 @@ def fold_curve(
     if direction not in ("both", 1, -1):
         raise ProblemDefinitionError(f"direction must be 'both', +1 or -1, got {direction!r}")
 
-    z0 = np.array([fold_point.values[nm] for nm in problem.unknowns]
-                  + [fold_point.values[p1], fold_point.values[p2]], dtype=float)
+    z0 = np.array(
+        [fold_point.values[nm] for nm in problem.unknowns]
+        + [fold_point.values[p1], fold_point.values[p2]],
+        dtype=float,
+    )
     halves = []
-    for d in ((1, -1) if direction == "both" else (direction,)):
+    for d in (1, -1) if direction == "both" else (direction,):
         system = FoldSystem(problem, p1, p2, k, params, options.state_weight)
         system.init_borders(z0)
         extra = [_Test("cusp", label="cusp"), _Test("codim2", label="second zero eigenvalue")]
-        tracer = Tracer.for_system(system, options=options, fold_components=(), bounds=bounds,
-                                   targets=targets, events=events, monitor=monitor,
-                                   direction=d, throw=throw, extra_tests=extra)
+        tracer = Tracer.for_system(
+            system,
+            options=options,
+            fold_components=(),
+            bounds=bounds,
+            targets=targets,
+            events=events,
+            monitor=monitor,
+            direction=d,
+            throw=throw,
+            extra_tests=extra,
+        )
         state = tracer.init_at(z0, start_label="start (fold)")
         while not tracer.done(state):
             state = tracer.step(state)
@@ -399,27 +428,56 @@ def _join(backward: Branch, forward: Branch) -> Branch:
     for sp_ in forward.special_points:
         moved = _reindex(sp_, nb - 1 + sp_.index, sp_.s, sp_.tangent)
         if sp_.kind == "endpoint" and sp_.index == 0:  # the starting fold, mid-curve now
-            moved = SpecialPoint(kind="fold", index=moved.index, values=moved.values,
-                                 tangent=moved.tangent, status="converged",
-                                 label="start (fold)", s=0.0, details={"start": True})
+            moved = SpecialPoint(
+                kind="fold",
+                index=moved.index,
+                values=moved.values,
+                tangent=moved.tangent,
+                status="converged",
+                label="start (fold)",
+                s=0.0,
+                details={"start": True},
+            )
         specials.append(moved)
     specials.sort(key=lambda q: q.index)
-    stats = {k: np.concatenate([backward.stats[k][::-1], forward.stats[k][1:]])
-             for k in forward.stats}
+    stats = {
+        k: np.concatenate([backward.stats[k][::-1], forward.stats[k][1:]]) for k in forward.stats
+    }
     ok = backward.success and forward.success
     status = forward.status if ok or not forward.success else backward.status
     message = f"direction -1: {backward.message}; direction +1: {forward.message}"
-    info = {"direction": "both", "start_index": nb - 1, "status_minus": backward.status,
-            "status_plus": forward.status}
-    return Branch(columns, variables=forward.variables, s=s, tangents=tangents,
-                  special_points=specials, status=status, message=message, stats=stats,
-                  info=info)
+    info = {
+        "direction": "both",
+        "start_index": nb - 1,
+        "status_minus": backward.status,
+        "status_plus": forward.status,
+    }
+    return Branch(
+        columns,
+        variables=forward.variables,
+        s=s,
+        tangents=tangents,
+        special_points=specials,
+        status=status,
+        message=message,
+        stats=stats,
+        info=info,
+    )
 
 
 def _reindex(sp_: SpecialPoint, index: int, s: float, tangent) -> SpecialPoint:
-    return SpecialPoint(kind=sp_.kind, index=index, values=sp_.values, tangent=tangent,
-                        status=sp_.status, label=sp_.label, with_respect_to=sp_.with_respect_to,
-                        s=s, interval=sp_.interval, details=sp_.details)
+    return SpecialPoint(
+        kind=sp_.kind,
+        index=index,
+        values=sp_.values,
+        tangent=tangent,
+        status=sp_.status,
+        label=sp_.label,
+        with_respect_to=sp_.with_respect_to,
+        s=s,
+        interval=sp_.interval,
+        details=sp_.details,
+    )
 
 
 __all__ = ["FoldSystem", "fold_curve"]

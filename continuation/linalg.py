@@ -114,8 +114,11 @@ class SparseLU:
 
 def factor(a):
     """LU factorization of a square dense array or sparse matrix."""
-    return DenseLU(a) if type(a) is np.ndarray else (SparseLU(a) if sp.issparse(a) else
-                                                      DenseLU(np.asarray(a, dtype=float)))
+    return (
+        DenseLU(a)
+        if type(a) is np.ndarray
+        else (SparseLU(a) if sp.issparse(a) else DenseLU(np.asarray(a, dtype=float)))
+    )
 
 
 def bordered(dg, row: np.ndarray):
@@ -143,8 +146,9 @@ def delete_column(dg, k: int):
 def bordered_square(m, b: np.ndarray, c: np.ndarray):
     """``[[m, b], [c^T, 0]]`` for a square ``m``."""
     if type(m) is not np.ndarray and sp.issparse(m):
-        return sp.bmat([[m, sp.csc_matrix(b[:, None])], [sp.csr_matrix(c[None, :]), None]],
-                       format="csc")
+        return sp.bmat(
+            [[m, sp.csc_matrix(b[:, None])], [sp.csr_matrix(c[None, :]), None]], format="csc"
+        )
     n = m.shape[0]
     a = np.zeros((n + 1, n + 1))
     a[:n, :n] = m

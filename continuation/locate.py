@@ -30,7 +30,7 @@ from .linalg import (
 )
 
 _EPS = float(np.finfo(float).eps)
-_SQRT_EPS = _EPS ** 0.5
+_SQRT_EPS = _EPS**0.5
 _CBRT_EPS = _EPS ** (1.0 / 3.0)
 # relative error of the fold Newton's matrix when the Jacobian is exact: its last row is a
 # forward difference of the Jacobian (√ε ≈ 1.5e-8, with a margin for its truncation error)
@@ -72,7 +72,8 @@ class Bracket:
         basis = self._basis
         if basis is None:
             basis = self._basis = np.array(
-                (self.z_a, self.h * self.d_a, self.z_b, self.h * self.d_b))
+                (self.z_a, self.h * self.d_a, self.z_b, self.h * self.d_b)
+            )
         return np.array(coefficients).dot(basis)
 
     def guess(self, theta: float) -> np.ndarray:
@@ -97,8 +98,12 @@ class Bracket:
     def _derivative_weights(self, s: float) -> tuple[float, float, float, float]:
         s2 = s * s
         h = self.h
-        return ((6 * s2 - 6 * s) / h, (3 * s2 - 4 * s + 1) / h, (-6 * s2 + 6 * s) / h,
-                (3 * s2 - 2 * s) / h)
+        return (
+            (6 * s2 - 6 * s) / h,
+            (3 * s2 - 4 * s + 1) / h,
+            (-6 * s2 + 6 * s) / h,
+            (3 * s2 - 2 * s) / h,
+        )
 
     def turning_theta(self, k: int) -> float:
         """θ ∈ [0, 1] where component ``k`` of the Hermite interpolant is stationary: the
@@ -117,8 +122,11 @@ class Bracket:
         if ta * tb > 0 or disc < 0 or not math.isfinite(disc):
             return linear
         q = -0.5 * (b + math.copysign(math.sqrt(disc), b))
-        roots = [r for r in ((q / a) if a != 0 else math.nan, (ta / q) if q != 0 else math.nan)
-                 if 0.0 <= r <= 1.0]
+        roots = [
+            r
+            for r in ((q / a) if a != 0 else math.nan, (ta / q) if q != 0 else math.nan)
+            if 0.0 <= r <= 1.0
+        ]
         return min(roots, key=lambda r: abs(r - linear)) if roots else linear
 
     def point_at(self, sigma: float, strict: bool = False, start=None):
@@ -126,9 +134,16 @@ class Bracket:
         o = self.options
         theta = sigma / self.h if self.h != 0 else 0.0
         z0 = self.guess(theta) if start is None else start
-        return newton(self.system, z0, self.row, self.row @ self.z_a + sigma,
-                      tol=o.tol, step_tol=o.step_tol, max_iter=2 * o.max_newton_iterations,
-                      strict=strict)
+        return newton(
+            self.system,
+            z0,
+            self.row,
+            self.row @ self.z_a + sigma,
+            tol=o.tol,
+            step_tol=o.step_tol,
+            max_iter=2 * o.max_newton_iterations,
+            strict=strict,
+        )
 
     def polish(self, z: np.ndarray, sigma: float) -> np.ndarray:
         """Newton to the update tolerance (not just the residual tolerance) at ``sigma``."""
@@ -161,8 +176,9 @@ def oriented_tangent(t: np.ndarray, row: np.ndarray, weights: np.ndarray) -> np.
     return t / (nt if rt > 0 else -nt)
 
 
-def tangent_at(system, z: np.ndarray, row: np.ndarray, weights: np.ndarray,
-               br: Bracket | None = None) -> np.ndarray:
+def tangent_at(
+    system, z: np.ndarray, row: np.ndarray, weights: np.ndarray, br: Bracket | None = None
+) -> np.ndarray:
     """Unit tangent at ``z`` oriented so that ``row·t > 0``.
 
     Exactly at a branch point ``[∂G/∂z; row]`` is singular whatever the border: the tangent of
@@ -177,8 +193,9 @@ def tangent_at(system, z: np.ndarray, row: np.ndarray, weights: np.ndarray,
     return t / math.sqrt(t.dot(weights * t))
 
 
-def second_derivative_row(jacobian, z: np.ndarray, v: np.ndarray, w: np.ndarray,
-                          j0=None) -> np.ndarray:
+def second_derivative_row(
+    jacobian, z: np.ndarray, v: np.ndarray, w: np.ndarray, j0=None
+) -> np.ndarray:
     """``∇_z (w·J(z) v) = w·D²G(z)[v, ·]`` by central differences of ``jacobian(z)`` along
     ``v`` (exact in exact arithmetic for quadratic G; error O(h²) otherwise), or, given
     ``j0 = jacobian(z)``, by a forward difference (one evaluation fewer; relative error
@@ -195,8 +212,9 @@ def second_derivative_row(jacobian, z: np.ndarray, v: np.ndarray, w: np.ndarray,
     return (jacobian(z + h * v).T.dot(w) - jacobian(z - h * v).T.dot(w)) / (2.0 * h)
 
 
-def minimally_augmented(system, z: np.ndarray, k: int, b: np.ndarray, c: np.ndarray,
-                        e: np.ndarray | None = None):
+def minimally_augmented(
+    system, z: np.ndarray, k: int, b: np.ndarray, c: np.ndarray, e: np.ndarray | None = None
+):
     """Test function ``g`` of the fold in component ``k``, its right/left null vectors and the
     Jacobian ``dg`` of G at ``z``: ``[[M, b], [c^T, 0]] [v; g] = [0; 1]`` with ``M = ∂G/∂z``
     without column ``k`` (``e``: that right-hand side, if the caller holds one)."""
@@ -214,9 +232,16 @@ def minimally_augmented(system, z: np.ndarray, k: int, b: np.ndarray, c: np.ndar
     return x[-1], x[:-1], y[:-1], dg
 
 
-def newton_done(it: int, size: float, previous: float, z: np.ndarray, tol: float,
-                stall: float, perturbation: float | None = None,
-                k: int | None = None) -> bool:
+def newton_done(
+    it: int,
+    size: float,
+    previous: float,
+    z: np.ndarray,
+    tol: float,
+    stall: float,
+    perturbation: float | None = None,
+    k: int | None = None,
+) -> bool:
     """Stopping test of the locating Newton iterations, with update ``size`` (max-norm).
 
     Once quadratic convergence is under way (the update shrank by 100 or more), the next
@@ -242,8 +267,9 @@ def newton_done(it: int, size: float, previous: float, z: np.ndarray, tol: float
     return it >= 4 and size > 0.5 * previous and size <= stall * scale
 
 
-def locate_fold(br: Bracket, k: int, start: np.ndarray | None = None,
-                tangent: np.ndarray | None = None) -> Located | None:
+def locate_fold(
+    br: Bracket, k: int, start: np.ndarray | None = None, tangent: np.ndarray | None = None
+) -> Located | None:
     """Newton on ``[G(z); g_k(z)] = 0`` started from the Hermite interpolant of the bracket
     (or from ``start`` with its ``tangent``); None if it fails or leaves the bracket."""
     o = br.options
@@ -290,8 +316,16 @@ def locate_fold(br: Bracket, k: int, start: np.ndarray | None = None,
         # stagnation accepted up to 1e-6: ill-conditioned systems (cond ~ N² for discretised
         # operators) and forward differences stall there; the fold's parameter is still
         # exact to second order, its state to the accuracy of the derivatives
-        if newton_done(it, size, previous, z, o.locate_tol, stall=1e-6,
-                       perturbation=_FORWARD_D2_ERROR if exact else None, k=k):
+        if newton_done(
+            it,
+            size,
+            previous,
+            z,
+            o.locate_tol,
+            stall=1e-6,
+            perturbation=_FORWARD_D2_ERROR if exact else None,
+            k=k,
+        ):
             converged = True
             break
         previous = size
@@ -305,10 +339,15 @@ def locate_fold(br: Bracket, k: int, start: np.ndarray | None = None,
         return None  # converged to a fold outside this step
     # the tangent at a fold in z_k spans the kernel of ∂G/∂z, which has no k component: v
     # (from the last iterate, one update of ≤ locate_tol away)
-    return Located(z, sigma, "converged", it, {"method": "minimally augmented Newton",
-                                                "test_function": float(g),
-                                                "last_update": size},
-                   tangent=oriented_tangent(vt, br.row, br.weights), residual_norm=rn)
+    return Located(
+        z,
+        sigma,
+        "converged",
+        it,
+        {"method": "minimally augmented Newton", "test_function": float(g), "last_update": size},
+        tangent=oriented_tangent(vt, br.row, br.weights),
+        residual_norm=rn,
+    )
 
 
 def locate_component(br: Bracket, k: int, value: float) -> Located | None:
@@ -318,18 +357,29 @@ def locate_component(br: Bracket, k: int, value: float) -> Located | None:
     theta = min(1.0, max(0.0, float((value - za) / (zb - za)))) if zb != za else 0.5
     row = np.zeros(br.z_a.size)
     row[k] = 1.0
-    res = newton(br.system, br.guess(theta), row, value, tol=o.tol, step_tol=o.step_tol,
-                 max_iter=2 * o.max_newton_iterations)
+    res = newton(
+        br.system,
+        br.guess(theta),
+        row,
+        value,
+        tol=o.tol,
+        step_tol=o.step_tol,
+        max_iter=2 * o.max_newton_iterations,
+    )
     if not res.converged:
         return None
     z = res.z
     z[k] = value  # the constraint is linear: snap away the last rounding
     # the corrector's last factorization is [∂G/∂z; e_k] (at z up to its last update or
     # two): its solution t of [∂G/∂z; e_k] t = e_last has ∂G/∂z t = 0, a tangent
-    return Located(z, br.sigma(z), "converged", res.iterations,
-                   {"method": "Newton with the component fixed"},
-                   tangent=oriented_tangent(res.lu.solve(unit_last(z.size)), br.row,
-                                            br.weights))
+    return Located(
+        z,
+        br.sigma(z),
+        "converged",
+        res.iterations,
+        {"method": "Newton with the component fixed"},
+        tangent=oriented_tangent(res.lu.solve(unit_last(z.size)), br.row, br.weights),
+    )
 
 
 def locate_on_arc(br: Bracket, f, f_a: float, f_b: float, rtol: float | None = None) -> Located:
@@ -349,8 +399,13 @@ def locate_on_arc(br: Bracket, f, f_a: float, f_b: float, rtol: float | None = N
         fz = f(res.z)
         best = (res.z, sigma)
         if fz == 0.0:
-            return Located(br.polish(res.z, sigma), sigma, "converged", it,
-                           {"method": "Illinois", "test_values": (0.0, 0.0)})
+            return Located(
+                br.polish(res.z, sigma),
+                sigma,
+                "converged",
+                it,
+                {"method": "Illinois", "test_values": (0.0, 0.0)},
+            )
         if np.sign(fz) == np.sign(flo):
             lo, flo = sigma, fz
             if side == -1:
@@ -362,17 +417,26 @@ def locate_on_arc(br: Bracket, f, f_a: float, f_b: float, rtol: float | None = N
                 flo *= 0.5
             side = 1
         if abs(hi - lo) <= xtol:
-            return Located(br.polish(res.z, sigma), sigma, "converged", it,
-                           {"method": "Illinois", "interval": (lo, hi),
-                            "test_values": (float(flo), float(fhi))})
+            return Located(
+                br.polish(res.z, sigma),
+                sigma,
+                "converged",
+                it,
+                {
+                    "method": "Illinois",
+                    "interval": (lo, hi),
+                    "test_values": (float(flo), float(fhi)),
+                },
+            )
     if best is None:
         sigma = 0.5 * (lo + hi)
         return Located(br.guess(sigma / br.h), sigma, "guess", it, {"interval": (lo, hi)})
     return Located(best[0], best[1], "guess", it, {"method": "Illinois", "interval": (lo, hi)})
 
 
-def branch_point_directions(system, z: np.ndarray, t: np.ndarray, weights: np.ndarray,
-                            seed: int = 0) -> dict:
+def branch_point_directions(
+    system, z: np.ndarray, t: np.ndarray, weights: np.ndarray, seed: int = 0
+) -> dict:
     """Kernel of ``∂G/∂z`` at a simple branch point and the tangent of the other branch.
 
     The kernel is spanned by the current tangent ``t`` and ``φ`` (found by inverse iteration
@@ -413,5 +477,9 @@ def branch_point_directions(system, z: np.ndarray, t: np.ndarray, weights: np.nd
     else:
         other = phi  # degenerate bifurcation equation: fall back to the orthogonal direction
     other /= np.sqrt(other @ (weights * other))
-    return {"null_vector": phi, "left_null_vector": psi, "other_tangent": other,
-            "abe_coefficients": (float(a11), float(a12), float(a22))}
+    return {
+        "null_vector": phi,
+        "left_null_vector": psi,
+        "other_tangent": other,
+        "abe_coefficients": (float(a11), float(a12), float(a22)),
+    }

@@ -16,8 +16,15 @@ def _check(name: str, value, ok: bool, allowed: str) -> None:
 
 
 def _positive(name: str, value) -> None:
-    _check(name, value, isinstance(value, (int, float)) and not isinstance(value, bool)
-           and math.isfinite(value) and value > 0, "a finite number > 0")
+    _check(
+        name,
+        value,
+        isinstance(value, (int, float))
+        and not isinstance(value, bool)
+        and math.isfinite(value)
+        and value > 0,
+        "a finite number > 0",
+    )
 
 
 @dataclass(frozen=True)
@@ -64,27 +71,56 @@ class ContinuationOptions:
     max_locate_iterations: int = 40
 
     def __post_init__(self) -> None:
-        for name in ("ds", "ds_min", "ds_max", "tol", "step_tol", "max_angle",
-                     "target_angle", "locate_tol"):
+        for name in (
+            "ds",
+            "ds_min",
+            "ds_max",
+            "tol",
+            "step_tol",
+            "max_angle",
+            "target_angle",
+            "locate_tol",
+        ):
             _positive(name, getattr(self, name))
         if self.ds_min > self.ds_max:
             raise OptionsError(
                 f"option 'ds_min' ({self.ds_min!r}) must not exceed 'ds_max' ({self.ds_max!r})"
             )
-        _check("ds", self.ds, self.ds_min <= self.ds <= self.ds_max,
-               f"within [ds_min, ds_max] = [{self.ds_min!r}, {self.ds_max!r}]")
-        for name in ("max_steps", "max_newton_iterations", "target_newton_iterations",
-                     "max_locate_iterations"):
+        _check(
+            "ds",
+            self.ds,
+            self.ds_min <= self.ds <= self.ds_max,
+            f"within [ds_min, ds_max] = [{self.ds_min!r}, {self.ds_max!r}]",
+        )
+        for name in (
+            "max_steps",
+            "max_newton_iterations",
+            "target_newton_iterations",
+            "max_locate_iterations",
+        ):
             value = getattr(self, name)
-            _check(name, value, isinstance(value, int) and not isinstance(value, bool)
-                   and value >= 1, "an integer >= 1")
+            _check(
+                name,
+                value,
+                isinstance(value, int) and not isinstance(value, bool) and value >= 1,
+                "an integer >= 1",
+            )
         _check("max_angle", self.max_angle, self.max_angle < 180.0, "< 180 degrees")
-        _check("target_angle", self.target_angle, self.target_angle <= self.max_angle,
-               f"<= max_angle ({self.max_angle!r})")
-        _check("growth", self.growth, isinstance(self.growth, (int, float))
-               and math.isfinite(self.growth) and self.growth >= 1.0, "a finite number >= 1")
-        _check("predictor", self.predictor, self.predictor in PREDICTORS,
-               f"one of {PREDICTORS}")
+        _check(
+            "target_angle",
+            self.target_angle,
+            self.target_angle <= self.max_angle,
+            f"<= max_angle ({self.max_angle!r})",
+        )
+        _check(
+            "growth",
+            self.growth,
+            isinstance(self.growth, (int, float))
+            and math.isfinite(self.growth)
+            and self.growth >= 1.0,
+            "a finite number >= 1",
+        )
+        _check("predictor", self.predictor, self.predictor in PREDICTORS, f"one of {PREDICTORS}")
         if self.state_weight is not None:
             _positive("state_weight", self.state_weight)
         for name in ("detect_folds", "detect_branch_points"):

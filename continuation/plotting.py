@@ -2,9 +2,14 @@
 
 from __future__ import annotations
 
-_MARKERS = {"fold": ("o", "tab:red"), "branch_point": ("s", "tab:green"),
-            "cusp": ("*", "tab:purple"), "event": ("^", "tab:orange"),
-            "target": ("d", "tab:gray"), "endpoint": ("x", "k")}
+_MARKERS = {
+    "fold": ("o", "tab:red"),
+    "branch_point": ("s", "tab:green"),
+    "cusp": ("*", "tab:purple"),
+    "event": ("^", "tab:orange"),
+    "target": ("d", "tab:gray"),
+    "endpoint": ("x", "k"),
+}
 
 
 def plot_branch(branch, x: str, y: str, ax=None, *, special: bool = True, **kwargs):
@@ -21,8 +26,7 @@ def plot_branch(branch, x: str, y: str, ax=None, *, special: bool = True, **kwar
             marker, color = _MARKERS.get(sp.kind, ("o", "k"))
             label = sp.kind if sp.kind not in seen else None
             seen.add(sp.kind)
-            ax.plot(sp.values[x], sp.values[y], marker, color=color, ms=6, label=label,
-                    ls="none")
+            ax.plot(sp.values[x], sp.values[y], marker, color=color, ms=6, label=label, ls="none")
     ax.set_xlabel(x)
     ax.set_ylabel(y)
     return ax

@@ -78,30 +78,33 @@ class Problem:
         unknowns = tuple(unknowns)
         if not unknowns or not all(isinstance(x, str) and x for x in unknowns):
             raise ProblemDefinitionError(
-                f"unknowns must be a non-empty sequence of names, got {unknowns!r}")
+                f"unknowns must be a non-empty sequence of names, got {unknowns!r}"
+            )
         if len(set(unknowns)) != len(unknowns):
             raise ProblemDefinitionError(f"unknowns has repeated names: {unknowns!r}")
         if not isinstance(params, Mapping):
             raise ProblemDefinitionError(
-                f"params must be a mapping name -> value, got {type(params).__name__}")
+                f"params must be a mapping name -> value, got {type(params).__name__}"
+            )
         clean = {}
         for key, value in params.items():
             if not isinstance(key, str) or not key:
                 raise ProblemDefinitionError(f"parameter names must be strings, got {key!r}")
             if key in unknowns:
-                raise ProblemDefinitionError(
-                    f"{key!r} is both an unknown and a parameter")
+                raise ProblemDefinitionError(f"{key!r} is both an unknown and a parameter")
             try:
                 value = float(value)
             except (TypeError, ValueError):
                 raise ProblemDefinitionError(
-                    f"parameter {key!r} must be a real number, got {value!r}") from None
+                    f"parameter {key!r} must be a real number, got {value!r}"
+                ) from None
             if not math.isfinite(value):
                 raise ProblemDefinitionError(f"parameter {key!r} must be finite, got {value!r}")
             clean[key] = value
         if derivatives not in STRATEGIES:
             raise ProblemDefinitionError(
-                f"derivatives must be one of {STRATEGIES}, got {derivatives!r}")
+                f"derivatives must be one of {STRATEGIES}, got {derivatives!r}"
+            )
         for label, fn in (("jacobian", jacobian), ("param_jacobian", param_jacobian)):
             if fn is not None and not callable(fn):
                 raise ProblemDefinitionError(f"{label} must be callable or None, got {fn!r}")
@@ -115,7 +118,8 @@ class Problem:
         self.sparsity = None if sparsity is None else sp.csc_matrix(sparsity)
         if self.sparsity is not None and self.sparsity.shape != (len(unknowns),) * 2:
             raise ProblemDefinitionError(
-                f"sparsity must be {len(unknowns)}×{len(unknowns)}, got {self.sparsity.shape}")
+                f"sparsity must be {len(unknowns)}×{len(unknowns)}, got {self.sparsity.shape}"
+            )
         self._groups = None if self.sparsity is None else column_groups(self.sparsity)
 
     @property
@@ -135,7 +139,8 @@ class Problem:
         unknown = set(values) - set(self.params)
         if unknown:
             raise ProblemDefinitionError(
-                f"unknown parameter(s) {sorted(unknown)}; the problem has {sorted(self.params)}")
+                f"unknown parameter(s) {sorted(unknown)}; the problem has {sorted(self.params)}"
+            )
         new = object.__new__(Problem)
         new.__dict__.update(self.__dict__)
         new.params = {**self.params, **{k: float(v) for k, v in values.items()}}
@@ -146,9 +151,11 @@ class Problem:
         where given (results as returned: pass them through :func:`as_vector` and
         :func:`as_matrix`), the finite-difference methods for derivatives not given. Saves a
         call layer per evaluation (a third of the cost of a tiny system)."""
-        return (self._residual,
-                self.jacobian if self._jacobian is None else self._jacobian,
-                self.param_jacobian if self._param_jacobian is None else self._param_jacobian)
+        return (
+            self._residual,
+            self.jacobian if self._jacobian is None else self._jacobian,
+            self.param_jacobian if self._param_jacobian is None else self._param_jacobian,
+        )
 
     def residual(self, u, p):
         return np.asarray(self._residual(u, p))
@@ -156,8 +163,13 @@ class Problem:
     def jacobian(self, u, p):
         if self._jacobian is not None:
             return as_matrix(self._jacobian(u, p))
-        return fd_jacobian(lambda v: self._residual(v, p), u, method=self.derivatives,
-                           sparsity=self.sparsity, groups=self._groups)
+        return fd_jacobian(
+            lambda v: self._residual(v, p),
+            u,
+            method=self.derivatives,
+            sparsity=self.sparsity,
+            groups=self._groups,
+        )
 
     def param_jacobian(self, u, p, name):
         if self._param_jacobian is not None:
@@ -195,4 +207,5 @@ def as_problem(obj) -> ContinuationProblem:
         return Problem(obj.residual, obj.unknowns, obj.params)
     raise ProblemDefinitionError(
         f"expected a continuation.Problem (or an object with unknowns, params and residual), "
-        f"got {type(obj).__name__}")
+        f"got {type(obj).__name__}"
+    )

@@ -26,8 +26,14 @@ from .system import BranchSystem
 __all__ = ["points_at"]
 
 
-def points_at(problem, branch: Branch, name: str, values: Sequence[float] | float, *,
-              options: ContinuationOptions | None = None) -> dict[str, np.ndarray]:
+def points_at(
+    problem,
+    branch: Branch,
+    name: str,
+    values: Sequence[float] | float,
+    *,
+    options: ContinuationOptions | None = None,
+) -> dict[str, np.ndarray]:
     """The points of ``branch`` where component ``name`` takes each of ``values``.
 
     Parameters
@@ -60,7 +66,8 @@ def points_at(problem, branch: Branch, name: str, values: Sequence[float] | floa
     if variables[:-1] != tuple(problem.unknowns) or variables[-1] not in problem.params:
         raise ProblemDefinitionError(
             f"the branch traces {list(variables)}, which are not the unknowns "
-            f"{list(problem.unknowns)} plus one parameter of this problem")
+            f"{list(problem.unknowns)} plus one parameter of this problem"
+        )
     free = variables[-1]
     params = {k: float(branch[k][0]) for k in problem.params if k in branch}
     o = options or ContinuationOptions()
@@ -68,7 +75,8 @@ def points_at(problem, branch: Branch, name: str, values: Sequence[float] | floa
     k = system.index(name)
     if k is None:
         raise ProblemDefinitionError(
-            f"name {name!r} is not traced on this branch; it must be one of {list(variables)}")
+            f"name {name!r} is not traced on this branch; it must be one of {list(variables)}"
+        )
     Z = np.column_stack([branch[v] for v in variables])
     x = Z[:, k]
     vals = np.atleast_1d(np.asarray(values, dtype=float))
@@ -83,21 +91,33 @@ def points_at(problem, branch: Branch, name: str, values: Sequence[float] | floa
         if hits.size == 0:
             raise ProblemDefinitionError(
                 f"{name} = {v!r} is not reached on this branch ({name} covers "
-                f"[{float(x.min())!r}, {float(x.max())!r}])")
+                f"[{float(x.min())!r}, {float(x.max())!r}])"
+            )
         j = int(hits[0])
         span = d[j] - d[j + 1]
         frac = d[j] / span if span != 0.0 else 0.0
         z0 = Z[j] + frac * (Z[j + 1] - Z[j])
         z0[k] = v
-        res = newton(system, z0, e_k, v, tol=o.tol, step_tol=o.step_tol,
-                     max_iter=2 * o.max_newton_iterations, strict=True)
+        res = newton(
+            system,
+            z0,
+            e_k,
+            v,
+            tol=o.tol,
+            step_tol=o.step_tol,
+            max_iter=2 * o.max_newton_iterations,
+            strict=True,
+        )
         if not res.converged:
             raise ConvergenceError(
                 f"Newton failed ({res.reason}) placing the point {name} = {v!r}",
-                values=system.values(z0), ds=0.0, iterations=res.iterations,
+                values=system.values(z0),
+                ds=0.0,
+                iterations=res.iterations,
                 residual_norm=res.residual_norm,
                 remedy="Trace the branch with a smaller ds_max so that interpolation between "
-                       "its points gives a better start.")
+                "its points gives a better start.",
+            )
         out[i] = res.z
     columns = {v: out[:, i].copy() for i, v in enumerate(variables)}
     for key, value in params.items():

@@ -13,8 +13,14 @@ from .errors import ProblemDefinitionError
 from .problem import Problem
 
 
-def from_sympy(residuals: Sequence, unknowns: Sequence, params: Mapping, *,
-               sparse: bool = False, name: str | None = None) -> Problem:
+def from_sympy(
+    residuals: Sequence,
+    unknowns: Sequence,
+    params: Mapping,
+    *,
+    sparse: bool = False,
+    name: str | None = None,
+) -> Problem:
     """A problem whose residual, Jacobian and parameter derivatives are lambdified from
     sympy expressions (derivatives exact, differentiated symbolically).
 
@@ -34,22 +40,25 @@ def from_sympy(residuals: Sequence, unknowns: Sequence, params: Mapping, *,
     exprs = [sympy.sympify(e) for e in residuals]
     if len(exprs) != len(xs):
         raise ProblemDefinitionError(
-            f"from_sympy needs as many residuals as unknowns, got {len(exprs)} and {len(xs)}")
+            f"from_sympy needs as many residuals as unknowns, got {len(exprs)} and {len(xs)}"
+        )
     allowed = set(xs) | set(ps)
     for e in exprs:
         extra = e.free_symbols - allowed
         if extra:
             raise ProblemDefinitionError(
                 f"residual {e} has symbols {sorted(map(str, extra))} that are neither unknowns "
-                f"nor parameters")
+                f"nor parameters"
+            )
     pnames = [str(p) for p in ps]
     args = xs + list(ps)
     n = len(xs)
     f_res = sympy.lambdify(args, exprs, modules="numpy")
     jac = sympy.Matrix(exprs).jacobian(xs)
     f_jac = sympy.lambdify(args, jac, modules="numpy")
-    f_dp = {str(p): sympy.lambdify(args, [sympy.diff(e, p) for e in exprs], modules="numpy")
-            for p in ps}
+    f_dp = {
+        str(p): sympy.lambdify(args, [sympy.diff(e, p) for e in exprs], modules="numpy") for p in ps
+    }
 
     def call(f, u, p):
         return f(*u, *(p[k] for k in pnames))
@@ -68,5 +77,11 @@ def from_sympy(residuals: Sequence, unknowns: Sequence, params: Mapping, *,
     def param_jacobian(u, p, pname):
         return np.broadcast_to(np.asarray(call(f_dp[pname], u, p), dtype=float), (n,)).copy()
 
-    return Problem(residual, [str(x) for x in xs], {str(k): v for k, v in ps.items()},
-                   jacobian=jacobian, param_jacobian=param_jacobian, name=name)
+    return Problem(
+        residual,
+        [str(x) for x in xs],
+        {str(k): v for k, v in ps.items()},
+        jacobian=jacobian,
+        param_jacobian=param_jacobian,
+        name=name,
+    )

@@ -68,8 +68,9 @@ class CurveSystem:
 
 def has_exact_jacobian(problem) -> bool:
     """Whether the problem's Jacobian is analytic or by complex step (exact to rounding)."""
-    return bool(getattr(problem, "has_jacobian", True)
-                or getattr(problem, "derivatives", "") == "complex")
+    return bool(
+        getattr(problem, "has_jacobian", True) or getattr(problem, "derivatives", "") == "complex"
+    )
 
 
 def state_weights(n: int, n_params: int, state_weight: float | None) -> np.ndarray:
@@ -81,14 +82,20 @@ def state_weights(n: int, n_params: int, state_weight: float | None) -> np.ndarr
 class BranchSystem(CurveSystem):
     """``G(u, p_free) = R(u, p)``: one free parameter, the others held at their values."""
 
-    def __init__(self, problem, free: str, params: Mapping[str, float] | None = None,
-                 state_weight: float | None = None) -> None:
+    def __init__(
+        self,
+        problem,
+        free: str,
+        params: Mapping[str, float] | None = None,
+        state_weight: float | None = None,
+    ) -> None:
         self.problem = problem
         params = dict(problem.params if params is None else params)
         if free not in params:
             raise ProblemDefinitionError(
                 f"free parameter {free!r} is not a parameter of the problem; "
-                f"parameters are {sorted(params)}")
+                f"parameters are {sorted(params)}"
+            )
         self.free = free
         self.params = params
         self.n = len(problem.unknowns)
@@ -100,8 +107,10 @@ class BranchSystem(CurveSystem):
         # Problem's own callbacks, skipping its normalising wrappers: see below)
         callbacks = getattr(problem, "callbacks", None)
         self._residual, self._jacobian, self._param_jacobian = (
-            callbacks() if callbacks is not None
-            else (problem.residual, problem.jacobian, problem.param_jacobian))
+            callbacks()
+            if callbacks is not None
+            else (problem.residual, problem.jacobian, problem.param_jacobian)
+        )
         self._shapes = ((self.n, self.n), (self.n,))
 
     # residual and bordered_jacobian are the corrector's inner loop: the parameter dict is
@@ -116,7 +125,8 @@ class BranchSystem(CurveSystem):
             r = as_vector(r)
         if r.shape != self._shapes[1]:
             raise ProblemDefinitionError(
-                f"residual must return {self.n} values (one per unknown), got shape {r.shape}")
+                f"residual must return {self.n} values (one per unknown), got shape {r.shape}"
+            )
         return r
 
     def bordered_jacobian(self, z, row):
@@ -136,7 +146,8 @@ class BranchSystem(CurveSystem):
             n = self.n
             raise ProblemDefinitionError(
                 f"jacobian must be {n}×{n} and param_jacobian of length {n}, "
-                f"got shapes {j.shape} and {fp.shape}")
+                f"got shapes {j.shape} and {fp.shape}"
+            )
         n = self.n
         if row is None:
             a = np.empty((n, n + 1))
@@ -174,5 +185,6 @@ def _sparse_border(j, col: np.ndarray, row: np.ndarray | None):
         parts_c.append(np.arange(k + 1))
         parts_d.append(row)
         shape = (n + 1, k + 1)
-    return sp.csc_matrix((np.concatenate(parts_d),
-                          (np.concatenate(parts_r), np.concatenate(parts_c))), shape=shape)
+    return sp.csc_matrix(
+        (np.concatenate(parts_d), (np.concatenate(parts_r), np.concatenate(parts_c))), shape=shape
+    )

@@ -49,8 +49,10 @@ _STALL_FACTOR = 1e3
 
 _DEFAULT_OPTIONS = ContinuationOptions()  # frozen: shared (validation costs 20 µs a call)
 
-_REMEDY = ("Try a smaller ds_min or ds_max, a better starting point, an analytic jacobian, or "
-           "check the residual for discontinuities; pass throw=False to keep the partial branch.")
+_REMEDY = (
+    "Try a smaller ds_min or ds_max, a better starting point, an analytic jacobian, or "
+    "check the residual for discontinuities; pass throw=False to keep the partial branch."
+)
 
 
 class _Point:
@@ -89,9 +91,17 @@ class _Test:
 
     __slots__ = ("kind", "label", "wrt", "k", "value_at", "direction", "terminal", "event")
 
-    def __init__(self, kind: str, label: str = "", wrt: str | None = None, k: int = -1,
-                 value_at: float = 0.0, direction: int = 0, terminal: bool = False,
-                 event: Event | None = None) -> None:
+    def __init__(
+        self,
+        kind: str,
+        label: str = "",
+        wrt: str | None = None,
+        k: int = -1,
+        value_at: float = 0.0,
+        direction: int = 0,
+        terminal: bool = False,
+        event: Event | None = None,
+    ) -> None:
         self.kind, self.label, self.wrt, self.k = kind, label, wrt, k  # k: component index
         self.value_at = value_at  # target / bound value
         self.direction, self.terminal, self.event = direction, terminal, event
@@ -113,7 +123,8 @@ class _Test:
         if not math.isfinite(val):
             raise NonFiniteResidualError(
                 f"event {self.label!r} returned {val} at {tracer.system.values(z)}",
-                values=tracer.system.values(z))
+                values=tracer.system.values(z),
+            )
         return val
 
     def crossed(self, old: float | None, new: float) -> bool:
@@ -238,22 +249,43 @@ class Tracer:
         if overrides:
             options = options.replace(**overrides)
         system = BranchSystem(problem, free, params, options.state_weight)
-        self._configure(system, options, bounds=bounds, targets=targets, events=events,
-                        monitor=monitor, direction=direction, throw=throw,
-                        fold_components=(free,))
+        self._configure(
+            system,
+            options,
+            bounds=bounds,
+            targets=targets,
+            events=events,
+            monitor=monitor,
+            direction=direction,
+            throw=throw,
+            fold_components=(free,),
+        )
         self.problem = problem
 
     @classmethod
-    def for_system(cls, system, *, options: ContinuationOptions, fold_components=(),
-                   **kwargs) -> Tracer:
+    def for_system(
+        cls, system, *, options: ContinuationOptions, fold_components=(), **kwargs
+    ) -> Tracer:
         """A tracer for any curve system (used by augmented systems such as fold curves)."""
         self = object.__new__(cls)
         self.problem = getattr(system, "problem", None)
         self._configure(system, options, fold_components=fold_components, **kwargs)
         return self
 
-    def _configure(self, system, options, *, bounds=None, targets=None, events=(), monitor=(),
-                   direction=1, throw=True, fold_components=(), extra_tests=()) -> None:
+    def _configure(
+        self,
+        system,
+        options,
+        *,
+        bounds=None,
+        targets=None,
+        events=(),
+        monitor=(),
+        direction=1,
+        throw=True,
+        fold_components=(),
+        extra_tests=(),
+    ) -> None:
         self.system = system
         self.options = options
         self.throw = bool(throw)
@@ -264,8 +296,14 @@ class Tracer:
         tests: list[_Test] = []
         if options.detect_folds:
             for name in fold_components:
-                tests.append(_Test("fold", label=f"fold in {name}", wrt=name,
-                                   k=self._component(name, "free parameter")))
+                tests.append(
+                    _Test(
+                        "fold",
+                        label=f"fold in {name}",
+                        wrt=name,
+                        k=self._component(name, "free parameter"),
+                    )
+                )
         for name in monitor or ():
             k = self._component(name, "monitor")
             if name not in fold_components:
@@ -277,8 +315,9 @@ class Tracer:
             for v in np.atleast_1d(np.asarray(values, dtype=float)):
                 if not math.isfinite(v):
                     raise ProblemDefinitionError(f"targets[{name!r}] must be finite, got {v}")
-                tests.append(_Test("target", label=f"{name}={v:g}", wrt=name, k=k,
-                                   value_at=float(v)))
+                tests.append(
+                    _Test("target", label=f"{name}={v:g}", wrt=name, k=k, value_at=float(v))
+                )
         self.bounds = {}
         for name, pair in (bounds or {}).items():
             k = self._component(name, "bounds")
@@ -286,22 +325,45 @@ class Tracer:
                 lo, hi = (float(x) for x in pair)
             except (TypeError, ValueError):
                 raise ProblemDefinitionError(
-                    f"bounds[{name!r}] must be a pair (low, high), got {pair!r}") from None
+                    f"bounds[{name!r}] must be a pair (low, high), got {pair!r}"
+                ) from None
             if not lo < hi or math.isnan(lo) or math.isnan(hi):
                 raise ProblemDefinitionError(
-                    f"bounds[{name!r}] must satisfy low < high, got ({lo}, {hi})")
+                    f"bounds[{name!r}] must satisfy low < high, got ({lo}, {hi})"
+                )
             self.bounds[name] = (lo, hi)
             if math.isfinite(lo):
-                tests.append(_Test("bound", label=f"bound {name}={lo:g}", wrt=name, k=k,
-                                   value_at=lo, direction=-1, terminal=True))
+                tests.append(
+                    _Test(
+                        "bound",
+                        label=f"bound {name}={lo:g}",
+                        wrt=name,
+                        k=k,
+                        value_at=lo,
+                        direction=-1,
+                        terminal=True,
+                    )
+                )
             if math.isfinite(hi):
-                tests.append(_Test("bound", label=f"bound {name}={hi:g}", wrt=name, k=k,
-                                   value_at=hi, direction=+1, terminal=True))
+                tests.append(
+                    _Test(
+                        "bound",
+                        label=f"bound {name}={hi:g}",
+                        wrt=name,
+                        k=k,
+                        value_at=hi,
+                        direction=+1,
+                        terminal=True,
+                    )
+                )
         for ev in events or ():
             if not isinstance(ev, Event):
                 raise ProblemDefinitionError(f"events must be Event objects, got {ev!r}")
-            tests.append(_Test("event", label=ev.label, direction=ev.direction,
-                               terminal=ev.terminal, event=ev))
+            tests.append(
+                _Test(
+                    "event", label=ev.label, direction=ev.direction, terminal=ev.terminal, event=ev
+                )
+            )
         tests.extend(extra_tests)
         self.tests = tuple(tests)
         self._has_bp = any(t.kind == "branch_point" for t in tests)
@@ -309,15 +371,19 @@ class Tracer:
         self._unit_weights = bool((self.weights == 1.0).all())
         # (index, test, the most its component can move per unit of step: 1/√w_k, as the
         # tangent is a unit vector in the weighted norm)
-        self._bound_tests = tuple((i, t, 1.0 / math.sqrt(self.weights[t.k]))
-                                  for i, t in enumerate(tests) if t.kind == "bound")
+        self._bound_tests = tuple(
+            (i, t, 1.0 / math.sqrt(self.weights[t.k]))
+            for i, t in enumerate(tests)
+            if t.kind == "bound"
+        )
 
     def _component(self, name: str, what: str) -> int:
         k = self.system.index(name)
         if k is None:
             raise ProblemDefinitionError(
                 f"{what} names {name!r}, which is not traced on this curve; it must be one of "
-                f"{list(self.system.names)} (fixed parameters cannot be bounded or monitored)")
+                f"{list(self.system.names)} (fixed parameters cannot be bounded or monitored)"
+            )
         return k
 
     # ------------------------------------------------------------------ helpers
@@ -368,7 +434,8 @@ class Tracer:
                 if tuple(names) != tuple(system.names):
                     raise ProblemDefinitionError(
                         f"branch switching needs the same free parameter as the branch the "
-                        f"branch point came from ({names[-1]!r})")
+                        f"branch point came from ({names[-1]!r})"
+                    )
                 k = int(np.argmax(np.abs(other)))
                 tangent = other * (np.sign(other[k]) * self.direction)
                 start_label = "start (branch switch)"
@@ -381,7 +448,8 @@ class Tracer:
             if u.shape != (n,):
                 raise ProblemDefinitionError(
                     f"u0 must hold {n} values (one per unknown {list(system.names[:n])}), "
-                    f"got shape {u.shape}")
+                    f"got shape {u.shape}"
+                )
             if not math.isfinite(max_abs(u)):
                 raise ProblemDefinitionError(f"u0 must be finite, got {u}")
             z0 = np.concatenate([u, [system.params[system.free]]])
@@ -396,15 +464,28 @@ class Tracer:
         if not math.isfinite(max_abs(g0)):
             raise NonFiniteResidualError(
                 f"the residual is not finite at the starting point {system.values(z0)}",
-                values=system.values(z0))
+                values=system.values(z0),
+            )
         if tangent is None:
-            res = newton(system, z0, row, z0[k_free], tol=o.tol, step_tol=o.step_tol,
-                         max_iter=4 * o.max_newton_iterations, g0=g0)
+            res = newton(
+                system,
+                z0,
+                row,
+                z0[k_free],
+                tol=o.tol,
+                step_tol=o.step_tol,
+                max_iter=4 * o.max_newton_iterations,
+                g0=g0,
+            )
             if not res.converged:
                 raise ConvergenceError(
-                    "the starting point did not converge", values=system.values(z0), ds=0.0,
-                    iterations=res.iterations, residual_norm=res.residual_norm,
-                    remedy="Give a better initial guess u0 for these parameter values.")
+                    "the starting point did not converge",
+                    values=system.values(z0),
+                    ds=0.0,
+                    iterations=res.iterations,
+                    residual_norm=res.residual_norm,
+                    remedy="Give a better initial guess u0 for these parameter values.",
+                )
             z0 = res.z
             t0, sdet = self._initial_tangent(z0, k_free, res.lu)
             residual = res.residual_norm
@@ -422,10 +503,23 @@ class Tracer:
             sdet = self._sdet(z0, t0)
         # starting on a special point, the test functions vanish there up to rounding: their
         # signs are taken after the first step instead
-        tests = tuple(None if (skip_bp and t.kind in ("branch_point", "fold"))
-                      else t.value(self, z0, t0, sdet) for t in self.tests)
-        first = _Point(z0, t0, 0.0, iters, 0, residual, o.ds,
-                       (("endpoint", start_label, None, "converged", None, {}),), None)
+        tests = tuple(
+            None
+            if (skip_bp and t.kind in ("branch_point", "fold"))
+            else t.value(self, z0, t0, sdet)
+            for t in self.tests
+        )
+        first = _Point(
+            z0,
+            t0,
+            0.0,
+            iters,
+            0,
+            residual,
+            o.ds,
+            (("endpoint", start_label, None, "converged", None, {}),),
+            None,
+        )
         self._check_start_in_bounds(z0)
         return TracerState(first, o.ds, tests, 0)
 
@@ -435,7 +529,8 @@ class Tracer:
         if z0.shape != (self.system.dim,):
             raise ProblemDefinitionError(
                 f"z0 must hold {self.system.dim} values {list(self.system.names)}, "
-                f"got shape {z0.shape}")
+                f"got shape {z0.shape}"
+            )
         return self._start(z0, None, start_label, False)
 
     def _check_start_in_bounds(self, z0) -> None:
@@ -444,7 +539,8 @@ class Tracer:
             if not lo <= v <= hi:
                 raise ProblemDefinitionError(
                     f"the starting point has {name}={v:.10g}, outside bounds[{name!r}] = "
-                    f"({lo:g}, {hi:g})")
+                    f"({lo:g}, {hi:g})"
+                )
 
     def _initial_tangent(self, z0, k_free, lu=None):
         """Unit tangent at ``z0`` (the free parameter moving in ``direction``) and the sign of
@@ -496,7 +592,8 @@ class Tracer:
             found.details["non_smooth"] = True
             found.details["reason"] = (
                 f"radius of curvature {abs(br.h) / turn:.2g} is within 100 finite-difference "
-                f"steps ({h_fd:.2g}): possibly a kink; supply a jacobian to decide")
+                f"steps ({h_fd:.2g}): possibly a kink; supply a jacobian to decide"
+            )
         return found
 
     def _corner_step(self, z, t, ds_hint, z_prev=None):
@@ -526,8 +623,15 @@ class Tracer:
                 target = z[j] + sign * h / math.sqrt(W[j])
                 z0 = z.copy()
                 z0[j] = target
-                res = newton(system, z0, row, target, tol=o.tol, step_tol=o.step_tol,
-                             max_iter=2 * o.max_newton_iterations)
+                res = newton(
+                    system,
+                    z0,
+                    row,
+                    target,
+                    tol=o.tol,
+                    step_tol=o.step_tol,
+                    max_iter=2 * o.max_newton_iterations,
+                )
                 # the other components move by (slope)·h: a looser guard than for
                 # arclength steps, still against jumping to a distant branch
                 if not res.converged or self.wnorm(res.z - z) > 20.0 * h:
@@ -535,8 +639,7 @@ class Tracer:
                 if incoming is not None:  # never back along the way we came
                     chord = res.z - z
                     along = float(chord @ (W * incoming))
-                    if along < 0 and self.wnorm(chord - along * incoming) < 0.1 * self.wnorm(
-                            chord):
+                    if along < 0 and self.wnorm(chord - along * incoming) < 0.1 * self.wnorm(chord):
                         continue
                 # oriented by the stepped component (the chord through the corner is not
                 # aligned with the tangent beyond it)
@@ -547,8 +650,7 @@ class Tracer:
                 t_new /= self.wnorm(t_new)
                 cos = float(t_new @ (W * t))
                 angle = math.degrees(math.acos(max(-1.0, min(1.0, cos))))
-                logger.info("corner passed by a natural-parameter step in %s",
-                            system.names[j])
+                logger.info("corner passed by a natural-parameter step in %s", system.names[j])
                 return res, t_new, W * t_new, angle
         return None
 
@@ -582,8 +684,16 @@ class Tracer:
             z_pred[k] = tt.value_at
             row = np.zeros(z.size)
             row[k] = 1.0
-            res = newton(self.system, z_pred, row, tt.value_at, tol=o.tol,
-                         step_tol=o.step_tol, max_iter=o.max_newton_iterations, contract=True)
+            res = newton(
+                self.system,
+                z_pred,
+                row,
+                tt.value_at,
+                tol=o.tol,
+                step_tol=o.step_tol,
+                max_iter=o.max_newton_iterations,
+                contract=True,
+            )
             if not res.converged:
                 return None
             res.z[k] = tt.value_at  # the constraint is linear: snap away the last rounding
@@ -597,8 +707,7 @@ class Tracer:
             angle = math.degrees(math.acos(max(-1.0, min(1.0, float(t_new.dot(wt))))))
             h = float(wt.dot(res.z - z))
             dc = res.z - z_pred
-            if (angle > o.max_angle or t_new[k] * tk <= 0.0 or h <= 0.0
-                    or self.wnorm(dc) > ds):
+            if angle > o.max_angle or t_new[k] * tk <= 0.0 or h <= 0.0 or self.wnorm(dc) > ds:
                 return None
             return res, t_new, angle, h, rt, tt
         return None
@@ -645,12 +754,26 @@ class Tracer:
         while corner is None and aimed is None:
             z_pred = z + ds * direction
             # above ds_min a wandering Newton gives up early (the step is halved anyway)
-            res = newton(system, z_pred, row, row.dot(z_pred), tol=o.tol,
-                         step_tol=o.step_tol, max_iter=o.max_newton_iterations,
-                         contract=ds > o.ds_min)
+            res = newton(
+                system,
+                z_pred,
+                row,
+                row.dot(z_pred),
+                tol=o.tol,
+                step_tol=o.step_tol,
+                max_iter=o.max_newton_iterations,
+                contract=ds > o.ds_min,
+            )
             if not res.converged and ds <= o.ds_min:
-                res = damped_newton(system, z_pred, row, row.dot(z_pred), tol=o.tol,
-                                    step_tol=o.step_tol, max_iter=5 * o.max_newton_iterations)
+                res = damped_newton(
+                    system,
+                    z_pred,
+                    row,
+                    row.dot(z_pred),
+                    tol=o.tol,
+                    step_tol=o.step_tol,
+                    max_iter=5 * o.max_newton_iterations,
+                )
                 used_fallback = True
             if res.converged:
                 t_new = res.lu.solve(self._e_last)
@@ -661,8 +784,11 @@ class Tracer:
                 dc = res.z - z_pred
                 correction = math.sqrt(dc.dot(dc if unit_w else W * dc))
                 if angle > o.max_angle or correction > ds:
-                    reason = (f"tangent turned {angle:.1f} degrees" if angle > o.max_angle
-                              else "correction larger than the step")
+                    reason = (
+                        f"tangent turned {angle:.1f} degrees"
+                        if angle > o.max_angle
+                        else "correction larger than the step"
+                    )
                     if ds > o.ds_min:
                         ds = max(0.5 * ds, o.ds_min)
                         rejected += 1
@@ -673,20 +799,28 @@ class Tracer:
             else:
                 reason = res.reason
             if ds <= o.ds_min:
-                corner = self._corner_step(z, t, state.ds,
-                                           None if last.prev is None else last.prev.z)
+                corner = self._corner_step(
+                    z, t, state.ds, None if last.prev is None else last.prev.z
+                )
                 if corner is not None:
                     break
                 values = system.values(z)
                 if reason == "nonfinite":
-                    msg = (f"the residual is not finite within ds_min={o.ds_min:g} of "
-                           f"{_fmt(values)}; the branch stops there")
-                    return self._fail(state, "nonfinite_residual", msg,
-                                      NonFiniteResidualError(msg, values=values))
+                    msg = (
+                        f"the residual is not finite within ds_min={o.ds_min:g} of "
+                        f"{_fmt(values)}; the branch stops there"
+                    )
+                    return self._fail(
+                        state, "nonfinite_residual", msg, NonFiniteResidualError(msg, values=values)
+                    )
                 exc = ConvergenceError(
                     f"Newton's method and the damped fallback failed ({reason})",
-                    values=values, ds=ds, iterations=res.iterations,
-                    residual_norm=res.residual_norm, remedy=_REMEDY)
+                    values=values,
+                    ds=ds,
+                    iterations=res.iterations,
+                    residual_norm=res.residual_norm,
+                    remedy=_REMEDY,
+                )
                 return self._fail(state, "convergence_failure", str(exc), exc)
             ds = max(0.5 * ds, o.ds_min)
             rejected += 1
@@ -716,8 +850,9 @@ class Tracer:
         # corrector satisfies the (linear) hyperplane equation to rounding (an aimed step
         # returns its own)
         h = float(row.dot(z1 - z)) if is_corner else ds
-        new_point = _Point(z1, t_new, last.s + h, res.iterations, rejected, res.residual_norm,
-                           ds, None, last)
+        new_point = _Point(
+            z1, t_new, last.s + h, res.iterations, rejected, res.residual_norm, ds, None, last
+        )
         if used_fallback:
             logger.info("step accepted by the damped fallback corrector at ds=%g", ds)
         system.refresh(z1)
@@ -729,16 +864,27 @@ class Tracer:
             new = tt.value(self, z1, t_new, sdet)
             new_tests.append(new)
             # no crossing unless the sign changed or an end is exactly zero
-            if old is not None and ((old < 0) != (new < 0) or new == 0.0 or old == 0.0) \
-                    and tt.crossed(old, new):
+            if (
+                old is not None
+                and ((old < 0) != (new < 0) or new == 0.0 or old == 0.0)
+                and tt.crossed(old, new)
+            ):
                 crossings.append((tt, old, new))
         if is_corner:
             # the tangent jumped across a corner: a fold there is non-smooth and only
             # bracketed; it is recorded on the corner step's own end point
             records = tuple(
-                (tt.kind, f"{tt.label} (non-smooth)", tt.wrt, "guess", (last.s, last.s + h),
-                 {"non_smooth": True, "method": "corner step (natural parameter)"})
-                for tt, _, _ in crossings if tt.kind == "fold")
+                (
+                    tt.kind,
+                    f"{tt.label} (non-smooth)",
+                    tt.wrt,
+                    "guess",
+                    (last.s, last.s + h),
+                    {"non_smooth": True, "method": "corner step (natural parameter)"},
+                )
+                for tt, _, _ in crossings
+                if tt.kind == "fold"
+            )
             new_point.special = records or None
             crossings = [c for c in crossings if c[0].kind != "fold"]
         status = None
@@ -749,9 +895,15 @@ class Tracer:
             found = []
             for tt, old, new in crossings:
                 if tt is aimed:  # the step ended on this bound: nothing to locate
-                    loc = Located(z1, h, "converged", res.iterations,
-                                  {"method": "step aimed at the bound"}, tangent=t_new,
-                                  residual_norm=res.residual_norm)
+                    loc = Located(
+                        z1,
+                        h,
+                        "converged",
+                        res.iterations,
+                        {"method": "step aimed at the bound"},
+                        tangent=t_new,
+                        residual_norm=res.residual_norm,
+                    )
                 else:
                     if br is None:
                         br = Bracket(system, z, t, z1, t_new, W, o)
@@ -764,8 +916,11 @@ class Tracer:
                 records = [self._record(tt, loc, br, last.s, h)]
                 if tt.terminal:
                     status = "bound" if tt.kind == "bound" else "terminal_event"
-                    message = (f"the branch reached {tt.label}" if tt.kind == "bound"
-                               else f"terminal event {tt.label!r} occurred")
+                    message = (
+                        f"the branch reached {tt.label}"
+                        if tt.kind == "bound"
+                        else f"terminal event {tt.label!r} occurred"
+                    )
                     if tt.kind != "bound":
                         records.append(("endpoint", tt.label, tt.wrt, loc.status, None, {}))
                 if tt is aimed:  # the step's own end point
@@ -780,8 +935,9 @@ class Tracer:
                 rn = loc.residual_norm
                 if rn is None:
                     rn = max_abs(system.residual(loc.z))
-                prev = _Point(loc.z, tan, last.s + loc.sigma, loc.iterations, 0, rn, 0.0,
-                              tuple(records), prev)
+                prev = _Point(
+                    loc.z, tan, last.s + loc.sigma, loc.iterations, 0, rn, 0.0, tuple(records), prev
+                )
                 n_points += 1
                 if tt.terminal:
                     break
@@ -796,11 +952,14 @@ class Tracer:
         if status is None and steps >= o.max_steps:
             status = "max_steps"
             message = f"the branch ended after max_steps={o.max_steps} steps"
-            new_point.special = (*(new_point.special or ()),
-                                 ("endpoint", "max_steps", None, "converged", None, {}))
+            new_point.special = (
+                *(new_point.special or ()),
+                ("endpoint", "max_steps", None, "converged", None, {}),
+            )
         stalled = state.stalled + 1 if ds < _STALL_FACTOR * o.ds_min else 0
-        return TracerState(new_point, ds_next, tuple(new_tests), steps, status, message,
-                           n_points, stalled)
+        return TracerState(
+            new_point, ds_next, tuple(new_tests), steps, status, message, n_points, stalled
+        )
 
     def _record(self, tt: _Test, loc: Located, br: Bracket | None, s_a: float, h: float):
         details = dict(loc.details)
@@ -827,14 +986,18 @@ class Tracer:
         system = self.system
         n_pts = len(points)
         zs, ts, ss, newton, rejected, residual, dss = zip(
-            *[(pt.z, pt.t, pt.s, pt.newton, pt.rejected, pt.residual, pt.ds) for pt in points])
+            *[(pt.z, pt.t, pt.s, pt.newton, pt.rejected, pt.residual, pt.ds) for pt in points]
+        )
         Z = np.concatenate(zs).reshape(n_pts, -1)
         T = np.concatenate(ts).reshape(n_pts, -1)
         s = np.array(ss)
         names = system.names
         columns = {name: Z[:, i].copy() for i, name in enumerate(names)}
-        fixed = {name: float(value) for name, value in system.fixed_values().items()
-                 if name not in columns}
+        fixed = {
+            name: float(value)
+            for name, value in system.fixed_values().items()
+            if name not in columns
+        }
         for name, value in fixed.items():
             columns[name] = np.full(n_pts, value)
         extra = system.extra_columns(Z) if hasattr(system, "extra_columns") else {}
@@ -849,35 +1012,62 @@ class Tracer:
 
         specials = []
         for i, pt in enumerate(points):
-            for kind, label, wrt, status, interval, details in (pt.special or ()):
-                specials.append(SpecialPoint(
-                    kind=kind, index=i, values=values_at(i), tangent=T[i].copy(),
-                    status=status, label=label, with_respect_to=wrt, s=float(ss[i]),
-                    interval=interval, details=details))
+            for kind, label, wrt, status, interval, details in pt.special or ():
+                specials.append(
+                    SpecialPoint(
+                        kind=kind,
+                        index=i,
+                        values=values_at(i),
+                        tangent=T[i].copy(),
+                        status=status,
+                        label=label,
+                        with_respect_to=wrt,
+                        s=float(ss[i]),
+                        interval=interval,
+                        details=details,
+                    )
+                )
         status = state.status or "running"
         if state.status is None:
             message = "the branch is still being traced (result of an unfinished state)"
         else:
             message = state.message
         if not any(sp.kind == "endpoint" for sp in specials if sp.index == n_pts - 1):
-            specials.append(SpecialPoint(
-                kind="endpoint", index=n_pts - 1, values=values_at(n_pts - 1),
-                tangent=T[-1].copy(), status="converged", label=status, s=float(ss[-1])))
+            specials.append(
+                SpecialPoint(
+                    kind="endpoint",
+                    index=n_pts - 1,
+                    values=values_at(n_pts - 1),
+                    tangent=T[-1].copy(),
+                    status="converged",
+                    label=status,
+                    s=float(ss[-1]),
+                )
+            )
         stats = {
             "newton_iterations": np.array(newton),
             "rejected_steps": np.array(rejected),
             "residual_norm": np.array(residual),
             "ds": np.array(dss),
         }
-        return Branch(columns, variables=tuple(system.names), s=s, tangents=T,
-                      special_points=specials, status=status, message=message, stats=stats,
-                      info={"steps": state.steps, "direction": self.direction})
+        return Branch(
+            columns,
+            variables=tuple(system.names),
+            s=s,
+            tangents=T,
+            special_points=specials,
+            status=status,
+            message=message,
+            stats=stats,
+            info={"steps": state.steps, "direction": self.direction},
+        )
 
 
 def _fmt(values: Mapping[str, float], limit: int = 6) -> str:
     items = list(values.items())
-    return ", ".join(f"{k}={v:.10g}" for k, v in items[:limit]) + (" ..." if len(items) > limit
-                                                                     else "")
+    return ", ".join(f"{k}={v:.10g}" for k, v in items[:limit]) + (
+        " ..." if len(items) > limit else ""
+    )
 
 
 def trace(problem, u0, *, free: str, **kwargs: Any) -> Branch:

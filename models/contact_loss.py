@@ -65,8 +65,14 @@ from cusp.continuation import Branch, ContinuationOptions, Problem, points_at, t
 
 from .errors import ModelParameterError, NoComplianceLawError, check_positive
 
-__all__ = ["ContactLoss", "ContactLossResult", "PathError", "AREA_READINGS", "VARIABLES",
-           "LEG_CONTROLS"]
+__all__ = [
+    "ContactLoss",
+    "ContactLossResult",
+    "PathError",
+    "AREA_READINGS",
+    "VARIABLES",
+    "LEG_CONTROLS",
+]
 
 #: nondimensional variables of every leg problem (one of them is the leg's control)
 VARIABLES = ("g", "t", "n", "A_SL", "p", "q")
@@ -148,10 +154,13 @@ class _RoughLevels:
         residual and its Jacobian need them at p and q, several times over)."""
         surf, h = self.surf, self.scale * p
         J = float(surf.load_integral(h))
-        return (float(surf.log_load_integral(h)),
-                self.scale * float(surf.load_integral_derivative(h)) / J,
-                float(surf.area_integral(h)), float(surf.tail_probability(h)),
-                float(surf.pdf(h)))
+        return (
+            float(surf.log_load_integral(h)),
+            self.scale * float(surf.load_integral_derivative(h)) / J,
+            float(surf.area_integral(h)),
+            float(surf.tail_probability(h)),
+            float(surf.pdf(h)),
+        )
 
     def ell(self, p):
         j, dj = self._at(p)[:2]
@@ -197,8 +206,9 @@ class _SphereLevels:
     def __init__(self, sphere, F_N0: float, g_A: float) -> None:
         a0 = float(sphere.contact_radius(F_N0))
         self.scale = a0
-        self.kappa = (2.0 - sphere.nu) * sphere.E_star * a0**2 / (2.0 * sphere.G
-                                                                 * 0.5 * sphere.radius)
+        self.kappa = (
+            (2.0 - sphere.nu) * sphere.E_star * a0**2 / (2.0 * sphere.G * 0.5 * sphere.radius)
+        )
 
     def ell(self, p):
         return 3.0 * math.log(p), 3.0 / p
@@ -237,9 +247,11 @@ def _levels_for(body, F_N0: float, g_A: float):
         raise NoComplianceLawError(
             f"a {name} cannot follow the contact-loss path: the paper gives it no compliance "
             f"law (no load-displacement relation g_T(F_T, F_N)), so there is no O-A-B-C path "
-            f"to trace; use a rough surface or a sphere")
+            f"to trace; use a rough surface or a sphere"
+        )
     raise ModelParameterError(
-        f"body must be a rough surface or a Sphere, got {type(body).__name__}")
+        f"body must be a rough surface or a Sphere, got {type(body).__name__}"
+    )
 
 
 # ------------------------------------------------------------------------------------------
@@ -348,14 +360,22 @@ class ContactLoss:
         ``"printed"`` (Eq 32 as printed, default) or ``"consistent"`` (see module docstring).
     """
 
-    def __init__(self, body, normal_load: float, max_slip: float, reduced_normal_load: float,
-                 *, area_reading: str = "printed") -> None:
+    def __init__(
+        self,
+        body,
+        normal_load: float,
+        max_slip: float,
+        reduced_normal_load: float,
+        *,
+        area_reading: str = "printed",
+    ) -> None:
         self.F_N0 = check_positive("normal_load", normal_load, "N")
         self.g_A = check_positive("max_slip", max_slip, "µm")
         self.F_Np = check_positive("reduced_normal_load", reduced_normal_load, "N")
         if area_reading not in AREA_READINGS:
             raise ModelParameterError(
-                f"area_reading must be one of {AREA_READINGS}, got {area_reading!r}")
+                f"area_reading must be one of {AREA_READINGS}, got {area_reading!r}"
+            )
         self.area_reading = area_reading
         self.body = body
         self.levels = _levels_for(body, self.F_N0, self.g_A)
@@ -363,12 +383,14 @@ class ContactLoss:
         if self.F_Np >= self.F_N0:
             raise ModelParameterError(
                 f"reduced_normal_load must be < normal_load = {self.F_N0!r} N (a reduction), "
-                f"got {self.F_Np!r} N")
+                f"got {self.F_Np!r} N"
+            )
         g_lim = self.mu0 * self.levels.slip_limit(1.0)
         if self.g_A >= g_lim:
             raise ModelParameterError(
                 f"max_slip must be < {g_lim!r} µm, the slip at which this body slides under "
-                f"normal_load = {self.F_N0!r} N (gross sliding, no point A), got {self.g_A!r} µm")
+                f"normal_load = {self.F_N0!r} N (gross sliding, no point A), got {self.g_A!r} µm"
+            )
         # F_A from the loading curve, only to validate the reduction (the path is traced)
         F_A = float(body.tangential_force(self.g_A, self.F_N0))
         floor = self.F_N0 - F_A / self.mu0
@@ -376,9 +398,14 @@ class ContactLoss:
             raise ModelParameterError(
                 f"reduced_normal_load = {self.F_Np!r} N is too deep: F'_T = F_A - mu*dF_N = "
                 f"{F_A - self.mu0 * (self.F_N0 - self.F_Np)!r} N would be negative; allowed: "
-                f"{floor!r} N <= reduced_normal_load < {self.F_N0!r} N")
-        self.scales = {"g": self.g_A, "t": self.mu0 * self.F_N0, "n": self.F_N0,
-                       "level": self.levels.scale}
+                f"{floor!r} N <= reduced_normal_load < {self.F_N0!r} N"
+            )
+        self.scales = {
+            "g": self.g_A,
+            "t": self.mu0 * self.F_N0,
+            "n": self.F_N0,
+            "level": self.levels.scale,
+        }
 
     # -------------------------------------------------------------- residual and Jacobian
     def _equations(self, x, mu: float, leg: str, consts) -> tuple[np.ndarray, np.ndarray]:
@@ -428,8 +455,9 @@ class ContactLoss:
             J[4, 2] = 1.0
         return R, J
 
-    def problem(self, leg: str, *, start: float, constant: float | None = None,
-                mu: float | None = None) -> Problem:
+    def problem(
+        self, leg: str, *, start: float, constant: float | None = None, mu: float | None = None
+    ) -> Problem:
         """The continuation problem of one leg (nondimensional; see the module docstring).
 
         ``start``: the value of the leg's control (:data:`LEG_CONTROLS`). ``constant``: q_A
@@ -473,8 +501,14 @@ class ContactLoss:
             col[4] = -1.0  # d/d q_A (AB) and d/d n_B (BC) of the leg constraint
             return col
 
-        return Problem(residual, unknowns, params, jacobian=jacobian,
-                       param_jacobian=param_jacobian, name=f"contact-loss leg {leg}")
+        return Problem(
+            residual,
+            unknowns,
+            params,
+            jacobian=jacobian,
+            param_jacobian=param_jacobian,
+            name=f"contact-loss leg {leg}",
+        )
 
     # -------------------------------------------------------------- the path
     def run(self, options: ContinuationOptions | None = None) -> ContactLossResult:
@@ -485,15 +519,28 @@ class ContactLoss:
         messages: list[str] = []
         # O -> A: slip raised at F_N0
         prob = self.problem("OA", start=0.0)
-        oa = trace(prob, [0.0, 1.0, 0.0, p0, p0], free="g", bounds={"g": (-math.inf, 1.0)},
-                   monitor=["t", "A_SL"], options=o)
+        oa = trace(
+            prob,
+            [0.0, 1.0, 0.0, p0, p0],
+            free="g",
+            bounds={"g": (-math.inf, 1.0)},
+            monitor=["t", "A_SL"],
+            options=o,
+        )
         _require_end(oa, "OA", "g = g_A")
         A = _polish(prob, oa, "g", 1.0, o)
         # A -> B: normal load reduced, Mindlin-Deresiewicz
         n_B = self.F_Np / self.F_N0
         prob_ab = self.problem("AB", start=A["n"], constant=A["q"])
-        ab = trace(prob_ab, _unknowns(A, "n"), free="n", direction=-1,
-                   bounds={"n": (n_B, math.inf)}, monitor=["g", "t", "A_SL"], options=o)
+        ab = trace(
+            prob_ab,
+            _unknowns(A, "n"),
+            free="n",
+            direction=-1,
+            bounds={"n": (n_B, math.inf)},
+            monitor=["g", "t", "A_SL"],
+            options=o,
+        )
         _require_end(ab, "AB", "F_N = F'_N")
         B = _polish(prob_ab, ab, "n", n_B, o)
         # B -> C: reloading at F'_N
@@ -509,8 +556,15 @@ class ContactLoss:
         if math.isfinite(L.slip_limit(B["p"])):
             bounds["q"] = (0.0, math.inf)  # sphere: the stick zone vanishes at gross slip
         prob_bc = self.problem("BC", start=B["g"], constant=B["n"])
-        bc = trace(prob_bc, _unknowns(B, "g"), free="g", bounds=bounds, targets=targets,
-                   monitor=["t", "A_SL"], options=o)
+        bc = trace(
+            prob_bc,
+            _unknowns(B, "g"),
+            free="g",
+            bounds=bounds,
+            targets=targets,
+            monitor=["t", "A_SL"],
+            options=o,
+        )
         _require_end(bc, "BC", "F_T = F_A" if c_exists else "g_T = g_A")
         C = _polish(prob_bc, bc, "t", A["t"], o) if c_exists else None
         D = _polish(prob_bc, bc, "g", 1.0, o) if d_exists else None
@@ -518,25 +572,32 @@ class ContactLoss:
             messages.append(
                 f"F_A = {A['t'] * self.scales['t']:.6g} N >= mu F'_N = "
                 f"{self.mu0 * self.F_Np:.6g} N: under force control the block slides (gross "
-                f"sliding); there is no point C and no snap-through energy")
+                f"sliding); there is no point C and no snap-through energy"
+            )
         if not d_exists:
             messages.append(
                 f"g_A = {self.g_A:.6g} µm exceeds the slip at which the body slides under F'_N:"
                 f" under displacement control the block slides (gross sliding); there is no "
-                f"point D and no snap-back energy")
+                f"point D and no snap-back energy"
+            )
         legs = {"OA": oa, "AB": ab, "BC": bc}
         energy, error = self._energies(legs, prob_ab, prob_bc, A, B, C, D, o)
         raw = {"O": oa.point(0), "A": A, "B": B, "C": C, "D": D}
-        points = {k: None if v is None else _point(v, self.scales, L.names)
-                  for k, v in raw.items()}
+        points = {k: None if v is None else _point(v, self.scales, L.names) for k, v in raw.items()}
         return ContactLossResult(
-            points=points, energy=energy, energy_error=error,
-            folds=self._folds(legs, points), legs=legs,
+            points=points,
+            energy=energy,
+            energy_error=error,
+            folds=self._folds(legs, points),
+            legs=legs,
             gross_sliding={"force_control": not c_exists, "displacement_control": not d_exists},
-            messages=messages, level_names=L.names, scales=self.scales,
+            messages=messages,
+            level_names=L.names,
+            scales=self.scales,
             problems={"OA": prob, "AB": prob_ab, "BC": prob_bc},
             point_rows=_point_rows(legs, c_exists, d_exists),
-            stats={name: _leg_stats(br) for name, br in legs.items()})
+            stats={name: _leg_stats(br) for name, br in legs.items()},
+        )
 
     def _energies(self, legs, prob_ab, prob_bc, A, B, C, D, o):
         """Areas ABD and ABC [N·µm] by Gauss–Legendre in g on the corrected branches."""
@@ -577,20 +638,34 @@ class ContactLoss:
             t_after = _path_derivatives(legs[after], 0)
             for var, (kind, control) in kinds.items():
                 if t_before[var] * t_after[var] < 0.0:
-                    out.append({
-                        "kind": kind, "control": control, "point": point, "corner": True,
-                        "values": points[point],
-                        "direction_before": "increasing" if t_before[var] > 0 else "decreasing",
-                        "direction_after": "increasing" if t_after[var] > 0 else "decreasing",
-                    })
+                    out.append(
+                        {
+                            "kind": kind,
+                            "control": control,
+                            "point": point,
+                            "corner": True,
+                            "values": points[point],
+                            "direction_before": "increasing" if t_before[var] > 0 else "decreasing",
+                            "direction_after": "increasing" if t_after[var] > 0 else "decreasing",
+                        }
+                    )
         names = {"g": "g_T", "t": "F_T", "n": "F_N", "A_SL": "A_SL"}
         for leg, br in legs.items():
             for sp in br.special("fold"):
                 phys = _point(sp.values, self.scales, self.levels.names)
                 wrt = sp.with_respect_to
                 kind = kinds.get(wrt, ("turning point", names.get(wrt, wrt)))
-                out.append({"kind": kind[0], "control": kind[1], "point": None,
-                            "corner": False, "leg": leg, "status": sp.status, "values": phys})
+                out.append(
+                    {
+                        "kind": kind[0],
+                        "control": kind[1],
+                        "point": None,
+                        "corner": False,
+                        "leg": leg,
+                        "status": sp.status,
+                        "values": phys,
+                    }
+                )
         return out
 
 
@@ -606,7 +681,8 @@ def _require_end(br: Branch, leg: str, what: str) -> None:
     if br.status != "bound":
         raise PathError(
             f"the contact-loss leg {leg} ended with status {br.status!r} before reaching "
-            f"{what}: {br.message}")
+            f"{what}: {br.message}"
+        )
 
 
 def _polish(problem, br: Branch, name: str, value: float, o) -> dict[str, float]:
@@ -637,10 +713,13 @@ def _path_derivatives(br: Branch, row: int) -> dict[str, float]:
 
 def _leg_stats(br: Branch) -> dict[str, Any]:
     it = br.stats["newton_iterations"]
-    return {"points": len(br), "status": br.status,
-            "newton_iterations_per_point": float(np.mean(it[1:])) if len(it) > 1 else 0.0,
-            "rejected_steps": int(np.sum(br.stats["rejected_steps"])),
-            "max_residual_norm": float(np.max(br.stats["residual_norm"]))}
+    return {
+        "points": len(br),
+        "status": br.status,
+        "newton_iterations_per_point": float(np.mean(it[1:])) if len(it) > 1 else 0.0,
+        "rejected_steps": int(np.sum(br.stats["rejected_steps"])),
+        "max_residual_norm": float(np.max(br.stats["residual_norm"])),
+    }
 
 
 def _gauss(f, a: float, b: float) -> tuple[float, float]:

@@ -39,10 +39,12 @@ def load_revision(rev: str | None, into: Path, name: str):
         return importlib.import_module("cusp.continuation")
     target = into / name
     target.mkdir()
-    archive = subprocess.run(["git", "archive", rev, "continuation"], cwd=ROOT, check=True,
-                             capture_output=True).stdout
-    subprocess.run(["tar", "-x", "--strip-components=1", "-C", str(target)], input=archive,
-                   check=True)
+    archive = subprocess.run(
+        ["git", "archive", rev, "continuation"], cwd=ROOT, check=True, capture_output=True
+    ).stdout
+    subprocess.run(
+        ["tar", "-x", "--strip-components=1", "-C", str(target)], input=archive, check=True
+    )
     if str(into) not in sys.path:
         sys.path.insert(0, str(into))
     return importlib.import_module(name)
@@ -55,26 +57,33 @@ def main(argv=None) -> int:
     ap.add_argument("--rounds", type=int, default=11)
     args = ap.parse_args(argv)
     with tempfile.TemporaryDirectory() as tmp:
-        sides = {"base": load_revision(args.base, Path(tmp), "continuation_ab_base"),
-                 "new": load_revision(args.new, Path(tmp), "continuation_ab_new")}
+        sides = {
+            "base": load_revision(args.base, Path(tmp), "continuation_ab_base"),
+            "new": load_revision(args.new, Path(tmp), "continuation_ab_new"),
+        }
         for pb in PROBLEMS:
-            runs = {side: (lambda m=m, pb=pb: run_ours(pb, True, api=m))
-                    for side, m in sides.items()}
+            runs = {
+                side: (lambda m=m, pb=pb: run_ours(pb, True, api=m)) for side, m in sides.items()
+            }
             for side, run in runs.items():
                 out = run()()
                 folds = [f"{lam:.17g}" for lam in out["folds"]]
-                print(f"{pb['name']} [{side}]: {out['points']} points, "
-                      f"{out['newton']} Newton iterations, folds {folds}")
+                print(
+                    f"{pb['name']} [{side}]: {out['points']} points, "
+                    f"{out['newton']} Newton iterations, folds {folds}"
+                )
             times = {side: [] for side in runs}
             for r in range(args.rounds):
-                for side in (("base", "new") if r % 2 == 0 else ("new", "base")):
+                for side in ("base", "new") if r % 2 == 0 else ("new", "base"):
                     t0 = time.perf_counter()
                     for _ in range(100):
                         runs[side]()
                     times[side].append((time.perf_counter() - t0) / 100 * 1e3)
             b, n = min(times["base"]), min(times["new"])
-            print(f"  best of {args.rounds}: base {b:.3f} ms, new {n:.3f} ms, "
-                  f"ratio new/base {n / b:.3f}")
+            print(
+                f"  best of {args.rounds}: base {b:.3f} ms, new {n:.3f} ms, "
+                f"ratio new/base {n / b:.3f}"
+            )
     return 0
 
 

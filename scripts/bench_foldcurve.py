@@ -39,10 +39,13 @@ X0 = -1.324717957244746  # root of x³ − x + 1 (a = 1, b = −1)
 
 
 def cusp_problem() -> Problem:
-    return Problem(lambda u, p: np.array([u[0] ** 3 - p["a"] * u[0] - p["b"]]), ["x"],
-                   {"a": 1.0, "b": -1.0},
-                   jacobian=lambda u, p: np.array([[3 * u[0] ** 2 - p["a"]]]),
-                   param_jacobian=lambda u, p, n: np.array([-1.0]) if n == "b" else -u[:1])
+    return Problem(
+        lambda u, p: np.array([u[0] ** 3 - p["a"] * u[0] - p["b"]]),
+        ["x"],
+        {"a": 1.0, "b": -1.0},
+        jacobian=lambda u, p: np.array([[3 * u[0] ** 2 - p["a"]]]),
+        param_jacobian=lambda u, p, n: np.array([-1.0]) if n == "b" else -u[:1],
+    )
 
 
 def start_fold(prob):
@@ -53,8 +56,13 @@ def start_fold(prob):
 def run_ours(prob, fold):
     fc = fold_curve(prob, fold, free=("b", "a"), direction=-1, bounds={"a": (-1.0, 1.0)})
     (c,) = fc.special("cusp")
-    return dict(x=fc["x"], a=fc["a"], b=fc["b"],
-                cusp=(c.values["x"], c.values["a"], c.values["b"]), status=fc.status)
+    return dict(
+        x=fc["x"],
+        a=fc["a"],
+        b=fc["b"],
+        cusp=(c.values["x"], c.values["a"], c.values["b"]),
+        status=fc.status,
+    )
 
 
 def _fold_system(xb, a):
@@ -68,8 +76,9 @@ def _fold_jac(xb, a):
 
 
 def _solve(guess, a, xtol=1e-13):
-    sol, info, _, _ = fsolve(_fold_system, guess, args=(a,), fprime=_fold_jac,
-                               full_output=True, xtol=xtol)
+    sol, info, _, _ = fsolve(
+        _fold_system, guess, args=(a,), fprime=_fold_jac, full_output=True, xtol=xtol
+    )
     # judged by the residual: near the cusp fsolve often reports "not making good progress"
     # (ier = 5) with a residual of 1e-18, as its 2×2 Jacobian (det = 6x) becomes singular
     ok = bool(np.all(np.isfinite(sol))) and np.max(np.abs(info["fvec"])) < 1e-12
@@ -119,9 +128,13 @@ def run_plain_loop(n: int, refine: bool = True):
 def accuracy(res):
     a, b, x = res["a"], res["b"], res["x"]
     rel = np.abs(4 * a**3 - 27 * b**2) / np.maximum(1.0, 4 * np.abs(a) ** 3 + 27 * b**2)
-    return dict(curve=float(rel.max()), state=float(np.max(np.abs(a - 3 * x**2))),
-                cusp=float(max(abs(v) for v in res["cusp"])),
-                cusp_a=float(abs(res["cusp"][1])), points=len(a))
+    return dict(
+        curve=float(rel.max()),
+        state=float(np.max(np.abs(a - 3 * x**2))),
+        cusp=float(max(abs(v) for v in res["cusp"])),
+        cusp_a=float(abs(res["cusp"][1])),
+        points=len(a),
+    )
 
 
 def best_time(fn, repeats):
@@ -144,16 +157,39 @@ def figure(ours, loop, path_png: Path):
     fig, ax = plt.subplots(figsize=(6.0, 4.2), constrained_layout=True)
     xs = np.linspace(-1 / np.sqrt(3.0), 1 / np.sqrt(3.0), 401)
     ax.plot(3 * xs**2, -2 * xs**3, color="0.75", lw=4, label="exact: $4a^3 = 27b^2$")
-    ax.plot(ours["a"], ours["b"], "o-", color="C0", ms=4, lw=1.2,
-            label=f"fold_curve ({len(ours['a'])} points)")
-    ax.plot(loop["a"], loop["b"], "x", color="C1", ms=3,
-            label=f"plain loop ({len(loop['a'])} points)")
-    ax.plot([ours["cusp"][1]], [ours["cusp"][2]], "*", color="C3", ms=14, mec="k",
-            label="cusp (fold_curve)")
-    ax.plot([loop["cusp"][1]], [loop["cusp"][2]], "D", color="C1", ms=6, mec="k",
-            label="cusp estimate (plain loop, interpolated)")
-    ax.annotate("cusp $a=b=0$", (0, 0), xytext=(0.25, 0.12),
-                arrowprops=dict(arrowstyle="->", lw=0.8))
+    ax.plot(
+        ours["a"],
+        ours["b"],
+        "o-",
+        color="C0",
+        ms=4,
+        lw=1.2,
+        label=f"fold_curve ({len(ours['a'])} points)",
+    )
+    ax.plot(
+        loop["a"], loop["b"], "x", color="C1", ms=3, label=f"plain loop ({len(loop['a'])} points)"
+    )
+    ax.plot(
+        [ours["cusp"][1]],
+        [ours["cusp"][2]],
+        "*",
+        color="C3",
+        ms=14,
+        mec="k",
+        label="cusp (fold_curve)",
+    )
+    ax.plot(
+        [loop["cusp"][1]],
+        [loop["cusp"][2]],
+        "D",
+        color="C1",
+        ms=6,
+        mec="k",
+        label="cusp estimate (plain loop, interpolated)",
+    )
+    ax.annotate(
+        "cusp $a=b=0$", (0, 0), xytext=(0.25, 0.12), arrowprops=dict(arrowstyle="->", lw=0.8)
+    )
     ax.set_xlabel("$a$")
     ax.set_ylabel("$b$")
     ax.set_title("Fold curve of $x^3 - a x - b = 0$ from $a = 1$ through the cusp")
@@ -166,8 +202,13 @@ def figure(ours, loop, path_png: Path):
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--repeats", type=int, default=7)
-    ap.add_argument("--grid", type=int, nargs="*", default=[None, 200],
-                    help="plain-loop grid sizes per branch (default: ours' point count/2, 200)")
+    ap.add_argument(
+        "--grid",
+        type=int,
+        nargs="*",
+        default=[None, 200],
+        help="plain-loop grid sizes per branch (default: ours' point count/2, 200)",
+    )
     ap.add_argument("--figure", default=str(ROOT / "docs" / "figures" / "foldcurve_cusp.png"))
     args = ap.parse_args(argv)
 
@@ -175,26 +216,39 @@ def main(argv=None):
     t_trace, fold = best_time(functools.partial(start_fold, prob), args.repeats)
     run_ours(prob, fold)  # warm-up (first calls)
     t_ours, ours = best_time(functools.partial(run_ours, prob, fold), args.repeats)
-    rows = [("fold_curve (Newton-located cusp)", t_ours, accuracy(ours),
-             f"start: the fold from trace ({1e3 * t_trace:.1f} ms, not included)")]
+    rows = [
+        (
+            "fold_curve (Newton-located cusp)",
+            t_ours,
+            accuracy(ours),
+            f"start: the fold from trace ({1e3 * t_trace:.1f} ms, not included)",
+        )
+    ]
     loop_for_fig = None
     for n in args.grid:
         n = n or (len(ours["a"]) + 1) // 2
         for refine in (False, True):
             t, loop = best_time(functools.partial(run_plain_loop, n, refine), args.repeats)
-            note = f"grid {n}/branch" + (f", {loop['n_bisect']} bisection steps" if refine
-                                          else ", interpolated")
+            note = f"grid {n}/branch" + (
+                f", {loop['n_bisect']} bisection steps" if refine else ", interpolated"
+            )
             rows.append(("plain loop + fsolve", t, accuracy(loop), note))
             if loop_for_fig is None:
                 loop_for_fig = loop
-    print(f"python {platform.python_version()}, numpy {np.__version__}, "
-          f"{platform.machine()}, best of {args.repeats}\n")
-    print("| method | wall time [ms] | points | max rel. abs(4a³ − 27b²) | max abs(a − 3x²) "
-          "| cusp error max(abs(x), abs(a), abs(b)) | notes |")
+    print(
+        f"python {platform.python_version()}, numpy {np.__version__}, "
+        f"{platform.machine()}, best of {args.repeats}\n"
+    )
+    print(
+        "| method | wall time [ms] | points | max rel. abs(4a³ − 27b²) | max abs(a − 3x²) "
+        "| cusp error max(abs(x), abs(a), abs(b)) | notes |"
+    )
     print("|---|---:|---:|---:|---:|---:|---|")
     for name, t, acc, note in rows:
-        print(f"| {name} | {1e3 * t:.2f} | {acc['points']} | {acc['curve']:.1e} | "
-              f"{acc['state']:.1e} | {acc['cusp']:.1e} | {note} |")
+        print(
+            f"| {name} | {1e3 * t:.2f} | {acc['points']} | {acc['curve']:.1e} | "
+            f"{acc['state']:.1e} | {acc['cusp']:.1e} | {note} |"
+        )
     figure(ours, loop_for_fig, Path(args.figure))
     print(f"\nfigure: {args.figure} (+ .svg)")
 

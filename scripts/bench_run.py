@@ -59,13 +59,15 @@ print(json.dumps({"import": t1 - t0, "compute": t2 - t1, "figures": t3 - t2,
 
 def _python(args, **kw):
     env = {**os.environ, "PYTHONPATH": str(ROOT), "MPLBACKEND": "Agg"}
-    return subprocess.run([sys.executable, *args], capture_output=True, text=True, check=True,
-                          env=env, **kw)
+    return subprocess.run(
+        [sys.executable, *args], capture_output=True, text=True, check=True, env=env, **kw
+    )
 
 
 def measure(repeat: int) -> dict[str, list[float]]:
-    out: dict[str, list[float]] = {k: [] for k in ("startup", "import", "compute", "figures",
-                                                   "write", "command")}
+    out: dict[str, list[float]] = {
+        k: [] for k in ("startup", "import", "compute", "figures", "write", "command")
+    }
     with tempfile.TemporaryDirectory() as tmp:
         for i in range(repeat):
             t = time.perf_counter()
@@ -75,8 +77,7 @@ def measure(repeat: int) -> dict[str, list[float]]:
             for k, v in rec.items():
                 out[k].append(v)
             t = time.perf_counter()
-            _python(["-m", "cusp.app.cli", "run", str(SCENE), "--out", f"{tmp}/b{i}",
-                     "--quiet"])
+            _python(["-m", "cusp.app.cli", "run", str(SCENE), "--out", f"{tmp}/b{i}", "--quiet"])
             out["command"].append(time.perf_counter() - t)
     return out
 
@@ -101,8 +102,12 @@ def main() -> None:
     import numpy
     import scipy
 
-    commit = subprocess.run(["git", "rev-parse", "--short", "HEAD"], cwd=ROOT,
-                            capture_output=True, text=True).stdout.strip() or "unknown"
+    commit = (
+        subprocess.run(
+            ["git", "rev-parse", "--short", "HEAD"], cwd=ROOT, capture_output=True, text=True
+        ).stdout.strip()
+        or "unknown"
+    )
     load = os.getloadavg()[0] if hasattr(os, "getloadavg") else float("nan")
     lines = [
         "# Benchmark: wall time of `cusp run` on the Fig 6 scene",

@@ -48,8 +48,9 @@ from tests.continuation import oracles as orc  # noqa: E402
 def run(n: int, sparse: bool):
     case = orc.bratu_problem(n, "analytic", sparse=sparse)
     t0 = time.perf_counter()
-    br = trace(case.problem, u0=np.zeros(n), free="lam", bounds={f"u{n // 2}": (-1.0, 2.0)},
-               max_steps=400)
+    br = trace(
+        case.problem, u0=np.zeros(n), free="lam", bounds={f"u{n // 2}": (-1.0, 2.0)}, max_steps=400
+    )
     elapsed = time.perf_counter() - t0
     folds = [sp for sp in br.special_points if sp.kind == "fold"]
     return elapsed, br, folds
@@ -85,17 +86,30 @@ def measure(n: int, sparse: bool, reps: int, ref) -> dict:
     steps = br.info["steps"]
     lam = folds[0].values["lam"] if folds else float("nan")
     value, kind = ref
-    return {"n": n, "kind": "sparse" if sparse else "dense", "time": elapsed, "steps": steps,
-            "newton": int(np.sum(br.stats["newton_iterations"])),
-            "us_per_step_per_n": elapsed / steps / n * 1e6, "lu_units": float("nan"),
-            "lam": lam, "err": abs(lam - value) / value if value is not None else float("nan"),
-            "ref": kind, "ok": br.success and len(folds) == 1}
+    return {
+        "n": n,
+        "kind": "sparse" if sparse else "dense",
+        "time": elapsed,
+        "steps": steps,
+        "newton": int(np.sum(br.stats["newton_iterations"])),
+        "us_per_step_per_n": elapsed / steps / n * 1e6,
+        "lu_units": float("nan"),
+        "lam": lam,
+        "err": abs(lam - value) / value if value is not None else float("nan"),
+        "ref": kind,
+        "ok": br.success and len(folds) == 1,
+    }
 
 
 def git_rev() -> str:
     try:
-        return subprocess.run(["git", "rev-parse", "--short", "HEAD"], cwd=ROOT,
-                              capture_output=True, text=True, check=True).stdout.strip()
+        return subprocess.run(
+            ["git", "rev-parse", "--short", "HEAD"],
+            cwd=ROOT,
+            capture_output=True,
+            text=True,
+            check=True,
+        ).stdout.strip()
     except (OSError, subprocess.CalledProcessError):
         return "unknown"
 
@@ -103,8 +117,12 @@ def git_rev() -> str:
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--sizes", type=int, nargs="+", default=[999, 3999, 9999, 39999, 99999])
-    ap.add_argument("--repeat", type=int, default=3,
-                    help="repeats per size (sizes above 20 000 unknowns run once)")
+    ap.add_argument(
+        "--repeat",
+        type=int,
+        default=3,
+        help="repeats per size (sizes above 20 000 unknowns run once)",
+    )
     ap.add_argument("--out", default=str(ROOT / "docs" / "benchmarks" / "sparse.md"))
     args = ap.parse_args(argv)
     for n in args.sizes:
@@ -119,9 +137,12 @@ def main(argv=None) -> int:
         row = measure(n, True, reps, ref)
         row["lu_units"] = row["time"] / t_lu
         rows.append(row)
-        print(f"N={n}: {row['time']:.3f} s, {row['steps']} steps, {row['newton']} Newton, "
-              f"fold λ={row['lam']:.15g} (rel. err {row['err']:.1e}), "
-              f"{row['lu_units']:.0f} LU", flush=True)
+        print(
+            f"N={n}: {row['time']:.3f} s, {row['steps']} steps, {row['newton']} Newton, "
+            f"fold λ={row['lam']:.15g} (rel. err {row['err']:.1e}), "
+            f"{row['lu_units']:.0f} LU",
+            flush=True,
+        )
         if n <= 999:
             rows.append(measure(n, False, reps, ref))
 
@@ -143,7 +164,7 @@ def main(argv=None) -> int:
         "",
         "FD Bratu with N interior nodes (TEST-PROBLEMS.md §2): tridiagonal scipy.sparse "
         "Jacobian, traced from u = 0, λ = 0 to u(½) = 2 through the fold with default "
-        "options. Wall time is the best of 3 runs (1 run above 20 000 unknowns). \"LU units\" "
+        'options. Wall time is the best of 3 runs (1 run above 20 000 unknowns). "LU units" '
         "is the trace's time divided by one SuperLU factorization of the bordered start "
         "matrix, timed in the same process: the per-step floor, and independent of the "
         "machine's speed.",
@@ -157,7 +178,8 @@ def main(argv=None) -> int:
         err = "—" if not np.isfinite(r["err"]) else f"{r['err']:.1e}"
         lines.append(
             f"| {r['n']} | {r['kind']} | {r['time']:.3f} | {r['steps']} | {r['newton']} | "
-            f"{r['us_per_step_per_n']:.3f} | {lu} | {r['lam']:.13g} | {err} | {r['ref']} |")
+            f"{r['us_per_step_per_n']:.3f} | {lu} | {r['lam']:.13g} | {err} | {r['ref']} |"
+        )
     lines += [
         "",
         f"Fitted growth of the sparse time per step: ∝ N^{slope:.2f} over N = "
@@ -182,9 +204,11 @@ def main(argv=None) -> int:
         ]
         for n, d in dense_rows.items():
             sp_ = next(r for r in sparse_rows if r["n"] == n)
-            lines.append(f"- At N = {n} the dense Jacobian (LAPACK on the full bordered "
-                         f"matrix) takes {d['time'] / sp_['time']:.0f}× as long as the "
-                         "sparse one.")
+            lines.append(
+                f"- At N = {n} the dense Jacobian (LAPACK on the full bordered "
+                f"matrix) takes {d['time'] / sp_['time']:.0f}× as long as the "
+                "sparse one."
+            )
         lines.append("")
     out = write_report(args.out, "\n".join(lines))
     print(f"wrote {out}; time per step ∝ N^{slope:.2f}")

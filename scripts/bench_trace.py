@@ -75,9 +75,17 @@ def _cusp():
     # arithmetic 2*(1/sqrt(3))**3 is 2 ulp high)
     r, bf = 0.5773502691896257, 0.3849001794597505
     x0 = -1.324717957244746  # root of x^3 - x + 1 (minus the plastic number)
-    return {"name": "cusp x³ − x − b, b ∈ [−1, 1]", "f": f, "fx": fx, "fl": fl,
-            "x0": x0, "lam0": -1.0, "lam1": 1.0, "x1": -x0,
-            "folds": [(-r, bf), (r, -bf)]}
+    return {
+        "name": "cusp x³ − x − b, b ∈ [−1, 1]",
+        "f": f,
+        "fx": fx,
+        "fl": fl,
+        "x0": x0,
+        "lam0": -1.0,
+        "lam1": 1.0,
+        "x1": -x0,
+        "folds": [(-r, bf), (r, -bf)],
+    }
 
 
 def _truss():
@@ -97,11 +105,18 @@ def _truss():
         return 1.0
 
     # mpmath, 40 digits: v = H(1 -+ 1/sqrt 3), P = K v (H - v)(2H - v), correctly rounded
-    folds = [(0.2113248654051871, 0.03442651863295482),
-             (0.7886751345948129, -0.03442651863295482)]
-    return {"name": "Green truss (EA = L = 1, H = 0.5), v ∈ [−0.5, 1.5]", "f": f, "fx": fx,
-            "fl": fl, "x0": -0.5, "lam0": force(-0.5), "lam1": force(1.5), "x1": 1.5,
-            "folds": folds}
+    folds = [(0.2113248654051871, 0.03442651863295482), (0.7886751345948129, -0.03442651863295482)]
+    return {
+        "name": "Green truss (EA = L = 1, H = 0.5), v ∈ [−0.5, 1.5]",
+        "f": f,
+        "fx": fx,
+        "fl": fl,
+        "x0": -0.5,
+        "lam0": force(-0.5),
+        "lam1": force(1.5),
+        "x1": 1.5,
+        "folds": folds,
+    }
 
 
 PROBLEMS = [_cusp(), _truss()]
@@ -117,6 +132,7 @@ def _counted(fn, counter, key):
     def wrapped(*a):
         counter[key] += 1
         return fn(*a)
+
     return wrapped
 
 
@@ -132,21 +148,35 @@ def run_ours(pb, analytic, api=None):
         return np.array([f(u[0], p["lam"])])
 
     if analytic:
-        prob = problem_cls(residual, unknowns=["x"], params={"lam": pb["lam0"]},
-                           jacobian=lambda u, p: np.array([[fx(u[0], p["lam"])]]),
-                           param_jacobian=lambda u, p, name: np.array([fl(u[0], p["lam"])]))
+        prob = problem_cls(
+            residual,
+            unknowns=["x"],
+            params={"lam": pb["lam0"]},
+            jacobian=lambda u, p: np.array([[fx(u[0], p["lam"])]]),
+            param_jacobian=lambda u, p, name: np.array([fl(u[0], p["lam"])]),
+        )
     else:
-        prob = problem_cls(residual, unknowns=["x"], params={"lam": pb["lam0"]},
-                           derivatives="central")
+        prob = problem_cls(
+            residual, unknowns=["x"], params={"lam": pb["lam0"]}, derivatives="central"
+        )
     lo, hi = sorted((pb["lam0"], pb["lam1"]))
     br = trace_fn(prob, u0=[pb["x0"]], free="lam", bounds={"lam": (lo, hi)})
 
     def summary():
-        folds = [sp.values["lam"] for sp in br.special_points
-                 if sp.kind == "fold" and sp.status == "converged"]
-        return {"points": len(br["lam"]), "newton": int(np.sum(br.stats["newton_iterations"])),
-                "nfev": cnt["f"], "folds": folds, "located": "refined (Newton)",
-                "ok": bool(br.success) and br["lam"][-1] == pb["lam1"]}
+        folds = [
+            sp.values["lam"]
+            for sp in br.special_points
+            if sp.kind == "fold" and sp.status == "converged"
+        ]
+        return {
+            "points": len(br["lam"]),
+            "newton": int(np.sum(br.stats["newton_iterations"])),
+            "nfev": cnt["f"],
+            "folds": folds,
+            "located": "refined (Newton)",
+            "ok": bool(br.success) and br["lam"][-1] == pb["lam1"],
+        }
+
     return summary
 
 
@@ -161,23 +191,32 @@ def run_contique(pb, analytic, contique):
     jac = None
     if analytic:
         # contique calls the Jacobian parts with its `args` (default (None,)) appended
-        jac = (lambda x, lpf, *_: np.array([[fx(x[0], lpf)]]),
-               lambda x, lpf, *_: np.array([fl(x[0], lpf)]))
+        jac = (
+            lambda x, lpf, *_: np.array([[fx(x[0], lpf)]]),
+            lambda x, lpf, *_: np.array([fl(x[0], lpf)]),
+        )
     lam1 = pb["lam1"]
     up = lam1 > pb["lam0"]
     lams, newton = [], 0
     with contextlib.redirect_stdout(io.StringIO()):
-        for res in contique.solve(fun, x0=np.array([pb["x0"]]), lpf0=pb["lam0"], jac=jac,
-                                  tol=TOL, maxsteps=2000):
+        for res in contique.solve(
+            fun, x0=np.array([pb["x0"]]), lpf0=pb["lam0"], jac=jac, tol=TOL, maxsteps=2000
+        ):
             lams.append(res.x[-1])
             newton += res.niterations
             if (res.x[-1] >= lam1) if up else (res.x[-1] <= lam1):
                 break
 
     def summary():
-        return {"points": len(lams), "newton": newton, "nfev": cnt["f"],
-                "folds": _bracketed_folds(np.asarray(lams)), "located": "bracketed (extreme point)",
-                "ok": bool(len(lams)) and ((lams[-1] >= lam1) if up else (lams[-1] <= lam1))}
+        return {
+            "points": len(lams),
+            "newton": newton,
+            "nfev": cnt["f"],
+            "folds": _bracketed_folds(np.asarray(lams)),
+            "located": "bracketed (extreme point)",
+            "ok": bool(len(lams)) and ((lams[-1] >= lam1) if up else (lams[-1] <= lam1)),
+        }
+
     return summary
 
 
@@ -256,8 +295,14 @@ def run_floor(pb):
         ds = min(0.5, ds * min(2.0, max(0.5, min(5.0 / k, 15.0 / max(angle, 1e-12)))))
         z, t = zz, tn
         points += 1
-    return lambda: {"points": points, "newton": newton, "nfev": cnt["f"], "folds": [],
-                    "located": "none (no special points)", "ok": True}
+    return lambda: {
+        "points": points,
+        "newton": newton,
+        "nfev": cnt["f"],
+        "folds": [],
+        "located": "none (no special points)",
+        "ok": True,
+    }
 
 
 def run_scipy(pb, analytic):
@@ -301,8 +346,14 @@ def run_scipy(pb, analytic):
             x_prev, lam_prev = x, lam
             points += 1
         ok = ok and good
-    return lambda: {"points": points, "newton": None, "nfev": cnt["f"], "folds": folds,
-                    "located": "failure (Δ = 1% of range)", "ok": ok}
+    return lambda: {
+        "points": points,
+        "newton": None,
+        "nfev": cnt["f"],
+        "folds": folds,
+        "located": "failure (Δ = 1% of range)",
+        "ok": ok,
+    }
 
 
 # ----------------------------------------------------------------------------- timing
@@ -343,6 +394,7 @@ def _phases_once(pb, rounds):
             finally:
                 acc[key] = acc.get(key, 0.0) + time.perf_counter() - t0
                 active.discard(key)
+
         setattr(owner, name, timed)
 
     wrap(tr, "newton", "corrector (steps and start)")
@@ -360,7 +412,8 @@ def _phases_once(pb, rounds):
             setattr(owner, name, fn)
     out = {k: v / rounds for k, v in acc.items()}
     out["the rest: start tangent, step control, test functions"] = (
-        total - sum(acc.values())) / rounds
+        total - sum(acc.values())
+    ) / rounds
     return total / rounds, out
 
 
@@ -409,15 +462,22 @@ def machine():
             if line.startswith("model name"):
                 cpu = line.split(":", 1)[1].strip()
                 break
-    return (f"{cpu}, {os.cpu_count()} logical CPUs (shared with other jobs); "
-            f"{platform.system()} {platform.release()}; Python {platform.python_version()}, "
-            f"NumPy {np.__version__}, SciPy {scipy.__version__}")
+    return (
+        f"{cpu}, {os.cpu_count()} logical CPUs (shared with other jobs); "
+        f"{platform.system()} {platform.release()}; Python {platform.python_version()}, "
+        f"NumPy {np.__version__}, SciPy {scipy.__version__}"
+    )
 
 
 def git_rev():
     try:
-        return subprocess.run(["git", "rev-parse", "--short", "HEAD"], cwd=ROOT, text=True,
-                              capture_output=True, check=True).stdout.strip()
+        return subprocess.run(
+            ["git", "rev-parse", "--short", "HEAD"],
+            cwd=ROOT,
+            text=True,
+            capture_output=True,
+            check=True,
+        ).stdout.strip()
     except (OSError, subprocess.CalledProcessError):
         return "unknown"
 
@@ -433,16 +493,28 @@ def main(argv=None):
     except ImportError:
         contique = None
 
-    variants = [("ours", "analytic", lambda pb: run_ours(pb, True)),
-                ("ours", "central FD", lambda pb: run_ours(pb, False))]
+    variants = [
+        ("ours", "analytic", lambda pb: run_ours(pb, True)),
+        ("ours", "central FD", lambda pb: run_ours(pb, False)),
+    ]
     if contique is not None:
-        variants += [("contique " + contique.__version__, "analytic",
-                      lambda pb: run_contique(pb, True, contique)),
-                     ("contique " + contique.__version__, "central FD",
-                      lambda pb: run_contique(pb, False, contique))]
-    variants += [("floor: bare loop", "analytic", run_floor),
-                 ("SciPy root loop", "analytic", lambda pb: run_scipy(pb, True)),
-                 ("SciPy root loop", "FD (hybr)", lambda pb: run_scipy(pb, False))]
+        variants += [
+            (
+                "contique " + contique.__version__,
+                "analytic",
+                lambda pb: run_contique(pb, True, contique),
+            ),
+            (
+                "contique " + contique.__version__,
+                "central FD",
+                lambda pb: run_contique(pb, False, contique),
+            ),
+        ]
+    variants += [
+        ("floor: bare loop", "analytic", run_floor),
+        ("SciPy root loop", "analytic", lambda pb: run_scipy(pb, True)),
+        ("SciPy root loop", "FD (hybr)", lambda pb: run_scipy(pb, False)),
+    ]
 
     rows, ratios = [], []
     for pb in PROBLEMS:
@@ -452,19 +524,31 @@ def main(argv=None):
             out = fn(pb)()
             times[(tool.split()[0], deriv)] = t
             errs = fold_errors(out["folds"], pb["folds"])
-            located = sum(e is not None and e <= 1e-12 * max(1.0, abs(lam))
-                          for e, (_, lam) in zip(errs, pb["folds"], strict=True))
+            located = sum(
+                e is not None and e <= 1e-12 * max(1.0, abs(lam))
+                for e, (_, lam) in zip(errs, pb["folds"], strict=True)
+            )
             err_txt = ", ".join("—" if e is None else f"{e:.1e}" for e in errs)
             newton = out["newton"]
-            rows.append((pb["name"], tool, deriv, t * 1e3, out["points"],
-                         "—" if newton is None else f"{newton / out['points']:.2f}",
-                         f"{out['nfev'] / out['points']:.1f}",
-                         f"{located}/{len(pb['folds'])} to 1e-12 ({out['located']})",
-                         err_txt, "yes" if out["ok"] else "NO"))
+            rows.append(
+                (
+                    pb["name"],
+                    tool,
+                    deriv,
+                    t * 1e3,
+                    out["points"],
+                    "—" if newton is None else f"{newton / out['points']:.2f}",
+                    f"{out['nfev'] / out['points']:.1f}",
+                    f"{located}/{len(pb['folds'])} to 1e-12 ({out['located']})",
+                    err_txt,
+                    "yes" if out["ok"] else "NO",
+                )
+            )
         if contique is not None:
             for deriv in ("analytic", "central FD"):
-                ratios.append((pb["name"], deriv, times[("ours", deriv)] /
-                               times[("contique", deriv)]))
+                ratios.append(
+                    (pb["name"], deriv, times[("ours", deriv)] / times[("contique", deriv)])
+                )
         if not contique:
             ratios.append((pb["name"], "—", float("nan")))
 
@@ -492,23 +576,37 @@ def main(argv=None):
         "|---|---|---|---:|---:|---:|---:|---|---|---|",
     ]
     for r in rows:
-        lines.append(f"| {r[0]} | {r[1]} | {r[2]} | {r[3]:.3f} | {r[4]} | {r[5]} | {r[6]} "
-                     f"| {r[7]} | {r[8]} | {r[9]} |")
+        lines.append(
+            f"| {r[0]} | {r[1]} | {r[2]} | {r[3]:.3f} | {r[4]} | {r[5]} | {r[6]} "
+            f"| {r[7]} | {r[8]} | {r[9]} |"
+        )
     lines += ["", "Ratio of wall times, ours / contique (same run; < 1 means ours is faster):", ""]
     if contique is None:
         lines.append("- contique is not installed: no ratio.")
     for name, deriv, ratio in ratios:
         if not math.isnan(ratio):
-            lines.append(f"- {name}, {deriv}: {ratio:.3f} (ours {1 / ratio:.1f}× faster)"
-                         if ratio < 1 else f"- {name}, {deriv}: {ratio:.3f}")
+            lines.append(
+                f"- {name}, {deriv}: {ratio:.3f} (ours {1 / ratio:.1f}× faster)"
+                if ratio < 1
+                else f"- {name}, {deriv}: {ratio:.3f}"
+            )
     total, parts = phases(PROBLEMS[0])
-    lines += ["", f"Where our time goes ({PROBLEMS[0]['name']}, analytic; per branch, "
-              f"{total * 1e3:.3f} ms with the timing wrappers):", "",
-              "| phase | time (µs) | share |", "|---|---:|---:|"]
+    lines += [
+        "",
+        f"Where our time goes ({PROBLEMS[0]['name']}, analytic; per branch, "
+        f"{total * 1e3:.3f} ms with the timing wrappers):",
+        "",
+        "| phase | time (µs) | share |",
+        "|---|---:|---:|",
+    ]
     for key, value in parts.items():
         lines.append(f"| {key} | {value * 1e6:.0f} | {value / total:.0%} |")
-    lines += ["", "Target for the solver: the cusp branch with both folds located in about "
-              "1 ms, at least 10× faster than contique.", ""]
+    lines += [
+        "",
+        "Target for the solver: the cusp branch with both folds located in about "
+        "1 ms, at least 10× faster than contique.",
+        "",
+    ]
     text = "\n".join(lines)
     write_report(args.out, text)
     print(text)

@@ -920,8 +920,16 @@ def _model_checks(models) -> list[_Check]:
     loads = (F_Np, F_N0, g_A)
     ins = loads + par_syms
     checks += [
-        _Check(eq, what, derivation(eq).derived.subs(pars), ins, sec4, call,
-               conditioned=loads, n_params=3)
+        _Check(
+            eq,
+            what,
+            derivation(eq).derived.subs(pars),
+            ins,
+            sec4,
+            call,
+            conditioned=loads,
+            n_params=3,
+        )
         for eq, what, call in (
             ("MD", "ExponentialRoughSurface.tangential_force - mu dF_N", md_call),
             ("AB", "ExponentialRoughSurface.tangential_slip at (F'_T, F'_N)", ab_call),

@@ -22,7 +22,11 @@ def test_demo_bad_argument_exits_2(capsys):
 
 
 def test_console_entry_point_runs():
-    out = subprocess.run([sys.executable, "-m", "cusp.app.cli", "demo", "--a", "3"],
-                         capture_output=True, text=True, check=True).stdout
+    out = subprocess.run(
+        [sys.executable, "-m", "cusp.app.cli", "demo", "--a", "3"],
+        capture_output=True,
+        text=True,
+        check=True,
+    ).stdout
     # at a = 3 the folds are at b = ∓2 (a/3)^{3/2} = ∓2
     assert "-2.000000000000000" in out and " 2.000000000000000" in out

@@ -36,8 +36,14 @@ def test_fig6_scene_writes_summary_csv_and_figures(tmp_path, capsys):
     assert status == 0, err
     assert err == ""
     names = sorted(p.name for p in out.iterdir())
-    assert names == ["branch.csv", "force-slip-detail.png", "force-slip-detail.svg",
-                     "force-slip.png", "force-slip.svg", "summary.json"]
+    assert names == [
+        "branch.csv",
+        "force-slip-detail.png",
+        "force-slip-detail.svg",
+        "force-slip.png",
+        "force-slip.svg",
+        "summary.json",
+    ]
     assert (out / "force-slip.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
     assert b"<svg" in (out / "force-slip.svg").read_bytes()[:2000]
     s = json.loads((out / "summary.json").read_text(encoding="utf-8"))
@@ -50,8 +56,10 @@ def test_fig6_scene_writes_summary_csv_and_figures(tmp_path, capsys):
     assert s["energy"]["snap_back"] == pytest.approx(0.21302894093713884714, rel=1e-8)
     assert s["energy"]["snap_through"] == pytest.approx(1.1402052093236064225, rel=1e-8)
     assert s["energy"]["unit"].startswith("N·µm")
-    assert {(f["point"], f["kind"]) for f in s["folds"]} >= {("A", "snap-back"),
-                                                              ("A", "snap-through")}
+    assert {(f["point"], f["kind"]) for f in s["folds"]} >= {
+        ("A", "snap-back"),
+        ("A", "snap-through"),
+    }
     assert set(s["solver"]) == {"OA", "AB", "BC"}
     assert s["scene"]["surface"]["sigma"] == {"value": 2.0, "unit": "µm"}
     assert s["scene"]["loading"]["reduced_normal_load"]["unit"] == "N"
@@ -69,8 +77,7 @@ def test_fig6_scene_writes_summary_csv_and_figures(tmp_path, capsys):
 
 def test_outputs_are_reproducible(tmp_path, capsys):
     for name in ("a", "b"):
-        assert _run(capsys, "run", str(SCENES / "fig6.toml"), "--out",
-                    str(tmp_path / name))[0] == 0
+        assert _run(capsys, "run", str(SCENES / "fig6.toml"), "--out", str(tmp_path / name))[0] == 0
     for f in ("summary.json", "branch.csv", "force-slip.svg", "force-slip-detail.svg"):
         assert (tmp_path / "a" / f).read_bytes() == (tmp_path / "b" / f).read_bytes(), f
 
@@ -88,8 +95,12 @@ def test_rerun_into_an_existing_directory_replaces_the_files(tmp_path, capsys):
 
 def test_fig8_scene_has_all_reductions_and_gross_sliding(tmp_path, capsys):
     out = tmp_path / "fig8"
-    assert _run(capsys, "run", str(SCENES / "fig8.toml"), "--out", str(out), "--no-plots",
-                "--quiet")[0] == 0
+    assert (
+        _run(capsys, "run", str(SCENES / "fig8.toml"), "--out", str(out), "--no-plots", "--quiet")[
+            0
+        ]
+        == 0
+    )
     s = json.loads((out / "summary.json").read_text())
     loads = [c["reduced_normal_load"]["value"] for c in s["cases"]]
     assert loads == [900.0, 800.0, 600.0, 400.0]
@@ -118,17 +129,25 @@ def test_no_plots_loads_neither_matplotlib_nor_gaussian_code(tmp_path):
         "if m in sys.modules]; "
         "print(rc, heavy)"
     )
-    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
-                         cwd=ROOT, check=True).stdout.strip()
+    out = subprocess.run(
+        [sys.executable, "-c", code], capture_output=True, text=True, cwd=ROOT, check=True
+    ).stdout.strip()
     assert out == "0 []"
 
 
 def test_cusp_run_without_arguments_runs_the_bundled_fig6_scene(tmp_path):
     assert bundled_scene().read_text(encoding="utf-8") == FIG6_TEXT
-    proc = subprocess.run([sys.executable, "-c", "import sys; from cusp.app import cli; "
-                           "sys.exit(cli.main(['run', '--no-plots']))"],
-                          capture_output=True, text=True, cwd=tmp_path,
-                          env={"PYTHONPATH": str(ROOT), "PATH": "/usr/bin:/bin"})
+    proc = subprocess.run(
+        [
+            sys.executable,
+            "-c",
+            "import sys; from cusp.app import cli; sys.exit(cli.main(['run', '--no-plots']))",
+        ],
+        capture_output=True,
+        text=True,
+        cwd=tmp_path,
+        env={"PYTHONPATH": str(ROOT), "PATH": "/usr/bin:/bin"},
+    )
     assert proc.returncode == 0, proc.stderr
     s = json.loads((tmp_path / "cusp-out" / "fig6" / "summary.json").read_text())
     assert s["scene"]["name"] == "fig6"
@@ -140,8 +159,14 @@ def test_cusp_without_a_subcommand_is_cusp_run(tmp_path, capsys, monkeypatch):
     assert status == 0
     assert "scene fig6 (scenes/fig6.toml (bundled))" in stdout
     out = tmp_path / "cusp-out" / "fig6"
-    assert sorted(p.suffix for p in out.iterdir()) == [".csv", ".json", ".png", ".png",
-                                                        ".svg", ".svg"]
+    assert sorted(p.suffix for p in out.iterdir()) == [
+        ".csv",
+        ".json",
+        ".png",
+        ".png",
+        ".svg",
+        ".svg",
+    ]
 
 
 # ------------------------------------------------------------------ other bodies
@@ -150,8 +175,9 @@ def test_gaussian_and_sphere_scenes_match_mpmath(tmp_path, capsys, name):
     from tests.models import _contact_oracles as oracles
 
     out = tmp_path / name
-    status, _, err = _run(capsys, "run", str(SCENES / f"{name}.toml"), "--out", str(out),
-                          "--no-plots", "--quiet")
+    status, _, err = _run(
+        capsys, "run", str(SCENES / f"{name}.toml"), "--out", str(out), "--no-plots", "--quiet"
+    )
     assert status == 0, err
     s = json.loads((out / "summary.json").read_text())
     sc = {k: v["value"] for k, v in s["scene"]["surface"].items() if k != "model"}
@@ -187,29 +213,36 @@ BAD = {
     "unknown model": (_scene(model='model = "rough-fractal"'), "model = 'rough-fractal'"),
     "cylinder": (_scene(model='model = "cylinder"'), "no compliance law"),
     "flat": (_scene(model='model = "flat"'), "no compliance law"),
-    "unknown key": (_scene(nu='nu = 0.3\nnu_typo = 1.0'), "unknown key 'nu_typo'"),
+    "unknown key": (_scene(nu="nu = 0.3\nnu_typo = 1.0"), "unknown key 'nu_typo'"),
     "unknown section": (FIG6_TEXT + "\n[extra]\na = 1\n", "unknown section [extra]"),
     "missing field": (_scene(max_slip=None), "missing key 'max_slip'"),
-    "missing section": ("[surface]\nmodel = 'rough-exponential'\nsigma = 2.0\nnu = 0.3\n"
-                        "mu = 0.1\n", "missing section [loading]"),
+    "missing section": (
+        "[surface]\nmodel = 'rough-exponential'\nsigma = 2.0\nnu = 0.3\nmu = 0.1\n",
+        "missing section [loading]",
+    ),
     "wrong type": (_scene(sigma='sigma = "two"'), "sigma = 'two' has the wrong type"),
     "boolean": (_scene(mu="mu = true"), "mu = True has the wrong type"),
     "nan": (_scene(sigma="sigma = nan"), "sigma = nan"),
     "inf": (_scene(normal_load="normal_load = inf"), "normal_load = inf"),
     "sigma <= 0": (_scene(sigma="sigma = 0.0"), "[surface] sigma = 0.0"),
     "nu > 0.5": (_scene(nu="nu = 0.6"), "[surface] nu = 0.6"),
-    "reduced above": (_scene(reduced_normal_load="reduced_normal_load = 1200.0"),
-                      "reduced_normal_load = 1200.0 N"),
-    "too deep": (_scene(reduced_normal_load="reduced_normal_load = 100.0"),
-                 "[loading] reduced_normal_load = 100.0 N is too deep"),
+    "reduced above": (
+        _scene(reduced_normal_load="reduced_normal_load = 1200.0"),
+        "reduced_normal_load = 1200.0 N",
+    ),
+    "too deep": (
+        _scene(reduced_normal_load="reduced_normal_load = 100.0"),
+        "[loading] reduced_normal_load = 100.0 N is too deep",
+    ),
     "load scale half given": (_scene(nu="nu = 0.3\nE = 0.2"), "the load scale needs all"),
     "key of another model": (_scene(nu="nu = 0.3\nshape = 2.0"), "does not apply"),
-    "bad figure": (FIG6_TEXT.replace('"force-slip-detail"', '"fig99"'),
-                   "figures contains 'fig99'"),
+    "bad figure": (FIG6_TEXT.replace('"force-slip-detail"', '"fig99"'), "figures contains 'fig99'"),
     "bad reading": (FIG6_TEXT + '\n[options]\narea_reading = "other"\n', "area_reading"),
     "bad solver": (FIG6_TEXT + "\n[solver]\nds_max = -1.0\n", "[solver] ds_max = -1.0"),
-    "section as value": ("surface = 1\n" + FIG6_TEXT.replace("[surface]", "[surfacex]"),
-                         "surface = 1 must be a [surface] table"),
+    "section as value": (
+        "surface = 1\n" + FIG6_TEXT.replace("[surface]", "[surfacex]"),
+        "surface = 1 must be a [surface] table",
+    ),
     "code": ("import os\nos.system('touch hacked')\n", "malformed TOML"),
 }
 
@@ -248,8 +281,12 @@ def test_binary_and_missing_scene_files(tmp_path, capsys):
 def test_bad_scene_through_the_console_script_has_no_traceback(tmp_path):
     scene = tmp_path / "bad.toml"
     scene.write_text(_scene(nu="nu = 0.7"), encoding="utf-8")
-    proc = subprocess.run([sys.executable, "-m", "cusp.app.cli", "run", str(scene)],
-                          capture_output=True, text=True, cwd=ROOT)
+    proc = subprocess.run(
+        [sys.executable, "-m", "cusp.app.cli", "run", str(scene)],
+        capture_output=True,
+        text=True,
+        cwd=ROOT,
+    )
     assert proc.returncode == 2
     assert proc.stderr.count("\n") == 1 and "Traceback" not in proc.stderr
     assert "[surface] nu = 0.7" in proc.stderr and "(-1, 0.5]" in proc.stderr
@@ -269,9 +306,11 @@ def test_numerical_failure_exits_1_with_one_line(tmp_path, capsys, monkeypatch):
         raise contact_loss.PathError("the contact-loss leg AB ended with status 'max_steps'")
 
     monkeypatch.setattr(contact_loss.ContactLoss, "run", fail)
-    status, stdout, err = _run(capsys, "run", str(SCENES / "fig6.toml"), "--out",
-                               str(tmp_path / "o"))
+    status, stdout, err = _run(
+        capsys, "run", str(SCENES / "fig6.toml"), "--out", str(tmp_path / "o")
+    )
     assert status == 1 and stdout == ""
     assert err.strip().splitlines() == [
-        "cusp run: numerical failure: the contact-loss leg AB ended with status 'max_steps'"]
+        "cusp run: numerical failure: the contact-loss leg AB ended with status 'max_steps'"
+    ]
     assert not (tmp_path / "o").exists()

@@ -46,8 +46,13 @@ def make_problem(residual, unknowns, params, jacobian, param_jacobian, strategy)
     if strategy is not None:
         from cusp.continuation import Problem  # lazily, so the oracles' self-checks run without it
     if strategy == "analytic":
-        prob = Problem(residual, unknowns=unknowns, params=params, jacobian=jacobian,
-                       param_jacobian=param_jacobian)
+        prob = Problem(
+            residual,
+            unknowns=unknowns,
+            params=params,
+            jacobian=jacobian,
+            param_jacobian=param_jacobian,
+        )
     elif strategy in ("central", "forward", "complex"):
         prob = Problem(residual, unknowns=unknowns, params=params, derivatives=strategy)
     elif strategy is None:  # no Problem: the oracle's functions only
@@ -69,8 +74,11 @@ def branch_residual_norms(case, br):
 
 def special(br, kind, with_respect_to=None):
     """Special points of one kind (optionally a fold w.r.t. one variable), in branch order."""
-    pts = [sp for sp in br.special_points if sp.kind == kind
-           and (with_respect_to is None or sp.with_respect_to == with_respect_to)]
+    pts = [
+        sp
+        for sp in br.special_points
+        if sp.kind == kind and (with_respect_to is None or sp.with_respect_to == with_respect_to)
+    ]
     return sorted(pts, key=lambda sp: sp.index)
 
 
@@ -90,6 +98,7 @@ def assert_special_points_consistent(case, br):
 # 1. Cusp normal form x^3 - a x - b = 0
 # ---------------------------------------------------------------------------------------------
 
+
 def cusp_residual(u, p):
     x = u[0]
     return np.array([x**3 - p["a"] * x - p["b"]])
@@ -108,8 +117,9 @@ def cusp_param_jacobian(u, p, name):
 
 
 def cusp_problem(strategy="analytic", a=1.0, b=-1.0):
-    return make_problem(cusp_residual, ["x"], {"a": a, "b": b}, cusp_jacobian,
-                        cusp_param_jacobian, strategy)
+    return make_problem(
+        cusp_residual, ["x"], {"a": a, "b": b}, cusp_jacobian, cusp_param_jacobian, strategy
+    )
 
 
 @functools.lru_cache
@@ -133,6 +143,7 @@ def cusp_folds(a=1.0):
 # 2. Finite-difference Bratu (u_{i-1} - 2u_i + u_{i+1})/h^2 + lam exp(u_i) = 0, u_0 = u_{N+1} = 0
 # ---------------------------------------------------------------------------------------------
 
+
 def bratu_names(n):
     return [f"u{i}" for i in range(n)]
 
@@ -149,8 +160,9 @@ def bratu_residual(u, p):
 def bratu_jacobian_dense(u, p):
     n = u.shape[0]
     h2 = (1.0 / (n + 1)) ** 2
-    jac = (np.diag(np.full(n - 1, 1.0), -1) + np.diag(np.full(n - 1, 1.0), 1)
-           - 2.0 * np.eye(n)) / h2
+    jac = (
+        np.diag(np.full(n - 1, 1.0), -1) + np.diag(np.full(n - 1, 1.0), 1) - 2.0 * np.eye(n)
+    ) / h2
     return jac + np.diag(p["lam"] * np.exp(u))
 
 
@@ -169,8 +181,9 @@ def bratu_param_jacobian(u, p, name):
 
 def bratu_problem(n, strategy="analytic", sparse=False):
     jac = bratu_jacobian_sparse if sparse else bratu_jacobian_dense
-    return make_problem(bratu_residual, bratu_names(n), {"lam": 0.0}, jac,
-                        bratu_param_jacobian, strategy)
+    return make_problem(
+        bratu_residual, bratu_names(n), {"lam": 0.0}, jac, bratu_param_jacobian, strategy
+    )
 
 
 def _bratu_shoot(a, mu, n):
@@ -181,8 +194,18 @@ def _bratu_shoot(a, mu, n):
     so that Newton on (u_{n+1}, w_{n+1}) = (0, 0) has the exact Jacobian [[w, z], [wa, wm]].
     """
     zero = mp.mpf(0)
-    um, u, wm_, w, zm, z, am, wa, bm, wb = zero, a, zero, mp.mpf(1), zero, zero, zero, zero, \
-        zero, zero
+    um, u, wm_, w, zm, z, am, wa, bm, wb = (
+        zero,
+        a,
+        zero,
+        mp.mpf(1),
+        zero,
+        zero,
+        zero,
+        zero,
+        zero,
+        zero,
+    )
     for _ in range(n):
         e = mp.exp(u)
         me = mu * e
@@ -212,8 +235,9 @@ def bratu_fd_fold(n, dps=DPS):
             da, dmu = mp.lu_solve(mp.matrix([[w, z], [wa, wb]]), mp.matrix([-u, -w]))
             a += da
             mu += dmu
-            if abs(da) <= abs(a) * mp.mpf(10) ** (4 - dps) and \
-                    abs(dmu) <= abs(mu) * mp.mpf(10) ** (4 - dps):
+            if abs(da) <= abs(a) * mp.mpf(10) ** (4 - dps) and abs(dmu) <= abs(mu) * mp.mpf(10) ** (
+                4 - dps
+            ):
                 break
         else:  # pragma: no cover - the oracle itself failed
             raise RuntimeError(f"shooting Newton did not converge for N={n}")
@@ -238,6 +262,7 @@ BRATU_FOLD_N99999 = 3.5138307189423516846049741
 # ---------------------------------------------------------------------------------------------
 # 3. Von Mises truss: supports (+-L, 0), apex (0, H), load P downward, apex deflection v
 # ---------------------------------------------------------------------------------------------
+
 
 def truss_green_problem(strategy="analytic", EA=1.0, L=1.0, H=0.5):
     """1 dof, Green-Lagrange strain: P = (EA/l0^3) v (H - v)(2H - v). Unknown v, free P."""
@@ -313,8 +338,9 @@ def truss_2dof_residual_factory(EA=1.0, L=1.0, H=2.0):
     def residual(q, p):
         u, v = q[0], q[1]
         y, e1, e2 = strains(u, v)
-        return np.array([EA * (e1 * (L + u) - e2 * (L - u)) / l0,
-                         -EA * y * (e1 + e2) / l0 - p["P"]])
+        return np.array(
+            [EA * (e1 * (L + u) - e2 * (L - u)) / l0, -EA * y * (e1 + e2) / l0 - p["P"]]
+        )
 
     def jacobian(q, p):
         u, v = q[0], q[1]
@@ -344,8 +370,12 @@ def truss_2dof_references(EA=1.0, L=1.0, H=2.0):
         l03 = (L**2 + H**2) ** mp.mpf(1.5)
         yb = mp.sqrt(H**2 - 2 * L**2)
         yl = H / mp.sqrt(3)
-        return {"bp_v": float(H - yb), "bp_P": float(EA * yb * (H**2 - yb**2) / l03),
-                "lp_v": float(H - yl), "lp_P": float(EA * yl * (H**2 - yl**2) / l03)}
+        return {
+            "bp_v": float(H - yb),
+            "bp_P": float(EA * yb * (H**2 - yb**2) / l03),
+            "lp_v": float(H - yl),
+            "lp_P": float(EA * yl * (H**2 - yl**2) / l03),
+        }
 
 
 # ---------------------------------------------------------------------------------------------
@@ -377,8 +407,7 @@ def snapback_monitor_problem(strategy="analytic", EA=1.0, L=1.0, H=0.1, ks=0.005
     def param_jacobian(q, p, name):
         return np.array([1.0, -1.0 / ks])
 
-    return make_problem(residual, ["v", "delta"], {"P": 0.0}, jacobian, param_jacobian,
-                        strategy)
+    return make_problem(residual, ["v", "delta"], {"P": 0.0}, jacobian, param_jacobian, strategy)
 
 
 def snapback_control_problem(strategy="analytic", EA=1.0, L=1.0, H=0.1, ks=0.005):
@@ -415,6 +444,7 @@ def snapback_turning_points(EA=1.0, L=1.0, H=0.1, ks=0.005):
 # 5. Shallow arch, two-mode Ritz: Pi = (1/8)(x1^2 - 2e x1 + 4x2^2)^2 + x1^2 + 16x2^2 - p x1
 # ---------------------------------------------------------------------------------------------
 
+
 def arch_problem(e, strategy="analytic"):
     def residual(q, p):
         x1, x2 = q[0], q[1]
@@ -430,8 +460,7 @@ def arch_problem(e, strategy="analytic"):
     def param_jacobian(q, p, name):
         return np.array([-1.0, 0.0])
 
-    return make_problem(residual, ["xi1", "xi2"], {"p": 0.0}, jacobian, param_jacobian,
-                        strategy)
+    return make_problem(residual, ["xi1", "xi2"], {"p": 0.0}, jacobian, param_jacobian, strategy)
 
 
 def arch_references(e):
@@ -457,6 +486,7 @@ def arch_references(e):
 # ---------------------------------------------------------------------------------------------
 # 6. Cohesive bar, nondimensional: U = s l + W
 # ---------------------------------------------------------------------------------------------
+
 
 def cohesive_exp_problem(ell=2.0, strategy="analytic"):
     """Exponential softening s = exp(-W): unknown W, free U, residual U - l e^{-W} - W."""

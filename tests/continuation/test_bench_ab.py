@@ -22,8 +22,13 @@ def _in_git_checkout() -> bool:
 
 @pytest.mark.skipif(not _in_git_checkout(), reason="needs a git checkout")
 def test_bench_ab_compares_head_with_the_working_tree():
-    done = subprocess.run([sys.executable, "scripts/bench_ab.py", "HEAD", "--rounds", "1"],
-                          cwd=ROOT, capture_output=True, text=True, timeout=300)
+    done = subprocess.run(
+        [sys.executable, "scripts/bench_ab.py", "HEAD", "--rounds", "1"],
+        cwd=ROOT,
+        capture_output=True,
+        text=True,
+        timeout=300,
+    )
     assert done.returncode == 0, done.stderr
     lines = done.stdout.splitlines()
     # both sides trace both problems and locate both folds (cusp: b = ±2/(3√3) =

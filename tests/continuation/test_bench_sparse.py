@@ -9,19 +9,26 @@ ROOT = pathlib.Path(__file__).resolve().parents[2]
 
 
 def test_bench_sparse_writes_its_table(tmp_path):
-    spec = importlib.util.spec_from_file_location("bench_sparse",
-                                                  ROOT / "scripts" / "bench_sparse.py")
+    spec = importlib.util.spec_from_file_location(
+        "bench_sparse", ROOT / "scripts" / "bench_sparse.py"
+    )
     module = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(module)
     out = tmp_path / "sparse.md"
     assert module.main(["--sizes", "31", "63", "--repeat", "1", "--out", str(out)]) == 0
-    rows = [[c.strip() for c in line.strip("|").split("|")]
-            for line in out.read_text(encoding="utf-8").splitlines()
-            if line.startswith(("| 31 ", "| 63 "))]
+    rows = [
+        [c.strip() for c in line.strip("|").split("|")]
+        for line in out.read_text(encoding="utf-8").splitlines()
+        if line.startswith(("| 31 ", "| 63 "))
+    ]
     # sparse and dense at each size; the fold against the mpmath shooting reference
     # (tests/continuation/oracles.bratu_fd_fold) to well below the 1e-10
-    assert [(r[0], r[1]) for r in rows] == [("31", "sparse"), ("31", "dense"),
-                                            ("63", "sparse"), ("63", "dense")]
+    assert [(r[0], r[1]) for r in rows] == [
+        ("31", "sparse"),
+        ("31", "dense"),
+        ("63", "sparse"),
+        ("63", "dense"),
+    ]
     for r in rows:
         assert float(r[8]) < 1e-12, r
         assert r[9] == "mpmath shooting"

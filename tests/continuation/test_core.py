@@ -37,29 +37,37 @@ def cusp_problem(derivatives="central", analytic=False):
 
     kw = {}
     if analytic:
-        kw = dict(jacobian=lambda u, p: np.array([[3 * u[0] ** 2 - p["a"]]]),
-                  param_jacobian=lambda u, p, n: np.array([-1.0]) if n == "b" else -u[:1])
+        kw = dict(
+            jacobian=lambda u, p: np.array([[3 * u[0] ** 2 - p["a"]]]),
+            param_jacobian=lambda u, p, n: np.array([-1.0]) if n == "b" else -u[:1],
+        )
     return Problem(res, ["x"], {"a": 1.0, "b": -1.0}, derivatives=derivatives, **kw)
 
 
 def folds(br, wrt=None):
-    return [sp_ for sp_ in br.special_points if sp_.kind == "fold"
-            and (wrt is None or sp_.with_respect_to == wrt)]
+    return [
+        sp_
+        for sp_ in br.special_points
+        if sp_.kind == "fold" and (wrt is None or sp_.with_respect_to == wrt)
+    ]
 
 
 # --- --- options
 
 
-@pytest.mark.parametrize("field, value, fragment", [
-    ("ds", 0.0, "'ds' must be a finite number > 0"),
-    ("ds", float("nan"), "'ds'"),
-    ("ds_max", -1.0, "'ds_max'"),
-    ("tol", float("inf"), "'tol'"),
-    ("max_steps", 0, "'max_steps' must be an integer >= 1"),
-    ("max_steps", 2.5, "'max_steps'"),
-    ("predictor", "euler", "'predictor' must be one of"),
-    ("max_angle", 200.0, "'max_angle'"),
-])
+@pytest.mark.parametrize(
+    "field, value, fragment",
+    [
+        ("ds", 0.0, "'ds' must be a finite number > 0"),
+        ("ds", float("nan"), "'ds'"),
+        ("ds_max", -1.0, "'ds_max'"),
+        ("tol", float("inf"), "'tol'"),
+        ("max_steps", 0, "'max_steps' must be an integer >= 1"),
+        ("max_steps", 2.5, "'max_steps'"),
+        ("predictor", "euler", "'predictor' must be one of"),
+        ("max_angle", 200.0, "'max_angle'"),
+    ],
+)
 def test_options_validated_with_field_and_value(field, value, fragment):
     with pytest.raises(OptionsError, match=fragment) as info:
         ContinuationOptions(**{field: value})
@@ -112,8 +120,13 @@ def test_user_functions_may_return_lists_and_integer_arrays():
     def res(u, p):
         return [u[0] ** 3 - u[0] - p["b"]]
 
-    lists = Problem(res, ["x"], {"b": -1.0}, jacobian=lambda u, p: [[3 * u[0] ** 2 - 1]],
-                    param_jacobian=lambda u, p, n: np.array([-1]))
+    lists = Problem(
+        res,
+        ["x"],
+        {"b": -1.0},
+        jacobian=lambda u, p: [[3 * u[0] ** 2 - 1]],
+        param_jacobian=lambda u, p, n: np.array([-1]),
+    )
     arrays = cusp_problem(analytic=True)
     a = trace(lists, [X0], free="b", bounds={"b": (-1.0, 1.0)})
     b = trace(arrays, [X0], free="b", bounds={"b": (-1.0, 1.0)})
@@ -146,8 +159,10 @@ def test_start_not_converging_raises_with_remedy():
 # --- --- folds and derivatives
 
 
-@pytest.mark.parametrize("derivatives, analytic", [
-    ("central", True), ("central", False), ("forward", False), ("complex", False)])
+@pytest.mark.parametrize(
+    "derivatives, analytic",
+    [("central", True), ("central", False), ("forward", False), ("complex", False)],
+)
 def test_cusp_folds_every_derivative_strategy(derivatives, analytic):
     br = trace(cusp_problem(derivatives, analytic), [X0], free="b", bounds={"b": (-1.0, 1.0)})
     assert br.status == "bound" and br.success
@@ -184,9 +199,13 @@ def test_stats_are_per_point():
 def test_check_jacobian_finds_wrong_entry():
     good = cusp_problem(analytic=True)
     assert check_jacobian(good, [0.7], {"a": 1.0, "b": 0.2}).ok
-    bad = Problem(good._residual, ["x"], {"a": 1.0, "b": -1.0},
-                  jacobian=lambda u, p: np.array([[3 * u[0] ** 2 + p["a"]]]),  # sign error
-                  param_jacobian=good._param_jacobian)
+    bad = Problem(
+        good._residual,
+        ["x"],
+        {"a": 1.0, "b": -1.0},
+        jacobian=lambda u, p: np.array([[3 * u[0] ** 2 + p["a"]]]),  # sign error
+        param_jacobian=good._param_jacobian,
+    )
     report = check_jacobian(bad, [0.7], {"a": 1.0, "b": 0.2})
     assert not report.ok
     assert report.worst[0][:2] == (0, "x")
@@ -202,16 +221,18 @@ def test_from_sympy_gives_exact_derivatives():
     assert check_jacobian(prob, [0.3], {"a": 1.0, "b": 0.1}, rtol=1e-9).ok
     br = trace(prob, [X0], free="b", bounds={"b": (-1.0, 1.0)})
     assert sorted(sp_.values["b"] for sp_ in folds(br)) == pytest.approx(
-        [-B_FOLD, B_FOLD], rel=1e-13)
+        [-B_FOLD, B_FOLD], rel=1e-13
+    )
     with pytest.raises(ProblemDefinitionError, match="neither unknowns"):
         from_sympy([x - sympy.Symbol("c")], [x], {a: 1.0})
 
 
 def test_import_is_light():
-    code = ("import sys, cusp.continuation; "
-            "print(any(m.split('.')[0] in ('sympy', 'matplotlib') for m in sys.modules))")
-    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
-                         check=True)
+    code = (
+        "import sys, cusp.continuation; "
+        "print(any(m.split('.')[0] in ('sympy', 'matplotlib') for m in sys.modules))"
+    )
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert out.stdout.strip() == "False"
 
 
@@ -219,8 +240,13 @@ def test_import_is_light():
 
 
 def test_targets_hit_exactly():
-    br = trace(cusp_problem(analytic=True), [X0], free="b", bounds={"b": (-1.0, 1.0)},
-               targets={"b": [0.1, 0.2], "x": [0.0]})
+    br = trace(
+        cusp_problem(analytic=True),
+        [X0],
+        free="b",
+        bounds={"b": (-1.0, 1.0)},
+        targets={"b": [0.1, 0.2], "x": [0.0]},
+    )
     tb = [sp_ for sp_ in br.special_points if sp_.kind == "target" and sp_.with_respect_to == "b"]
     # b = 0.1 and 0.2 are each crossed three times (the S-shaped branch)
     assert sorted({sp_.values["b"] for sp_ in tb}) == [0.1, 0.2]
@@ -238,8 +264,13 @@ def test_event_located_inserted_and_direction():
     ev_any = Event(lambda u, p: u[0] ** 2 - 0.25, label="x2")
     ev_up = Event(lambda u, p: u[0] - 0.5, direction=+1, label="x up")
     ev_down = Event(lambda u, p: u[0] - 0.5, direction=-1, label="x down")
-    br = trace(cusp_problem(analytic=True), [X0], free="b", bounds={"b": (-1.0, 1.0)},
-               events=[ev_any, ev_up, ev_down])
+    br = trace(
+        cusp_problem(analytic=True),
+        [X0],
+        free="b",
+        bounds={"b": (-1.0, 1.0)},
+        events=[ev_any, ev_up, ev_down],
+    )
     evs = br.special("event", label="x2")
     assert [round(e.values["x"], 12) for e in evs] == [-0.5, 0.5]
     for e in evs:
@@ -290,8 +321,9 @@ def test_grazing_bound_is_located_not_aimed():
     # x = 1.2 is met on the last stretch, where the branch runs at 73° to the x axis
     # (db/dx = 3x² − 1 ≈ 3.3): a step aimed at it could miss it, so the crossing is located
     # inside the step instead
-    br = trace(cusp_problem(analytic=True), [X0], free="b",
-               bounds={"b": (-1.0, 1.0), "x": (-2.0, 1.2)})
+    br = trace(
+        cusp_problem(analytic=True), [X0], free="b", bounds={"b": (-1.0, 1.0), "x": (-2.0, 1.2)}
+    )
     end = br.special_points[-1]
     assert br.status == "bound" and end.label == "bound x=1.2" and br["x"][-1] == 1.2
     assert end.details["method"] == "Newton with the component fixed"
@@ -307,8 +339,7 @@ def test_max_steps_is_a_normal_end():
 
 
 def test_direction_minus_one():
-    br = trace(cusp_problem(analytic=True), [X0], free="b", direction=-1,
-               bounds={"b": (-3.0, 1.0)})
+    br = trace(cusp_problem(analytic=True), [X0], free="b", direction=-1, bounds={"b": (-3.0, 1.0)})
     assert br["b"][-1] == -3.0 and folds(br) == []
 
 
@@ -320,6 +351,7 @@ def nan_beyond(limit):
         if p["b"] > limit:
             return np.array([np.nan])
         return np.array([u[0] ** 3 - u[0] - p["b"]])
+
     return Problem(res, ["x"], {"b": -1.0})
 
 
@@ -380,8 +412,9 @@ def test_step_api_matches_trace():
 
 
 def test_secant_predictor():
-    br = trace(cusp_problem(analytic=True), [X0], free="b", bounds={"b": (-1.0, 1.0)},
-               predictor="secant")
+    br = trace(
+        cusp_problem(analytic=True), [X0], free="b", bounds={"b": (-1.0, 1.0)}, predictor="secant"
+    )
     assert [sp_.values["b"] for sp_ in folds(br)] == pytest.approx([B_FOLD, -B_FOLD], rel=1e-12)
 
 
@@ -400,8 +433,10 @@ def bratu(n, *, analytic=True):
     kw = {}
     if analytic:
         kw["jacobian"] = lambda u, p: sp.diags(
-            [np.full(n - 1, 1 / h**2), -2 / h**2 + p["lam"] * np.exp(u),
-             np.full(n - 1, 1 / h**2)], [-1, 0, 1], format="csr")
+            [np.full(n - 1, 1 / h**2), -2 / h**2 + p["lam"] * np.exp(u), np.full(n - 1, 1 / h**2)],
+            [-1, 0, 1],
+            format="csr",
+        )
         kw["param_jacobian"] = lambda u, p, name: np.exp(u)
     else:
         kw["sparsity"] = sp.diags([np.ones(n - 1), np.ones(n), np.ones(n - 1)], [-1, 0, 1])
@@ -435,8 +470,9 @@ def test_branch_switching_simple(kind):
     assert len(bps) == 1 and abs(bps[0].values["p"]) < 1e-10
     assert folds(br) == []
     for direction in (1, -1):
-        other = trace(prob, bps[0], free="p", direction=direction,
-                      bounds={"p": (-1.0, 1.0), "x": (-0.9, 0.9)})
+        other = trace(
+            prob, bps[0], free="p", direction=direction, bounds={"p": (-1.0, 1.0), "x": (-0.9, 0.9)}
+        )
         assert other.success and len(other) > 3
         assert np.max(np.abs(other["x"])) > 0.5  # really left the trivial branch
         assert np.max(np.abs(on_other(other["x"], other["p"]))) < 1e-9
@@ -467,13 +503,16 @@ def test_corrector_takes_a_simplified_step_in_the_quadratic_regime():
         calls["jacobian"] += 1
         return np.array([[3 * u[0] ** 2 - 1.0]])
 
-    prob = Problem(lambda u, p: np.array([u[0] ** 3 - u[0] - p["b"]]), unknowns=["x"],
-                   params={"b": -1.0}, jacobian=jac,
-                   param_jacobian=lambda u, p, name: np.array([-1.0]))
+    prob = Problem(
+        lambda u, p: np.array([u[0] ** 3 - u[0] - p["b"]]),
+        unknowns=["x"],
+        params={"b": -1.0},
+        jacobian=jac,
+        param_jacobian=lambda u, p, name: np.array([-1.0]),
+    )
     system = BranchSystem(prob, "b")
     row = np.array([0.0, 1.0])
-    res = newton(system, np.array([-1.3, -1.0]), row, -1.0, tol=1e-14, step_tol=1e-10,
-                 max_iter=10)
+    res = newton(system, np.array([-1.3, -1.0]), row, -1.0, tol=1e-14, step_tol=1e-10, max_iter=10)
     assert res.converged
     assert res.z[0] == pytest.approx(X0, rel=2e-16, abs=0)
     assert calls["jacobian"] == res.iterations - 1  # the last iteration was a chord step
@@ -517,5 +556,4 @@ def test_fold_newton_stopping_estimate():
     # below the mixed 1e-12·(1 + |z|) but not below 1e-12·|b| = 3.8e-15, so Newton goes on
     small = np.array([0.5773502691896257, -0.003849001794597505])
     assert newton_done(2, 4.68e-8, 1.64e-4, small, 1e-12, stall=1e-6, perturbation=1e-7)
-    assert not newton_done(2, 4.68e-8, 1.64e-4, small, 1e-12, stall=1e-6, perturbation=1e-7,
-                           k=1)
+    assert not newton_done(2, 4.68e-8, 1.64e-4, small, 1e-12, stall=1e-6, perturbation=1e-7, k=1)

@@ -42,8 +42,11 @@ def mp_cusp_conditions(F, unknowns, params, point, dps=40):
         for i in range(n):
             H = sy.hessian(F[i], unknowns)
             coeff += w[i] * sum(ev(H[a, b]) * v[a] * v[b] for a in range(n) for b in range(n))
-        return (max(abs(f) for f in Fv), abs(mp.det(Jm)) / mp.mnorm(Jm, 1) ** (n - 1),
-                abs(coeff) / max(S[0], 1))
+        return (
+            max(abs(f) for f in Fv),
+            abs(mp.det(Jm)) / mp.mnorm(Jm, 1) ** (n - 1),
+            abs(coeff) / max(S[0], 1),
+        )
 
 
 # ---------------------------------------------------------------------------------------
@@ -65,8 +68,10 @@ CO_CUSP = dict(
 # Its 1-parameter folds at k = 0.4, q2 ≈ 1.05220029 and 1.04204851, are right to all 9 digits.
 BK_CUSP_K = 0.35665351
 # folds in q2 at k = 0.4, from the same quartic (P = ∂P/∂x = 0, mpmath 40 digits)
-CO_FOLDS_K04 = ("1.052200287869954692495685086585288461649",
-                "1.042048505378526659254108548428345232525")
+CO_FOLDS_K04 = (
+    "1.052200287869954692495685086585288461649",
+    "1.042048505378526659254108548428345232525",
+)
 
 
 def co_quartic():
@@ -76,9 +81,13 @@ def co_quartic():
     x, y, s, q2, k = sy.symbols("x y s q2 k")
     q = {n: sy.nsimplify(v) for n, v in CO_Q.items()}
     z = 1 - x - y - s
-    F = sy.Matrix([2 * q["q1"] * z**2 - 2 * q["q5"] * x**2 - q["q3"] * x * y,
-                   q2 * z - q["q6"] * y - q["q3"] * x * y,
-                   q["q4"] * (z - k * s)])
+    F = sy.Matrix(
+        [
+            2 * q["q1"] * z**2 - 2 * q["q5"] * x**2 - q["q3"] * x * y,
+            q2 * z - q["q6"] * y - q["q3"] * x * y,
+            q["q4"] * (z - k * s),
+        ]
+    )
     s_of = sy.solve(F[2], s)[0]
     y_of = sy.solve(F[1].subs(s, s_of), y)[0]
     num, _ = sy.fraction(sy.together(F[0].subs(s, s_of).subs(y, y_of)))
@@ -103,31 +112,43 @@ def co_problem(derivatives="analytic"):
     def res(u, p):
         x, y, s = u
         z = 1 - x - y - s
-        return np.array([2 * q1 * z**2 - 2 * q5 * x**2 - q3 * x * y,
-                         p["q2"] * z - q6 * y - q3 * x * y,
-                         q4 * (z - p["k"] * s)])
+        return np.array(
+            [
+                2 * q1 * z**2 - 2 * q5 * x**2 - q3 * x * y,
+                p["q2"] * z - q6 * y - q3 * x * y,
+                q4 * (z - p["k"] * s),
+            ]
+        )
 
     def jac(u, p):
         x, y, s = u
         z = 1 - x - y - s
         a = -4 * q1 * z
-        return np.array([[a - 4 * q5 * x - q3 * y, a - q3 * x, a],
-                         [-p["q2"] - q3 * y, -p["q2"] - q6 - q3 * x, -p["q2"]],
-                         [-q4, -q4, -q4 * (1 + p["k"])]])
+        return np.array(
+            [
+                [a - 4 * q5 * x - q3 * y, a - q3 * x, a],
+                [-p["q2"] - q3 * y, -p["q2"] - q6 - q3 * x, -p["q2"]],
+                [-q4, -q4, -q4 * (1 + p["k"])],
+            ]
+        )
 
     def pjac(u, p, name):
         z = 1 - u[0] - u[1] - u[2]
         return np.array([0.0, z, 0.0]) if name == "q2" else np.array([0.0, 0.0, -q4 * u[2]])
 
-    kw = (dict(jacobian=jac, param_jacobian=pjac) if derivatives == "analytic"
-          else dict(derivatives=derivatives))
+    kw = (
+        dict(jacobian=jac, param_jacobian=pjac)
+        if derivatives == "analytic"
+        else dict(derivatives=derivatives)
+    )
     return Problem(res, ["x", "y", "s"], {"q2": 1.0, "k": 0.4}, **kw)
 
 
 def co_folds(prob):
     # BifurcationKit's starting point (q2 = 1, k = 0.4) and range of q2
-    br = trace(prob, [0.001137, 0.891483, 0.062345], free="q2", bounds={"q2": (0.5, 2.3)},
-               ds_max=0.01)
+    br = trace(
+        prob, [0.001137, 0.891483, 0.062345], free="q2", bounds={"q2": (0.5, 2.3)}, ds_max=0.01
+    )
     return br.special("fold")
 
 
@@ -186,8 +207,9 @@ def test_co_fold_curve_cusp(derivatives):
 # difference of w·F along v (noise ~1e-10).
 def test_co_fold_curve_cusp_central_differences():
     prob = co_problem("central")
-    fc = fold_curve(prob, co_folds(prob)[0], free=("q2", "k"), bounds={"k": (0.0, 2.2)},
-                    ds_max=0.05)
+    fc = fold_curve(
+        prob, co_folds(prob)[0], free=("q2", "k"), bounds={"k": (0.0, 2.2)}, ds_max=0.05
+    )
     (c,) = fc.special("cusp")
     for name, lit in CO_CUSP.items():
         assert c.values[name] == pytest.approx(float(lit), rel=1e-8), name
@@ -211,8 +233,9 @@ def ab_cusp_exact():
     gives u1 = (1 + p3) u2 / p2. Along a branch at fixed p3, parametrised by u2, a fold is
     d(ln p1)/du2 = 0 and a cusp also d²(ln p1)/du2² = 0."""
     u1, u2, p1, p2, p3 = sy.symbols("u1 u2 p1 p2 p3", real=True)
-    F = sy.Matrix([-u1 + p1 * (1 - u1) * sy.exp(u2),
-                   -u2 + p1 * p2 * (1 - u1) * sy.exp(u2) - p3 * u2])
+    F = sy.Matrix(
+        [-u1 + p1 * (1 - u1) * sy.exp(u2), -u2 + p1 * p2 * (1 - u1) * sy.exp(u2) - p3 * u2]
+    )
     u1_of = (1 + p3) * u2 / p2
     assert sy.expand(F[1] - p2 * F[0] - (p2 * u1 - (1 + p3) * u2)) == 0
     lnp1 = sy.log(u1_of) - sy.log(1 - u1_of) - u2
@@ -234,17 +257,24 @@ def ab_problem(derivatives="analytic", p3=2.0):
     def jac(u, p):
         u1, u2 = u
         a = p["p1"] * np.exp(u2)
-        return np.array([[-1 - a, a * (1 - u1)],
-                         [-p["p2"] * a, -1 + p["p2"] * a * (1 - u1) - p["p3"]]])
+        return np.array(
+            [[-1 - a, a * (1 - u1)], [-p["p2"] * a, -1 + p["p2"] * a * (1 - u1) - p["p3"]]]
+        )
 
     def pjac(u, p, name):
         u1, u2 = u
         e = (1 - u1) * np.exp(u2)
-        return {"p1": np.array([e, p["p2"] * e]), "p2": np.array([0.0, p["p1"] * e]),
-                "p3": np.array([0.0, -u2])}[name]
+        return {
+            "p1": np.array([e, p["p2"] * e]),
+            "p2": np.array([0.0, p["p1"] * e]),
+            "p3": np.array([0.0, -u2]),
+        }[name]
 
-    kw = (dict(jacobian=jac, param_jacobian=pjac) if derivatives == "analytic"
-          else dict(derivatives=derivatives))
+    kw = (
+        dict(jacobian=jac, param_jacobian=pjac)
+        if derivatives == "analytic"
+        else dict(derivatives=derivatives)
+    )
     # the AUTO 97 tutorial's STPNT: p1 = 0, p2 = 14, p3 = 2, u = 0
     return Problem(res, ["u1", "u2"], {"p1": 0.0, "p2": 14.0, "p3": p3}, **kw)
 
@@ -279,8 +309,9 @@ def test_ab_fold_curve_cusp(derivatives):
     prob = ab_problem(derivatives)
     fold = trace(prob, [0.0, 0.0], free="p1", bounds={"p1": (0.0, 0.15)}).special("fold")[0]
     # p3 ≥ 0: at p3 = −1 the fold curve ends in a degenerate line (p1 = u1 = 0, any u2)
-    fc = fold_curve(prob, fold, free=("p1", "p3"), bounds={"p3": (0.0, 4.0), "u2": (0.0, 20.0)},
-                    ds_max=0.5)
+    fc = fold_curve(
+        prob, fold, free=("p1", "p3"), bounds={"p3": (0.0, 4.0), "u2": (0.0, 20.0)}, ds_max=0.5
+    )
     assert fc.success
     cusps = fc.special("cusp")
     assert len(cusps) == 1

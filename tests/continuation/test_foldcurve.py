@@ -14,10 +14,16 @@ X0 = -1.324717957244746  # root of x^3 - x + 1
 def cusp_problem(analytic=True):
     kw = {}
     if analytic:
-        kw = dict(jacobian=lambda u, p: np.array([[3 * u[0] ** 2 - p["a"]]]),
-                  param_jacobian=lambda u, p, n: np.array([-1.0]) if n == "b" else -u[:1])
-    return Problem(lambda u, p: np.array([u[0] ** 3 - p["a"] * u[0] - p["b"]]), ["x"],
-                   {"a": 1.0, "b": -1.0}, **kw)
+        kw = dict(
+            jacobian=lambda u, p: np.array([[3 * u[0] ** 2 - p["a"]]]),
+            param_jacobian=lambda u, p, n: np.array([-1.0]) if n == "b" else -u[:1],
+        )
+    return Problem(
+        lambda u, p: np.array([u[0] ** 3 - p["a"] * u[0] - p["b"]]),
+        ["x"],
+        {"a": 1.0, "b": -1.0},
+        **kw,
+    )
 
 
 def cusp_folds(prob):
@@ -58,8 +64,15 @@ def test_one_direction_and_events_on_fold_curve():
     prob = cusp_problem()
     fold = cusp_folds(prob)[0]
     ev = Event(lambda u, p: p["a"] - 0.5, label="a=1/2")
-    fc = fold_curve(prob, fold, free=("b", "a"), direction=-1, bounds={"a": (-1.0, 2.0)},
-                    events=[ev], targets={"b": [0.1]})
+    fc = fold_curve(
+        prob,
+        fold,
+        free=("b", "a"),
+        direction=-1,
+        bounds={"a": (-1.0, 2.0)},
+        events=[ev],
+        targets={"b": [0.1]},
+    )
     assert fc.info["direction"] == -1
     evs = fc.special("event", label="a=1/2")
     assert len(evs) == 2  # a = 1/2 before and after the cusp
@@ -79,8 +92,9 @@ def arch(e):
     def res(q, p):
         x1, x2 = q
         a = x1**2 - 2 * p["e"] * x1 + 4 * x2**2
-        return np.array([0.25 * a * (2 * x1 - 2 * p["e"]) + 2 * x1 - p["p"],
-                         2.0 * a * x2 + 32 * x2])
+        return np.array(
+            [0.25 * a * (2 * x1 - 2 * p["e"]) + 2 * x1 - p["p"], 2.0 * a * x2 + 32 * x2]
+        )
 
     return Problem(res, ["xi1", "xi2"], {"p": 0.0, "e": e})
 
@@ -97,8 +111,7 @@ def test_arch_limit_point_meets_branch_point_at_sqrt22():
     e = codim2[0].values["e"]
     assert codim2[0].values["xi1"] == pytest.approx(e - math.sqrt((e * e - 4) / 3), rel=1e-9)
     # the fold curve is the symmetric limit point: ξ2 = 0 and ξ1 = e − √((e²−4)/3)
-    np.testing.assert_allclose(fc["xi1"], fc["e"] - np.sqrt((fc["e"] ** 2 - 4) / 3),
-                               atol=1e-8)
+    np.testing.assert_allclose(fc["xi1"], fc["e"] - np.sqrt((fc["e"] ** 2 - 4) / 3), atol=1e-8)
     assert np.max(np.abs(fc["xi2"])) < 1e-12
 
 
@@ -134,12 +147,12 @@ def test_snap_back_fold_curve_closes_in_a_cusp():
         return np.array([p["P"] - K * v * (H - v) * (2 * H - v), d - v - p["P"] / p["ks"]])
 
     prob = Problem(res, ["v", "delta"], {"P": 0.0, "ks": 0.005}, derivatives="complex")
-    br = trace(prob, [0.0, 0.0], free="P", monitor=["delta"], bounds={"v": (-0.01, 0.25)},
-               ds_max=0.05)
+    br = trace(
+        prob, [0.0, 0.0], free="P", monitor=["delta"], bounds={"v": (-0.01, 0.25)}, ds_max=0.05
+    )
     snap = br.special("fold", with_respect_to="delta")
     assert len(snap) == 2
-    fc = fold_curve(prob, snap[0], free=("P", "ks"), bounds={"ks": (0.001, 0.02)},
-                    ds_max=0.05)
+    fc = fold_curve(prob, snap[0], free=("P", "ks"), bounds={"ks": (0.001, 0.02)}, ds_max=0.05)
     cusps = fc.special("cusp")
     assert len(cusps) == 1
     assert cusps[0].values["ks"] == pytest.approx(K * H**2, rel=1e-10)
@@ -157,8 +170,13 @@ def test_fold_curve_input_errors():
     prob = cusp_problem()
     fold = cusp_folds(prob)[0]
     with pytest.raises(ValueError, match="kind 'fold'"):
-        fold_curve(prob, cusp_folds(prob)[0].__class__(
-            kind="event", index=0, values=fold.values, tangent=fold.tangent), free=("b", "a"))
+        fold_curve(
+            prob,
+            cusp_folds(prob)[0].__class__(
+                kind="event", index=0, values=fold.values, tangent=fold.tangent
+            ),
+            free=("b", "a"),
+        )
     with pytest.raises(ValueError, match="not a parameter"):
         fold_curve(prob, fold, free=("b", "c"))
     with pytest.raises(ValueError, match="must differ"):

@@ -34,8 +34,12 @@ def test_oracle_derivatives(name):
     jac = case.jacobian(u, p)
     jac = jac.toarray() if hasattr(jac, "toarray") else np.asarray(jac)
     h = 1e-6
-    fd = np.column_stack([(case.residual(u + h * e, p) - case.residual(u - h * e, p)) / (2 * h)
-                          for e in np.eye(u.size)])
+    fd = np.column_stack(
+        [
+            (case.residual(u + h * e, p) - case.residual(u - h * e, p)) / (2 * h)
+            for e in np.eye(u.size)
+        ]
+    )
     assert np.allclose(jac, fd, rtol=1e-6, atol=1e-6 * max(1.0, np.abs(jac).max()))
     cs = np.column_stack([case.residual(u + 1e-30j * e, p).imag / 1e-30 for e in np.eye(u.size)])
     assert np.allclose(jac, cs, rtol=1e-12, atol=1e-12 * max(1.0, np.abs(jac).max()))

@@ -10,9 +10,12 @@ from cusp.continuation import Problem, ProblemDefinitionError, points_at, trace
 
 
 def _cusp(a=1.0):
-    return Problem(lambda u, p: np.array([u[0] ** 3 - p["a"] * u[0] - p["b"]]),
-                   unknowns=["x"], params={"a": a, "b": -1.0},
-                   jacobian=lambda u, p: np.array([[3 * u[0] ** 2 - p["a"]]]))
+    return Problem(
+        lambda u, p: np.array([u[0] ** 3 - p["a"] * u[0] - p["b"]]),
+        unknowns=["x"],
+        params={"a": a, "b": -1.0},
+        jacobian=lambda u, p: np.array([[3 * u[0] ** 2 - p["a"]]]),
+    )
 
 
 def _root(b, near):

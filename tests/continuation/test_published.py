@@ -50,6 +50,7 @@ def assert_fold(sp, free, ref_param, ref_state, state_rtol, wrt=None):
 # 1. Cusp normal form x^3 - a x - b = 0, a = 1
 # ---------------------------------------------------------------------------------------------
 
+
 def test_cusp_references():
     # 2/(3 sqrt 3) at 40 digits: mp.mpf(2)/(3*mp.sqrt(3)) = 0.38490017945975050967276585366797...
     (x1, b1), (x2, b2) = orc.cusp_folds(1.0)
@@ -88,8 +89,9 @@ def test_cusp_both_folds_and_exact_bound(strategy):
 
 def test_cusp_reverse_direction_finds_the_same_folds():
     case = orc.cusp_problem("analytic", b=1.0)  # start on the upper sheet at b = +1
-    br = trace(case.problem, u0=[-orc.cusp_start()], free="b", bounds={"b": (-1.0, 1.0)},
-               direction=-1)
+    br = trace(
+        case.problem, u0=[-orc.cusp_start()], free="b", bounds={"b": (-1.0, 1.0)}, direction=-1
+    )
     assert br.success, (br.status, br.message)
     assert br["b"][0] == 1.0 and br["b"][-1] == -1.0
     folds = special(br, "fold")
@@ -138,6 +140,7 @@ def test_cusp_fold_parameters_relative_over_a_grid():
 # ---------------------------------------------------------------------------------------------
 # 2. Finite-difference Bratu
 # ---------------------------------------------------------------------------------------------
+
 
 def test_bratu_small_n_closed_forms_sympy():
     """N = 1: -8u + lam e^u = 0 and det J = -8 + lam e^u = 0 give u = 1, lam = 8/e.
@@ -192,14 +195,20 @@ def test_bratu_fd_small_n_fold(n, lam_fold, u_fold, strategy):
     assert br[f"u{n // 2}"][-1] == 2.5
     folds = special(br, "fold")
     assert len(folds) == 1, [(sp.kind, sp.values) for sp in br.special_points]
-    assert_fold(folds[0], "lam", ("lam", lam_fold), {f"u{i}": u_fold for i in range(n)},
-                STATE_RTOL[strategy])
+    assert_fold(
+        folds[0],
+        "lam",
+        ("lam", lam_fold),
+        {f"u{i}": u_fold for i in range(n)},
+        STATE_RTOL[strategy],
+    )
     assert not special(br, "branch_point")
     assert_on_branch(case, br, atol=1e-8)
 
 
 @pytest.mark.parametrize(
-    "n, strategy", [(10, s) for s in STRATEGIES] + [(20, "analytic"), (20, "central")])
+    "n, strategy", [(10, s) for s in STRATEGIES] + [(20, "analytic"), (20, "central")]
+)
 def test_bratu_fd_fold_vs_discrete_shooting(n, strategy):
     lam_ref, u1_ref = orc.bratu_fd_fold(n)  # mpmath shooting, 40 digits
     case = orc.bratu_problem(n, strategy)
@@ -236,8 +245,9 @@ def test_bratu_fd_sparse_n99999_reaches_and_locates_its_fold():
     # documents that the state enters the arclength as a root-mean-square (state_weight = 1/n)
     # "so large discretisations take the same steps as small ones": keep the default ds.
     t0 = time.perf_counter()
-    br = trace(case.problem, u0=np.zeros(n), free="lam", bounds={"u49999": (-1.0, 2.0)},
-               max_steps=400)
+    br = trace(
+        case.problem, u0=np.zeros(n), free="lam", bounds={"u49999": (-1.0, 2.0)}, max_steps=400
+    )
     elapsed = time.perf_counter() - t0
     assert br.success, (br.status, br.message)
     assert br["u49999"][-1] == 2.0
@@ -257,6 +267,7 @@ def test_bratu_fd_sparse_n99999_reaches_and_locates_its_fold():
 # 3. Von Mises truss
 # ---------------------------------------------------------------------------------------------
 
+
 @pytest.mark.parametrize("strategy", STRATEGIES)
 def test_truss_green_both_limit_points(strategy):
     H = 0.5
@@ -269,8 +280,7 @@ def test_truss_green_both_limit_points(strategy):
     for sp, (v, P) in zip(folds, orc.truss_green_limits(H=H), strict=True):
         assert_fold(sp, "P", ("P", P), {"v": v}, STATE_RTOL[strategy])
     # P_max = (2/(3 sqrt 3)) EA H^3/l0^3 = 0.3849001794597505 * 0.125 / 1.25^1.5
-    assert folds[0].values["P"] == pytest.approx(
-        0.3849001794597505 * 0.125 / 1.25**1.5, rel=1e-12)
+    assert folds[0].values["P"] == pytest.approx(0.3849001794597505 * 0.125 / 1.25**1.5, rel=1e-12)
     assert_on_branch(case, br, atol=1e-10)
 
 
@@ -317,8 +327,7 @@ def test_truss_2dof_branch_point_before_limit_and_switch(strategy):
     # Branch switching onto the asymmetric path u^2 + y^2 = H^2 - 2L^2, P = 2 EA L^2 y/l0^3.
     ends = []
     for direction in (+1, -1):
-        br2 = trace(case.problem, u0=bp, free="P", direction=direction,
-                    bounds={"u": (-1.0, 1.0)})
+        br2 = trace(case.problem, u0=bp, free="P", direction=direction, bounds={"u": (-1.0, 1.0)})
         assert br2.success, (br2.status, br2.message)
         u, v, P = np.asarray(br2["u"]), np.asarray(br2["v"]), np.asarray(br2["P"])
         assert np.max(np.abs(u)) > 0.5  # genuinely asymmetric
@@ -334,6 +343,7 @@ def test_truss_2dof_branch_point_before_limit_and_switch(strategy):
 # ---------------------------------------------------------------------------------------------
 # 4. Truss + spring snap-back under displacement control
 # ---------------------------------------------------------------------------------------------
+
 
 def test_snapback_references():
     (v1, d1, _), (v2, d2, _) = orc.snapback_turning_points()
@@ -355,14 +365,16 @@ def test_snapback_references():
 def test_snapback_turning_points_with_monitor(strategy):
     """Unknowns (v, delta), free P; delta-turning points reported as folds w.r.t. "delta"."""
     case = orc.snapback_monitor_problem(strategy)
-    br = trace(case.problem, u0=[0.0, 0.0], free="P", bounds={"v": (-0.05, 0.25)},
-               monitor=["delta"])
+    br = trace(
+        case.problem, u0=[0.0, 0.0], free="P", bounds={"v": (-0.05, 0.25)}, monitor=["delta"]
+    )
     assert br.success, (br.status, br.message)
     assert br["v"][-1] == 0.25
     wrt = [sp.with_respect_to for sp in special(br, "fold")]
     assert wrt == ["P", "delta", "delta", "P"], wrt
-    for sp, (v, d, P) in zip(special(br, "fold", "delta"), orc.snapback_turning_points(),
-                             strict=True):
+    for sp, (v, d, P) in zip(
+        special(br, "fold", "delta"), orc.snapback_turning_points(), strict=True
+    ):
         assert sp.status == "converged"
         assert sp.values["delta"] == pytest.approx(d, rel=1e-12, abs=0)
         assert sp.values["v"] == pytest.approx(v, rel=max(STATE_RTOL[strategy], 1e-9))
@@ -391,6 +403,7 @@ def test_snapback_turning_points_as_folds_of_the_control(strategy):
 # 5. Shallow arch, two-mode Ritz model
 # ---------------------------------------------------------------------------------------------
 
+
 def test_arch_references():
     r6, r3 = orc.arch_references(6), orc.arch_references(3)
     assert r6["bp"][0][1] == pytest.approx(38.83281573, abs=5e-9)  # TEST-PROBLEMS.md
@@ -407,8 +420,11 @@ def test_arch_e6_branch_point_before_limit_point(strategy):
     case = orc.arch_problem(e, strategy)
     br = trace(case.problem, u0=[0.0, 0.0], free="p", bounds={"xi1": (-1.0, 12.0)})
     assert br.success, (br.status, br.message)
-    order = [sp.kind for sp in sorted(br.special_points, key=lambda s: s.index)
-             if sp.kind in ("fold", "branch_point")]
+    order = [
+        sp.kind
+        for sp in sorted(br.special_points, key=lambda s: s.index)
+        if sp.kind in ("fold", "branch_point")
+    ]
     # xi1 = 1.528 (BP), 2.734 (LP), 9.266 (LP), 10.472 (BP)
     assert order == ["branch_point", "fold", "fold", "branch_point"], order
     for sp, (x1, p) in zip(special(br, "branch_point"), ref["bp"], strict=True):
@@ -456,6 +472,7 @@ def test_arch_e3_limit_points_only(strategy):
 # 6. Cohesive bar
 # ---------------------------------------------------------------------------------------------
 
+
 @pytest.mark.parametrize("strategy", STRATEGIES)
 def test_cohesive_exponential_smooth_fold(strategy):
     """U = 2 e^{-W} + W from W = 0 (U = 2), U decreasing first: fold at W = ln 2."""
@@ -490,8 +507,10 @@ def test_cohesive_linear_softening_kinks_traced_through(strategy):
     kinks = {(w0, ell + w0), (1.0, 1.0)}
     for sp in special(br, "fold"):
         if sp.status == "converged":
-            assert any(abs(sp.values["W"] - wk) < 1e-8 and abs(sp.values["U"] - uk) < 1e-8
-                       for wk, uk in kinks), sp.values
+            assert any(
+                abs(sp.values["W"] - wk) < 1e-8 and abs(sp.values["U"] - uk) < 1e-8
+                for wk, uk in kinks
+            ), sp.values
     assert_on_branch(case, br, atol=1e-10)
 
 
@@ -518,13 +537,16 @@ def test_cohesive_linear_softening_under_crack_opening_control():
     kinks = {(w0, ell + w0), (1.0, 1.0)}
     for sp in special(br, "fold"):
         if sp.status == "converged":
-            assert any(abs(sp.values["W"] - wk) < 1e-8 and abs(sp.values["U"] - uk) < 1e-8
-                       for wk, uk in kinks), sp.values
+            assert any(
+                abs(sp.values["W"] - wk) < 1e-8 and abs(sp.values["U"] - uk) < 1e-8
+                for wk, uk in kinks
+            ), sp.values
 
 
 # ---------------------------------------------------------------------------------------------
 # Order of branch point and limit point on either side of the published thresholds
 # ---------------------------------------------------------------------------------------------
+
 
 @pytest.mark.parametrize("H, bp_first", [(1.5, False), (2.0, True), (3.0, True)])
 def test_truss_2dof_order_of_branch_and_limit_point(H, bp_first):
@@ -535,8 +557,11 @@ def test_truss_2dof_order_of_branch_and_limit_point(H, bp_first):
     v_end = max(ref["bp_v"], ref["lp_v"]) + 0.2
     br = trace(case.problem, u0=[0.0, 0.0], free="P", bounds={"v": (-0.5, v_end)})
     assert br.success, (br.status, br.message)
-    order = [sp.kind for sp in sorted(br.special_points, key=lambda s: s.index)
-             if sp.kind in ("fold", "branch_point")]
+    order = [
+        sp.kind
+        for sp in sorted(br.special_points, key=lambda s: s.index)
+        if sp.kind in ("fold", "branch_point")
+    ]
     assert order == (["branch_point", "fold"] if bp_first else ["fold", "branch_point"]), order
     bp, lp = special(br, "branch_point")[0], special(br, "fold")[0]
     assert bp.values["P"] == pytest.approx(ref["bp_P"], rel=1e-10)
@@ -551,8 +576,11 @@ def test_arch_order_of_branch_and_limit_point(e, bp_first):
     x_end = max(ref["bp"][0][0], ref["lp"][0][0]) + 0.5
     br = trace(case.problem, u0=[0.0, 0.0], free="p", bounds={"xi1": (-1.0, x_end)})
     assert br.success, (br.status, br.message)
-    order = [sp.kind for sp in sorted(br.special_points, key=lambda s: s.index)
-             if sp.kind in ("fold", "branch_point")]
+    order = [
+        sp.kind
+        for sp in sorted(br.special_points, key=lambda s: s.index)
+        if sp.kind in ("fold", "branch_point")
+    ]
     assert order == (["branch_point", "fold"] if bp_first else ["fold", "branch_point"]), order
     assert special(br, "branch_point")[0].values["p"] == pytest.approx(ref["bp"][0][1], rel=1e-10)
     assert special(br, "fold")[0].values["p"] == pytest.approx(ref["lp"][0][1], rel=1e-12)

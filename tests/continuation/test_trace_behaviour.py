@@ -30,6 +30,7 @@ def _cusp(**kw):
 # Events
 # ---------------------------------------------------------------------------------------------
 
+
 def test_user_event_located_and_inserted():
     from cusp.continuation import Event
 
@@ -55,8 +56,9 @@ def test_event_direction(direction, count):
     middle one. direction=+1 keeps only negative-to-positive crossings (scipy convention)."""
     from cusp.continuation import Event
 
-    case, br = _cusp(events=[Event(lambda u, p: p["b"] - 0.25, direction=direction,
-                                   label="quarter")])
+    case, br = _cusp(
+        events=[Event(lambda u, p: p["b"] - 0.25, direction=direction, label="quarter")]
+    )
     ev = special(br, "event")
     assert len(ev) == count, [(s.kind, s.values) for s in br.special_points]
     for sp in ev:
@@ -86,6 +88,7 @@ def test_terminal_event_ends_the_branch_there():
 # Targets
 # ---------------------------------------------------------------------------------------------
 
+
 def test_targets_land_exactly():
     case, br = _cusp(targets={"b": [0.1, 0.2]})
     tg = special(br, "target")
@@ -110,13 +113,13 @@ def test_targets_land_exactly():
 # Step budget, failures
 # ---------------------------------------------------------------------------------------------
 
+
 def test_max_steps_ends_normally_with_a_status():
     case, br = _cusp(max_steps=5)
     assert len(br["b"]) <= 6
     assert br["b"][-1] < 1.0
     assert isinstance(br.status, str) and br.status
-    assert re.search(r"step", f"{br.status} {br.message}", re.IGNORECASE), \
-        (br.status, br.message)
+    assert re.search(r"step", f"{br.status} {br.message}", re.IGNORECASE), (br.status, br.message)
     assert np.all(orc.branch_residual_norms(case, br) <= 1e-10)
 
 
@@ -134,15 +137,18 @@ def _nan_beyond_half():
 def test_nan_residual_stops_the_branch_with_a_clear_status():
     from cusp.continuation import trace
 
-    br = trace(_nan_beyond_half(), u0=[-1.3247], free="b", bounds=BOUNDS, throw=False,
-               max_steps=5000)
+    br = trace(
+        _nan_beyond_half(), u0=[-1.3247], free="b", bounds=BOUNDS, throw=False, max_steps=5000
+    )
     assert not br.success
     b, x = np.asarray(br["b"]), np.asarray(br["x"])
     assert np.all(np.isfinite(b)) and np.all(np.isfinite(x))
     assert b.max() <= 0.5
     assert len(special(br, "fold")) == 2  # everything before the failure is kept
-    assert re.search(r"nan|non-?finite|not finite", f"{br.status} {br.message}",
-                     re.IGNORECASE), (br.status, br.message)
+    assert re.search(r"nan|non-?finite|not finite", f"{br.status} {br.message}", re.IGNORECASE), (
+        br.status,
+        br.message,
+    )
 
 
 def test_nan_residual_raises_with_throw():
@@ -153,24 +159,27 @@ def test_nan_residual_raises_with_throw():
 
     base = getattr(continuation, "ContinuationError", continuation.ConvergenceError)
     with pytest.raises(base, match=r"(?i)nan|non-?finite|not finite"):
-        trace(_nan_beyond_half(), u0=[-1.3247], free="b", bounds=BOUNDS, throw=True,
-              max_steps=5000)
+        trace(_nan_beyond_half(), u0=[-1.3247], free="b", bounds=BOUNDS, throw=True, max_steps=5000)
 
 
 # ---------------------------------------------------------------------------------------------
 # Options and input validation
 # ---------------------------------------------------------------------------------------------
 
-@pytest.mark.parametrize("kwargs, field", [
-    ({"ds": -0.1}, "ds"),
-    ({"ds": 0.0}, "ds"),
-    ({"ds": float("nan")}, "ds"),
-    ({"ds_min": -1e-3}, "ds_min"),
-    ({"ds_max": 0.0}, "ds_max"),
-    ({"ds_min": 0.5, "ds_max": 0.1}, "ds_min"),
-    ({"max_steps": 0}, "max_steps"),
-    ({"max_steps": -3}, "max_steps"),
-])
+
+@pytest.mark.parametrize(
+    "kwargs, field",
+    [
+        ({"ds": -0.1}, "ds"),
+        ({"ds": 0.0}, "ds"),
+        ({"ds": float("nan")}, "ds"),
+        ({"ds_min": -1e-3}, "ds_min"),
+        ({"ds_max": 0.0}, "ds_max"),
+        ({"ds_min": 0.5, "ds_max": 0.1}, "ds_min"),
+        ({"max_steps": 0}, "max_steps"),
+        ({"max_steps": -3}, "max_steps"),
+    ],
+)
 def test_bad_options_raise_value_error_naming_the_field(kwargs, field):
     from cusp.continuation import ContinuationOptions
 
@@ -212,13 +221,15 @@ def test_bad_derivatives_strategy_raises():
     from cusp.continuation import Problem
 
     with pytest.raises(ValueError, match="derivatives"):
-        Problem(orc.cusp_residual, unknowns=["x"], params={"a": 1.0, "b": 0.0},
-                derivatives="backward")
+        Problem(
+            orc.cusp_residual, unknowns=["x"], params={"a": 1.0, "b": 0.0}, derivatives="backward"
+        )
 
 
 # ---------------------------------------------------------------------------------------------
 # Per-point diagnostics
 # ---------------------------------------------------------------------------------------------
+
 
 def test_stats_are_per_point_arrays():
     case, br = _cusp()
@@ -235,11 +246,19 @@ def test_stats_are_per_point_arrays():
 # Import hygiene
 # ---------------------------------------------------------------------------------------------
 
+
 def test_import_does_not_pull_sympy_or_matplotlib():
-    code = ("import sys, cusp.continuation; "
-            "print(sorted(m for m in ('sympy', 'matplotlib') if m in sys.modules))")
-    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
-                         check=True, cwd=str(__import__("pathlib").Path(__file__).parents[2]))
+    code = (
+        "import sys, cusp.continuation; "
+        "print(sorted(m for m in ('sympy', 'matplotlib') if m in sys.modules))"
+    )
+    out = subprocess.run(
+        [sys.executable, "-c", code],
+        capture_output=True,
+        text=True,
+        check=True,
+        cwd=str(__import__("pathlib").Path(__file__).parents[2]),
+    )
     assert out.stdout.strip() == "[]", out.stdout + out.stderr
 
 
@@ -247,13 +266,13 @@ def test_import_does_not_pull_sympy_or_matplotlib():
 # check_jacobian
 # ---------------------------------------------------------------------------------------------
 
+
 def test_check_jacobian_accepts_correct_and_flags_wrong():
     from cusp.continuation import Problem, check_jacobian
 
     res, jac, pjac = orc.truss_2dof_residual_factory()
     u, p = np.array([0.2, 0.7]), {"P": 0.1}
-    good = Problem(res, unknowns=["u", "v"], params={"P": 0.1}, jacobian=jac,
-                   param_jacobian=pjac)
+    good = Problem(res, unknowns=["u", "v"], params={"P": 0.1}, jacobian=jac, param_jacobian=pjac)
     rep = check_jacobian(good, u, p)
     assert rep.ok
     # max_error is scaled so that 1 is the threshold (|a - fd| / (atol + rtol |fd|)); the
@@ -265,8 +284,7 @@ def test_check_jacobian_accepts_correct_and_flags_wrong():
         J[1, 0] += 0.5  # one wrong entry: row 1, column 0
         return J
 
-    bad = Problem(res, unknowns=["u", "v"], params={"P": 0.1}, jacobian=wrong,
-                  param_jacobian=pjac)
+    bad = Problem(res, unknowns=["u", "v"], params={"P": 0.1}, jacobian=wrong, param_jacobian=pjac)
     rep = check_jacobian(bad, u, p)
     assert not rep.ok
     assert rep.max_error > 0.1

@@ -26,8 +26,14 @@ def gaussian_path(sigma, nu, mu, E, radius, density, nominal_area, F_N0, g_A, F_
     with mp.workdps(DPS):
         s, nu, mu = mp.mpf(sigma), mp.mpf(nu), mp.mpf(mu)
         E_star = mp.mpf(E) / (2 * (1 - nu**2))
-        K = mp.mpf(4) / 3 * E_star * mp.sqrt(mp.mpf(radius)) * mp.mpf(density) * mp.mpf(
-            nominal_area)
+        K = (
+            mp.mpf(4)
+            / 3
+            * E_star
+            * mp.sqrt(mp.mpf(radius))
+            * mp.mpf(density)
+            * mp.mpf(nominal_area)
+        )
         lam = s * (2 - nu) / (2 * (1 - nu))
         F_N0, g_A, F_Np = mp.mpf(F_N0), mp.mpf(g_A), mp.mpf(F_Np)
 
@@ -57,8 +63,14 @@ def gaussian_path(sigma, nu, mu, E, radius, density, nominal_area, F_N0, g_A, F_
             return (1 - a_st) + (area(d_A) - area(d)) / area(d_A)
 
         def pt(d, d0, load):
-            return {"g_T": slip(d, d0), "F_T": force(d, d0), "F_N": load,
-                    "A_SL": a_sl(d, d0), "d": d, "d0": d0}
+            return {
+                "g_T": slip(d, d0),
+                "F_T": force(d, d0),
+                "F_N": load,
+                "A_SL": a_sl(d, d0),
+                "d": d,
+                "d0": d0,
+            }
 
         d0_A = d_A + g_A * s / (mu * lam)
         F_A = force(d_A, d0_A)
@@ -70,12 +82,12 @@ def gaussian_path(sigma, nu, mu, E, radius, density, nominal_area, F_N0, g_A, F_
         five2 = mp.mpf(5) / 2
         pref = mu**2 * lam * K / s
         # A -> B (d from d_A to d_B at d0 = d0_A), then B -> D along the reloading curve
-        along_ab = -pref * (mp.mpf(2) / 5 * (J(d_A, five2) - J(d_B, five2))
-                            - J(d0_A) * (d_B - d_A))
+        along_ab = -pref * (mp.mpf(2) / 5 * (J(d_A, five2) - J(d_B, five2)) - J(d0_A) * (d_B - d_A))
 
         def reload(d0_end):
-            return pref * (J(d_B) * (d0_end - d0_A)
-                           - mp.mpf(2) / 5 * (J(d0_A, five2) - J(d0_end, five2)))
+            return pref * (
+                J(d_B) * (d0_end - d0_A) - mp.mpf(2) / 5 * (J(d0_A, five2) - J(d0_end, five2))
+            )
 
         energy = {"snap_back": -(along_ab + reload(d0_D)), "snap_through": None}
         if c_exists:
@@ -115,8 +127,7 @@ def sphere_path(radius, E, nu, mu, F_N0, g_A, F_Np):
             a = a_of(load)
             c = a * mp.cbrt(1 - F_T / (mu * load))
             a_sl = 1 - (c / a) ** 2 + 1 - (a / a0) ** 2
-            return {"g_T": slip(F_T, load), "F_T": F_T, "F_N": load, "A_SL": a_sl,
-                    "a": a, "c": c}
+            return {"g_T": slip(F_T, load), "F_T": F_T, "F_N": load, "A_SL": a_sl, "a": a, "c": c}
 
         F_A = force(g_A, F_N0)
         F_B = F_A - mu * (F_N0 - F_Np)
@@ -124,9 +135,12 @@ def sphere_path(radius, E, nu, mu, F_N0, g_A, F_Np):
         pts["D"] = pt(force(g_A, F_Np), F_Np)
         g_B = pts["B"]["g_T"]
         # A -> B parametrised by the load f: F = F_A - mu (F_N0 - f), g = slip(F, f)
-        along_ab = mp.quad(lambda f: (F_A - mu * (F_N0 - f))
-                           * mp.diff(lambda ff: slip(F_A - mu * (F_N0 - ff), ff), f),
-                           [F_N0, F_Np])
+        along_ab = mp.quad(
+            lambda f: (
+                (F_A - mu * (F_N0 - f)) * mp.diff(lambda ff: slip(F_A - mu * (F_N0 - ff), ff), f)
+            ),
+            [F_N0, F_Np],
+        )
         b_to_d = mp.quad(lambda g: force(g, F_Np), [g_B, g_A])
         energy = {"snap_back": -(along_ab + b_to_d), "snap_through": None}
         if F_A < mu * F_Np:

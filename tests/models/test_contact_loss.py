@@ -57,8 +57,11 @@ def _check_energies(res, ref, rtol=ENERGY_RTOL):
         if ref[kind] is None:
             assert res.energy[kind] is None, kind
         else:
-            assert _close(res.energy[kind], ref[kind], rtol), (kind, res.energy[kind],
-                                                               float(ref[kind]))
+            assert _close(res.energy[kind], ref[kind], rtol), (
+                kind,
+                res.energy[kind],
+                float(ref[kind]),
+            )
 
 
 # ------------------------------------------------------------------ exponential: sympy
@@ -83,11 +86,14 @@ def _exponential_reference(sigma, nu, mu, F_N0, g_A, F_Np):
         "A": {"g_T": g_A, "F_T": F_A, "F_N": F_N0, "A_SL": ev("A_SL_A")},
         "B": {"g_T": ev("g_B"), "F_T": ev("F_B"), "F_N": F_Np, "A_SL": ev("A_SL_B")},
         "D": {"g_T": g_A, "F_T": ev("F_D"), "F_N": F_Np, "A_SL": ev("A_SL_D")},
-        "C": ({"g_T": ev("g_C"), "F_T": F_A, "F_N": F_Np, "A_SL": ev("A_SL_C")}
-              if c_exists else None),
+        "C": (
+            {"g_T": ev("g_C"), "F_T": F_A, "F_N": F_Np, "A_SL": ev("A_SL_C")} if c_exists else None
+        ),
     }
-    energy = {"snap_back": ev("snap_back"),
-              "snap_through": ev("snap_through") if c_exists else None}
+    energy = {
+        "snap_back": ev("snap_back"),
+        "snap_through": ev("snap_through") if c_exists else None,
+    }
     return pts, energy
 
 
@@ -126,11 +132,14 @@ def test_path_is_traced_by_the_solver_with_corner_folds_at_A_and_B():
     assert all(br.status == "bound" for br in res.legs.values())
     assert res.legs["OA"].variables[-1] == "g" and res.legs["AB"].variables[-1] == "n"
     corners = {(f["point"], f["kind"]) for f in res.folds if f["corner"]}
-    assert corners == {("A", "snap-back"), ("A", "snap-through"), ("B", "snap-back"),
-                       ("B", "snap-through")}
+    assert corners == {
+        ("A", "snap-back"),
+        ("A", "snap-through"),
+        ("B", "snap-back"),
+        ("B", "snap-through"),
+    }
     a_fold = next(f for f in res.folds if f["point"] == "A" and f["kind"] == "snap-back")
-    assert (a_fold["direction_before"], a_fold["direction_after"]) == ("increasing",
-                                                                       "decreasing")
+    assert (a_fold["direction_before"], a_fold["direction_after"]) == ("increasing", "decreasing")
     # Â_SL grows along every leg (Fig 7: single-valued in Â_SL), and the legs join (the
     # end row of a leg is a bound located by the tracer; the next leg starts from the point
     # polished to the update tolerance, so they agree to about the corrector tolerance)
@@ -179,8 +188,12 @@ def test_extremes_match_the_closed_forms(params):
 
 def test_snap_back_energy_grows_with_friction():
     # the paper (Sec. 4, Fig 9): the snap-back is more severe at higher friction
-    vals = [ContactLoss(ExponentialRoughSurface(2.0, 0.3, mu), 1000.0, 0.34, 850.0)
-            .run().energy["snap_back"] for mu in (0.1, 0.3, 0.5)]
+    vals = [
+        ContactLoss(ExponentialRoughSurface(2.0, 0.3, mu), 1000.0, 0.34, 850.0)
+        .run()
+        .energy["snap_back"]
+        for mu in (0.1, 0.3, 0.5)
+    ]
     assert vals[0] < vals[1] < vals[2]
 
 
@@ -209,14 +222,14 @@ def test_load_scale_shifts_the_datum_only():
     # exponential heights: absolute separation needs the load scale, nothing else changes
     sigma, nu, mu, F_N0, g_A, F_Np = FIG6
     plain = ContactLoss(ExponentialRoughSurface(sigma, nu, mu), F_N0, g_A, F_Np).run()
-    scaled_surf = ExponentialRoughSurface(sigma, nu, mu, E=0.2, radius=10.0, density=0.01,
-                                          nominal_area=1e6)
+    scaled_surf = ExponentialRoughSurface(
+        sigma, nu, mu, E=0.2, radius=10.0, density=0.01, nominal_area=1e6
+    )
     scaled = ContactLoss(scaled_surf, F_N0, g_A, F_Np).run()
     for key in "ABCD":
         for q in KEYS:
             assert scaled.points[key][q] == pytest.approx(plain.points[key][q], rel=1e-12)
-    assert scaled.points["A"]["d"] == pytest.approx(float(scaled_surf.separation(F_N0)),
-                                                    rel=1e-13)
+    assert scaled.points["A"]["d"] == pytest.approx(float(scaled_surf.separation(F_N0)), rel=1e-13)
 
 
 # ------------------------------------------------------------------ Gaussian: mpmath
@@ -251,9 +264,11 @@ def test_general_density_reproduces_the_exponential_path():
     # the closed-form surface) against the closed-form adapter, same load scale
     scale = dict(E=0.2, radius=10.0, density=0.01, nominal_area=1e6)
     sigma = 2.0
-    heights = HeightDensity(lambda z: np.where(np.asarray(z) >= 0, np.exp(-np.asarray(z)
-                                                                          / sigma) / sigma,
-                                               0.0), (0.0, math.inf), scale=sigma)
+    heights = HeightDensity(
+        lambda z: np.where(np.asarray(z) >= 0, np.exp(-np.asarray(z) / sigma) / sigma, 0.0),
+        (0.0, math.inf),
+        scale=sigma,
+    )
     general = GeneralRoughSurface(heights, 0.3, 0.1, sigma=sigma, **scale)
     exact = ExponentialRoughSurface(sigma, 0.3, 0.1, **scale)
     assert float(exact.separation(1000.0)) > 0  # the whole path stays where Φ is exponential
