@@ -62,6 +62,10 @@ class Sphere:
         with np.errstate(divide="ignore"):
             one_minus_k2_low = -np.expm1(np.log1p(-F) * (2.0 / 3.0))
             low = F - one_minus_k2_low**1.5
+        # the high branch is used for F > 1/2 only (k² < 0.63 there); at F ≤ 1 ulp the
+        # platform cbrt may round (1 − F)^{1/3} above 1 (glibc: cbrt(1 − 2⁻⁵²) = 1 + 2⁻⁵²),
+        # and log1p(−k²) of the unused entry is then NaN
+        with np.errstate(divide="ignore", invalid="ignore"):
             k2 = np.cbrt(m) ** 2
             high = -np.expm1(1.5 * np.log1p(-k2)) - m
         return np.where(F <= 0.5, low, np.where(F == 1.0, 0.0, high))

@@ -86,3 +86,15 @@ def test_stick_zone_ratios():
     assert Sphere.stick_zone_ratio(F) == pytest.approx((1 - F) ** (1 / 3))
     assert Cylinder.stick_zone_ratio(F) == pytest.approx(np.sqrt(1 - F))
     assert math.isclose(Sphere.stick_area_ratio(0.875), 0.25, rel_tol=1e-15)
+
+
+@pytest.mark.parametrize("F", [2.0**-52, 2.0**-53, 3 * 2.0**-53])
+def test_sphere_stick_force_ratio_one_ulp_above_zero(F):
+    """Found by hypothesis: at F̂_T = 2⁻⁵² the platform cbrt rounds (1 − F̂_T)^{1/3} above 1,
+    which made the unused F̂_T > 1/2 branch warn (an error under the test settings). The value
+    is Eq 21 in mpmath at 50 digits: F − [1 − (1 − F)^{2/3}]^{3/2}."""
+    with mp.workdps(50):
+        f = mp.mpf(F)
+        ref = f - (1 - (1 - f) ** (mp.mpf(2) / 3)) ** (mp.mpf(3) / 2)
+    got = float(Sphere.stick_force_ratio(F))
+    assert abs(got - float(ref)) <= 1e-15 * float(ref)
