@@ -1,13 +1,23 @@
 """Generic pseudo-arclength continuation and bifurcation analysis.
 
-Knows nothing of contact mechanics, and imports neither sympy nor matplotlib at import time
-(:func:`from_sympy` and plotting import them when first used).
+Knows nothing of contact mechanics, imports nothing else of :mod:`cusp`, and imports neither
+sympy nor matplotlib at import time (:func:`from_sympy` and plotting import them when first
+used).
 
->>> from continuation import Problem, trace
+>>> from cusp.continuation import Problem, trace
 >>> prob = Problem(lambda u, p: [u[0]**3 - p["a"]*u[0] - p["b"]], ["x"], {"a": 1.0, "b": -1.0})
 >>> br = trace(prob, [-1.3247], free="b", bounds={"b": (-1.0, 1.0)})
->>> [round(sp.values["b"], 12) for sp in br.special_points if sp.kind == "fold"]
-[0.3849001794598, -0.3849001794598]
+>>> [round(sp.values["b"], 10) for sp in br.special("fold")]  # ±2/(3√3) = ±0.38490017945975
+[0.3849001795, -0.3849001795]
+
+The pieces: a problem (:class:`Problem`, or any object following
+:class:`ContinuationProblem`) defines ``R(u, p) = 0``; a curve system
+(:class:`~cusp.continuation.system.CurveSystem`: an ordinary branch, a fold curve) turns it
+into an underdetermined ``G(z) = 0`` and owns the test functions
+(:class:`~cusp.continuation.testfunctions.TestFunction`) whose sign changes mark its special
+points; the :class:`Tracer` steps along the curve through immutable
+:class:`~cusp.continuation.state.TracerState` records; :func:`trace` and :func:`fold_curve`
+are the entry points, returning a :class:`Branch`.
 """
 
 from .branch import Branch, SpecialPoint
@@ -25,13 +35,18 @@ from .foldcurve import fold_curve
 from .options import ContinuationOptions
 from .problem import ContinuationProblem, Problem
 from .resample import points_at
-from .tracer import Tracer, TracerState, trace
+from .state import TracerState
+from .system import BranchSystem, CurveSystem
+from .testfunctions import TestFunction
+from .tracer import Tracer, trace
 
 __all__ = [
     "Branch",
+    "BranchSystem",
     "ContinuationError",
     "ContinuationOptions",
     "ContinuationProblem",
+    "CurveSystem",
     "ConvergenceError",
     "Event",
     "JacobianCheck",
@@ -41,6 +56,7 @@ __all__ = [
     "ProblemDefinitionError",
     "SingularMatrixError",
     "SpecialPoint",
+    "TestFunction",
     "Tracer",
     "TracerState",
     "check_jacobian",
@@ -56,4 +72,4 @@ def __getattr__(name):  # lazy: sympy is imported only when the helper is used
         from .symbolic import from_sympy
 
         return from_sympy
-    raise AttributeError(f"module 'continuation' has no attribute {name!r}")
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

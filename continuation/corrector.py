@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from typing import Any, NamedTuple
 
 import numpy as np
 
@@ -12,15 +12,18 @@ from .linalg import DenseLU, dense_solve, factor, getrs
 from .linalg import max_abs as _norm
 
 
-@dataclass
-class NewtonResult:
+class NewtonResult(NamedTuple):
+    """The outcome of a corrector (immutable).
+
+    ``lu``: the factorization of the last bordered matrix factored, at ``z`` minus the last
+    update (or the last two, when the last step was a simplified (chord) one); None if none
+    was completed."""
+
     z: np.ndarray
     converged: bool
     iterations: int
     residual_norm: float
-    # factorization of the last bordered matrix factored: at z minus the last update, or the
-    # last two when the last step was a simplified (chord) one
-    lu: object | None
+    lu: Any
     reason: str = ""
 
 
@@ -49,8 +52,10 @@ def newton(
     then of order ``step_tol`` (the next update would be about the square of the last); or,
     whatever the residual, when the update is ≤ ``step_tol·(1 + |z|)`` (AUTO's test:
     residuals with large terms, such as finite differences on fine grids, cannot get below
-    ``tol`` in floating point). ``strict`` requires the latter (used to polish located
-    special points to rounding).
+    ``tol`` in floating point) and the residual is at the rounding level of its own terms
+    (``system.residual_floor``; a wrong Jacobian, say differenced across a kink, also gives
+    tiny updates but leaves the residual above that floor). ``strict`` requires the latter
+    (used to polish located special points to rounding).
 
     Once an update is ≤ ``sqrt(step_tol)·(1 + |z|)`` (Newton's quadratic regime) but the
     residual is still above ``tol``, the next iteration is a simplified (chord) step with the
@@ -65,6 +70,12 @@ def newton(
     sign of a start outside that region (typically a predictor beyond a fold, whose
     hyperplane misses the curve, where θ reaches 0.9–1.3); the continuation step uses this to
     halve the step at once instead of spending the whole iteration budget first.
+
+    Implementation notes: dense matrices are factored and solved by one LAPACK gesv (the
+    factors are wrapped in a DenseLU only for the result), sparse ones through ``factor``;
+    the system is solved for minus the update (saves negating the residual; bitwise the
+    same), and the bordering equation, being linear, holds to rounding after the first
+    update, so its residual is computed once.
     """
     z = z0  # never changed in place: each update makes a new array
     g = system.residual(z) if g0 is None else g0
@@ -80,25 +91,17 @@ def newton(
     residual = system.residual
     row_dot = row.dot
     sn_prev = math.inf
-    # dense matrices are factored and solved by one LAPACK gesv (the factors are wrapped in a
-    # DenseLU only for the result); sparse ones through `factor`
     lu = f = piv = None
     reason = "max_iterations"
     converged = False
     chord = False
     k = 0
-    # the system for minus the update (saves negating the residual; bitwise the same); the
-    # bordering equation is linear, so after the first update it holds to rounding
     rhs[m] = row_dot(z) - c
     for k in range(1, max_iter + 1):
         rhs[:m] = g
         if k == 2:
             rhs[m] = 0.0
-        if chord:
-            # the last update was already in Newton's quadratic regime (≤ sqrt(step_tol)):
-            # one simplified step with the last factorization contracts the error by a
-            # factor of order that update, as well as a full step would, without a
-            # Jacobian evaluation and factorization
+        if chord:  # a simplified step with the last factorization (see above)
             dz = getrs(f, piv, rhs) if f is not None else lu.solve(rhs)
         else:
             a = bordered_jacobian(z, row)
@@ -120,10 +123,7 @@ def newton(
         if rn_new <= tol and sn <= sq_step_tol and not strict:
             rn, converged = rn_new, True
             break
-        # the relative update is below step_tol (AUTO's test) and the residual is at the
-        # rounding level of its own terms (which for badly scaled residuals exceeds tol); a
-        # wrong Jacobian (say, differenced across a kink) also gives tiny updates, but leaves
-        # the residual above that floor
+        # AUTO's test, with the residual at its rounding floor (see above)
         if sn <= rel_step_tol and rn_new <= max(tol, system.residual_floor(a[:-1], z)):
             rn, converged = rn_new, True
             break

@@ -8,8 +8,9 @@ The fold curve is traced by the ordinary tracer on the minimally augmented syste
 where ``M`` is ``∂F/∂(u, p1)`` without the column of the variable that turns (``p1`` for an
 ordinary fold, a monitored unknown for the fold of a snap-back), so the system has ``n + 1``
 equations in ``n + 2`` unknowns. The bordering vectors ``b, c`` are replaced by the current
-left/right null vectors after every accepted point. ``∇g = −wᵀ(∂M/∂z)v`` is a directional
-difference of the Jacobian.
+left/right null vectors after every accepted point (a new, immutable :class:`FoldSystem` each
+time, carried by the tracer's state). ``∇g = −wᵀ(∂M/∂z)v`` is a directional difference of the
+Jacobian.
 
 On the curve:
 
@@ -20,6 +21,9 @@ On the curve:
   determinant of the bordered matrix ``[[M, b], [cᵀ, 0]]`` changes sign (it is
   ``−cᵀ adj(M) b``, proportional to the product of the non-zero eigenvalues of ``M``);
 - bounds, targets, events and monitored folds exactly as on ordinary branches.
+
+The fold-curve system brings its own two test functions (:class:`CuspTest`,
+:class:`Codim2Test`); the tracer knows nothing of them.
 """
 
 from __future__ import annotations
@@ -42,16 +46,20 @@ from .locate import (
     tangent_at,
 )
 from .options import ContinuationOptions
-from .problem import as_problem
-from .system import CurveSystem, has_exact_jacobian, state_weights
-from .tracer import Tracer, _Test
+from .problem import as_problem, has_exact_jacobian
+from .system import CurveSystem, state_weights
+from .testfunctions import TestFunction
+from .tracer import Tracer
 
 _EPS = np.finfo(float).eps
 
 
 class FoldSystem(CurveSystem):
     """``[F; g]`` over ``z = (u, p1, p2)``; ``k`` is the index (in ``(u, p1)``) of the variable
-    that turns at the fold."""
+    that turns at the fold; ``b``, ``c`` the bordering vectors (unit vectors of length n).
+
+    Immutable while traced: :meth:`refreshed` returns a new system with the borders updated
+    to the null vectors at a point; :meth:`through` builds the first one at a fold."""
 
     def __init__(
         self,
@@ -61,6 +69,8 @@ class FoldSystem(CurveSystem):
         k: int,
         params: Mapping[str, float],
         state_weight: float | None,
+        b: np.ndarray,
+        c: np.ndarray,
     ) -> None:
         self.problem = problem
         self.p1, self.p2 = p1, p2
@@ -73,9 +83,9 @@ class FoldSystem(CurveSystem):
         keep = np.ones(self.n + 1, dtype=bool)
         keep[k] = False
         self._keep = keep  # columns of ∂F/∂(u, p1) forming M
-        self.b = None
-        self.c = None
-        self._cache = None
+        self.b = b
+        self.c = c
+        self._cache: tuple | None = None  # the last bordered solve (a memo, see below)
         # differences of the Jacobian are reliable only if the Jacobian itself is exact
         self._exact_jacobian = has_exact_jacobian(problem)
 
@@ -135,16 +145,41 @@ class FoldSystem(CurveSystem):
         out[: self.n + 1][self._keep] = v
         return out
 
-    def init_borders(self, z, seed: int = 0) -> None:
+    @classmethod
+    def through(
+        cls,
+        problem: Any,
+        p1: str,
+        p2: str,
+        k: int,
+        params: Mapping[str, float],
+        state_weight: float | None,
+        z: np.ndarray,
+        seed: int = 0,
+    ) -> FoldSystem:
+        """The system at a fold ``z``: random unit borders, then twice replaced by the null
+        vectors they give there."""
         rng = np.random.default_rng(seed)
-        self.b = rng.standard_normal(self.n)
-        self.c = rng.standard_normal(self.n)
-        self.b /= np.linalg.norm(self.b)
-        self.c /= np.linalg.norm(self.c)
+        b = rng.standard_normal(len(problem.unknowns))
+        c = rng.standard_normal(len(problem.unknowns))
+        b /= np.linalg.norm(b)
+        c /= np.linalg.norm(c)
+        system = cls(problem, p1, p2, k, params, state_weight, b, c)
         for _ in range(2):
-            _, v, w, _, _ = self._bordered_solve(z)
-            self.b, self.c = w / np.linalg.norm(w), v / np.linalg.norm(v)
-        self._cache = None
+            system = system.refreshed(z)
+        return system
+
+    def refreshed(self, z: np.ndarray) -> FoldSystem:
+        """The system with the borders replaced by the left and right null vectors at ``z``."""
+        _, v, w, _, _ = self.bordered_solve(z)
+        new = object.__new__(FoldSystem)
+        new.__dict__.update(self.__dict__)
+        new.b, new.c = w / np.linalg.norm(w), v / np.linalg.norm(v)
+        new._cache = None
+        return new
+
+    def own_tests(self, options: ContinuationOptions) -> tuple[TestFunction, ...]:
+        return (CuspTest(), Codim2Test())
 
     # -- CurveSystem interface
     def residual(self, z):
@@ -180,11 +215,6 @@ class FoldSystem(CurveSystem):
         noise = 10.0 * rel * float(size) * (1.0 + max_abs(z))
         return max(floor, noise * max_abs(v) * max_abs(w))
 
-    def refresh(self, z) -> None:
-        _, v, w, _, _ = self.bordered_solve(z)
-        self.b, self.c = w / np.linalg.norm(w), v / np.linalg.norm(v)
-        self._cache = None
-
     def fixed_values(self):
         return {k: v for k, v in self.params.items() if k not in (self.p1, self.p2)}
 
@@ -217,6 +247,40 @@ class FoldSystem(CurveSystem):
         """Sign and log|det| of ``[[M, b], [cᵀ, 0]]``."""
         _, _, _, lu, _ = self.bordered_solve(z)
         return lu.sign_det(), lu.log_abs_det()
+
+
+class CuspTest(TestFunction):
+    """The cusp coefficient ``a = ½⟨w, D²F[v, v]⟩`` of the fold: it changes sign at a cusp
+    (located by Newton on ``[F; g; a] = 0``)."""
+
+    __slots__ = ()
+    kind = "cusp"
+
+    def __init__(self) -> None:
+        super().__init__("cusp")
+
+    def value(self, system, z, t, sdet) -> float:
+        return system.cusp_coefficient(z)
+
+    def locate(self, br: Bracket, f_a: float, f_b: float) -> Located:
+        return _locate_cusp(br.system, br, f_a, f_b)
+
+
+class Codim2Test(TestFunction):
+    """The sign of det ``[[M, b], [cᵀ, 0]]``: it changes where ``M`` has a second zero
+    eigenvalue (a limit point meeting a branch point, a Bogdanov–Takens point)."""
+
+    __slots__ = ()
+    kind = "codim2"
+
+    def __init__(self) -> None:
+        super().__init__("second zero eigenvalue")
+
+    def value(self, system, z, t, sdet) -> float:
+        return system.double_zero_test(z)[0]
+
+    def locate(self, br: Bracket, f_a: float, f_b: float) -> Located:
+        return _locate_codim2(br.system, br, f_a, f_b)
 
 
 def _locate_cusp(system: FoldSystem, br: Bracket, f_a: float, f_b: float) -> Located:
@@ -266,9 +330,12 @@ def _locate_cusp(system: FoldSystem, br: Bracket, f_a: float, f_b: float) -> Loc
         )
     else:
         found = locate_on_arc(br, system.cusp_coefficient, f_a, f_b)
-        found.details["method"] = "Illinois on the cusp coefficient"
+        found = found._replace(
+            details={**found.details, "method": "Illinois on the cusp coefficient"}
+        )
     tan = tangent_at(system, found.z, br.row, system.weights, br)
-    found.details.update(
+    details = dict(found.details)
+    details.update(
         coefficient_before=float(f_a),
         coefficient_after=float(f_b),
         # the unfolding parameters of the cusp: the variable that turns and p2 (both
@@ -280,7 +347,7 @@ def _locate_cusp(system: FoldSystem, br: Bracket, f_a: float, f_b: float) -> Loc
         fold_branches=(system.values(br.z_a), system.values(br.z_b)),
         residual=float(np.max(np.abs(system.residual(found.z)))),
     )
-    return found
+    return found._replace(details=details)
 
 
 def _locate_codim2(system: FoldSystem, br: Bracket, f_a: float, f_b: float) -> Located:
@@ -295,11 +362,12 @@ def _locate_codim2(system: FoldSystem, br: Bracket, f_a: float, f_b: float) -> L
 
     fb = f(br.z_b)
     found = locate_on_arc(br, f, ref[0], fb if fb * ref[0] < 0 else -ref[0])
-    found.details.update(
-        type="second zero eigenvalue of the fold's matrix",
-        method="Illinois on det[[M, b], [c^T, 0]]",
-    )
-    return found
+    details = {
+        **found.details,
+        "type": "second zero eigenvalue of the fold's matrix",
+        "method": "Illinois on det[[M, b], [c^T, 0]]",
+    }
+    return found._replace(details=details)
 
 
 def fold_curve(
@@ -343,6 +411,47 @@ def fold_curve(
     were traced and ``info["start_index"]`` where the starting fold is.
     """
     problem = as_problem(problem)
+    p1, p2, k, params = _fold_setup(problem, fold_point, free)
+    options = options or ContinuationOptions(detect_branch_points=False)
+    if overrides:
+        options = options.replace(**overrides)
+    if direction not in ("both", 1, -1):
+        raise ProblemDefinitionError(f"direction must be 'both', +1 or -1, got {direction!r}")
+
+    z0 = np.array(
+        [fold_point.values[nm] for nm in problem.unknowns]
+        + [fold_point.values[p1], fold_point.values[p2]],
+        dtype=float,
+    )
+    system = FoldSystem.through(problem, p1, p2, k, params, options.state_weight, z0)
+    halves = []
+    for d in (1, -1) if direction == "both" else (direction,):
+        tracer = Tracer.for_system(
+            system,
+            options=options,
+            bounds=bounds,
+            targets=targets,
+            events=events,
+            monitor=monitor,
+            direction=d,
+            throw=throw,
+        )
+        state = tracer.init_at(z0, start_label="start (fold)")
+        while not tracer.done(state):
+            state = tracer.step(state)
+        halves.append((d, tracer.result(state)))
+    if len(halves) == 1:
+        br = halves[0][1]
+        br.info.update(direction=halves[0][0], start_index=0)
+        return br
+    return _join(halves[1][1], halves[0][1])
+
+
+def _fold_setup(
+    problem: Any, fold_point: SpecialPoint, free: tuple[str, str]
+) -> tuple[str, str, int, dict[str, float]]:
+    """Check the arguments of :func:`fold_curve`: the two parameters, the index of the
+    variable that turns, and the parameter values at the fold."""
     if not isinstance(fold_point, SpecialPoint) or fold_point.kind != "fold":
         raise ProblemDefinitionError(
             f"fold_point must be a SpecialPoint of kind 'fold' returned by trace, "
@@ -372,44 +481,7 @@ def fold_curve(
             f"the fold is a turning point of {wrt!r}, which is neither an unknown nor {p1!r}: "
             f"was it traced with free={wrt!r}? Pass free=({wrt!r}, second parameter)"
         )
-    k = names_y.index(wrt)
-    options = options or ContinuationOptions(detect_branch_points=False)
-    if overrides:
-        options = options.replace(**overrides)
-    if direction not in ("both", 1, -1):
-        raise ProblemDefinitionError(f"direction must be 'both', +1 or -1, got {direction!r}")
-
-    z0 = np.array(
-        [fold_point.values[nm] for nm in problem.unknowns]
-        + [fold_point.values[p1], fold_point.values[p2]],
-        dtype=float,
-    )
-    halves = []
-    for d in (1, -1) if direction == "both" else (direction,):
-        system = FoldSystem(problem, p1, p2, k, params, options.state_weight)
-        system.init_borders(z0)
-        extra = [_Test("cusp", label="cusp"), _Test("codim2", label="second zero eigenvalue")]
-        tracer = Tracer.for_system(
-            system,
-            options=options,
-            fold_components=(),
-            bounds=bounds,
-            targets=targets,
-            events=events,
-            monitor=monitor,
-            direction=d,
-            throw=throw,
-            extra_tests=extra,
-        )
-        state = tracer.init_at(z0, start_label="start (fold)")
-        while not tracer.done(state):
-            state = tracer.step(state)
-        halves.append((d, tracer.result(state)))
-    if len(halves) == 1:
-        br = halves[0][1]
-        br.info.update(direction=halves[0][0], start_index=0)
-        return br
-    return _join(halves[1][1], halves[0][1])
+    return p1, p2, names_y.index(wrt), params
 
 
 def _join(backward: Branch, forward: Branch) -> Branch:
@@ -480,4 +552,4 @@ def _reindex(sp_: SpecialPoint, index: int, s: float, tangent) -> SpecialPoint:
     )
 
 
-__all__ = ["FoldSystem", "fold_curve"]
+__all__ = ["Codim2Test", "CuspTest", "FoldSystem", "fold_curve"]

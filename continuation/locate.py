@@ -12,7 +12,10 @@
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping
 from dataclasses import dataclass, field
+from types import MappingProxyType
+from typing import NamedTuple
 
 import numpy as np
 
@@ -151,13 +154,17 @@ class Bracket:
         return res.z if res.converged else z
 
 
-@dataclass
-class Located:
+class Located(NamedTuple):
+    """A special point located inside a step (immutable).
+
+    ``sigma``: its pseudo-arclength from the step's start; ``status``: ``"converged"`` or
+    ``"guess"`` (only bracketed); ``details``: what the locating method reports."""
+
     z: np.ndarray
     sigma: float
     status: str
     iterations: int
-    details: dict = field(default_factory=dict)
+    details: Mapping = MappingProxyType({})
     tangent: np.ndarray | None = None
     """Unit tangent at ``z`` oriented like the step, when the locating iteration gave it."""
     residual_norm: float | None = None
@@ -368,7 +375,7 @@ def locate_component(br: Bracket, k: int, value: float) -> Located | None:
     )
     if not res.converged:
         return None
-    z = res.z
+    z = res.z.copy()
     z[k] = value  # the constraint is linear: snap away the last rounding
     # the corrector's last factorization is [∂G/∂z; e_k] (at z up to its last update or
     # two): its solution t of [∂G/∂z; e_k] t = e_last has ∂G/∂z t = 0, a tangent

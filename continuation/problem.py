@@ -183,6 +183,13 @@ class Problem:
         return fd_derivative(f, float(p[name]), method=self.derivatives)
 
 
+def has_exact_jacobian(problem) -> bool:
+    """Whether the problem's Jacobian is analytic or by complex step (exact to rounding)."""
+    return bool(
+        getattr(problem, "has_jacobian", True) or getattr(problem, "derivatives", "") == "complex"
+    )
+
+
 def as_matrix(jac):
     """A Jacobian as returned by a user function, as a float array (sparse ones kept)."""
     if type(jac) is np.ndarray and jac.dtype == float:

@@ -4,30 +4,44 @@ solution set is the curve the tracer follows.
 For an ordinary branch ``z = (u, p_free)`` and ``G = R``. Fold curves and other augmented
 systems supply their own ``G`` with the same interface, so every special-point test, event,
 target and bound works on them unchanged.
+
+A curve system is immutable while it is traced: a system whose equations change along the
+curve (a fold curve's bordering vectors, updated at every accepted point) returns a new
+system from :meth:`CurveSystem.refreshed`, which the tracer keeps in its state. Stepping
+twice from the same state therefore gives the same points, bit for bit.
 """
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 import scipy.sparse as sp
 
 from .errors import ProblemDefinitionError
 from .linalg import bordered, rounding_floor
-from .problem import as_matrix, as_vector
+from .problem import as_matrix, as_vector, has_exact_jacobian
+from .testfunctions import TestFunction, generic_tests
+
+if TYPE_CHECKING:
+    from .events import Event
+    from .options import ContinuationOptions
 
 
 class CurveSystem:
     """Interface of what the tracer follows.
 
     Attributes: ``names`` (one per component of z), ``dim`` (= m + 1), ``weights`` (of the
-    arclength inner product), ``problem``, ``fixed`` (values of parameters not in z).
+    arclength inner product), ``problem`` (or None), ``fold_components`` (the components
+    whose turning points are detected by default: the free parameter of a branch).
     """
 
     names: tuple[str, ...]
     dim: int
     weights: np.ndarray
+    problem: Any = None
+    fold_components: tuple[str, ...] = ()
     exact_jacobian: bool = False
     """True if ``jacobian`` is exact to rounding (not differenced): its own differences are
     then accurate enough for forward differencing."""
@@ -35,7 +49,7 @@ class CurveSystem:
     def residual(self, z: np.ndarray) -> np.ndarray:  # pragma: no cover - interface
         raise NotImplementedError
 
-    def jacobian(self, z: np.ndarray):  # pragma: no cover - interface
+    def jacobian(self, z: np.ndarray) -> Any:  # pragma: no cover - interface
         raise NotImplementedError
 
     def values(self, z: np.ndarray) -> dict[str, float]:  # pragma: no cover - interface
@@ -47,30 +61,72 @@ class CurveSystem:
         except ValueError:
             return None
 
-    def bordered_jacobian(self, z: np.ndarray, row: np.ndarray):
+    def split(self, z: np.ndarray) -> tuple[np.ndarray, dict[str, float]]:
+        """The unknowns ``u`` of the problem and every value (unknowns and parameters) at
+        ``z``: the arguments of a user's event function."""
+        vals = self.values(z)
+        problem = self.problem
+        u = np.array([vals[name] for name in problem.unknowns]) if problem is not None else z
+        return u, vals
+
+    def bordered_jacobian(self, z: np.ndarray, row: np.ndarray) -> Any:
         """The square matrix ``[∂G/∂z; row]``."""
         return bordered(self.jacobian(z), row)
 
-    def residual_floor(self, dg, z: np.ndarray) -> float:
+    def residual_floor(self, dg: Any, z: np.ndarray) -> float:
         """The residual size attributable to rounding at ``z`` (``dg``: ∂G/∂z there, or a
         nearby one): Newton accepts a tiny update with a residual up to ``max(tol, this)``.
         The last column (a parameter) is left out: a parameter derivative differenced
         across a jump of the residual would inflate it."""
         return rounding_floor(dg[:, :-1], z)
 
-    def refresh(self, z: np.ndarray) -> None:
-        """Called after each accepted point (augmented systems update their borders here)."""
+    def refreshed(self, z: np.ndarray) -> CurveSystem:
+        """The system to use after the accepted point ``z`` (augmented systems update their
+        borders there and return a new system; this one is unchanged)."""
+        return self
+
+    def with_values(self, values: Mapping[str, float]) -> CurveSystem:
+        """This system with its fixed parameters taken from ``values`` where given (starting
+        from a special point of another curve)."""
+        return self
+
+    def start_vector(self, u: np.ndarray) -> np.ndarray:
+        """The curve vector ``z`` of the unknowns ``u`` at the system's parameter values."""
+        raise ProblemDefinitionError(
+            f"{type(self).__name__} starts from a full curve vector: use Tracer.init_at(z0)"
+        )
 
     def fixed_values(self) -> dict[str, float]:
         """Parameters held fixed on this curve (reported as constant columns)."""
         return {}
 
+    def test_functions(
+        self,
+        options: ContinuationOptions,
+        *,
+        monitor: Sequence[str] = (),
+        targets: Mapping[str, Sequence[float]] | None = None,
+        bounds: Mapping[str, tuple[float, float]] | None = None,
+        events: Sequence[Event] = (),
+    ) -> tuple[TestFunction, ...]:
+        """The test functions evaluated along this curve: the generic ones (folds of
+        :attr:`fold_components` and of the monitored components, branch points, targets,
+        bounds, events; see :func:`~.testfunctions.generic_tests`) followed by the
+        system's own (:meth:`own_tests`)."""
+        tests = generic_tests(
+            self,
+            options,
+            fold_components=self.fold_components,
+            monitor=monitor,
+            targets=targets,
+            bounds=bounds,
+            events=events,
+        )
+        return (*tests, *self.own_tests(options))
 
-def has_exact_jacobian(problem) -> bool:
-    """Whether the problem's Jacobian is analytic or by complex step (exact to rounding)."""
-    return bool(
-        getattr(problem, "has_jacobian", True) or getattr(problem, "derivatives", "") == "complex"
-    )
+    def own_tests(self, options: ContinuationOptions) -> tuple[TestFunction, ...]:
+        """Test functions that only this kind of curve defines (none for a branch)."""
+        return ()
 
 
 def state_weights(n: int, n_params: int, state_weight: float | None) -> np.ndarray:
@@ -112,6 +168,19 @@ class BranchSystem(CurveSystem):
             else (problem.residual, problem.jacobian, problem.param_jacobian)
         )
         self._shapes = ((self.n, self.n), (self.n,))
+        self.fold_components = (free,)
+
+    def with_values(self, values: Mapping[str, float]) -> BranchSystem:
+        fixed = {k: float(values[k]) for k in self.params if k in values and k not in self.names}
+        if all(self.params[k] == v for k, v in fixed.items()):
+            return self
+        new = object.__new__(BranchSystem)
+        new.__dict__.update(self.__dict__)
+        new.params = {**self.params, **fixed}
+        return new
+
+    def start_vector(self, u: np.ndarray) -> np.ndarray:
+        return np.concatenate([u, [self.params[self.free]]])
 
     # residual and bordered_jacobian are the corrector's inner loop: the parameter dict is
     # built inline and the dense case checked first (for the tiny systems of most problems

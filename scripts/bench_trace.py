@@ -374,6 +374,7 @@ def phases(pb, rounds=100, repeat=7):
 
 
 def _phases_once(pb, rounds):
+    import cusp.continuation.stepping as st
     import cusp.continuation.tracer as tr
 
     acc = {}
@@ -397,8 +398,9 @@ def _phases_once(pb, rounds):
 
         setattr(owner, name, timed)
 
+    wrap(st, "newton", "corrector (steps and start)")
     wrap(tr, "newton", "corrector (steps and start)")
-    wrap(tr._Test, "locate", "special-point location")
+    wrap(tr.Tracer, "_locate", "special-point location")
     wrap(tr, "tangent_at", "special-point location")
     wrap(tr.Tracer, "__init__", "setup and result")
     wrap(tr.Tracer, "result", "setup and result")

@@ -1,0 +1,419 @@
+"""The predictor–corrector phase of a continuation step, and the step-size rule.
+
+From the last point ``z`` with unit tangent ``t`` and step size ``ds``:
+
+- **predict**: ``z + ds·d`` along the tangent (or the secant through the last two points);
+- **correct**: Newton on ``[G(z); row·z = row·z_pred]`` with ``row = W d``; the step is
+  accepted when Newton converges, the tangent turns by at most ``max_angle`` and the
+  correction is at most ``ds``, and otherwise halved down to ``ds_min`` (where a damped
+  Newton is tried last);
+- two variants replace the arclength step: a step whose tangent line crosses a bound with
+  margin is **aimed at the bound** (Newton with that component fixed), and at a **corner**
+  (a non-smooth turning point, where no arclength hyperplane meets the curve beyond, or after
+  many steps creeping at ``ds_min``) natural-parameter steps in one component are tried;
+- **adapt**: the next ``ds`` from the Newton iteration count and the tangent's turn.
+
+:func:`advance` returns a :class:`Trial` (the accepted step) or a :class:`Failure`.
+"""
+
+from __future__ import annotations
+
+import logging
+import math
+from collections.abc import Mapping
+from typing import TYPE_CHECKING, Any, NamedTuple
+
+import numpy as np
+
+from .corrector import NewtonResult, damped_newton, newton
+from .errors import ContinuationError, ConvergenceError, NonFiniteResidualError
+from .locate import oriented_tangent
+
+if TYPE_CHECKING:
+    from .options import ContinuationOptions
+    from .state import TracerState
+    from .system import CurveSystem
+    from .testfunctions import BoundTest
+
+logger = logging.getLogger("cusp.continuation.tracer")
+
+_STALL_STEPS = 10  # steps at ds < STALL_FACTOR·ds_min before a corner step is tried
+STALL_FACTOR = 1e3
+
+_REMEDY = (
+    "Try a smaller ds_min or ds_max, a better starting point, an analytic jacobian, or "
+    "check the residual for discontinuities; pass throw=False to keep the partial branch."
+)
+
+
+class StepRules:
+    """What the step needs of the tracer's configuration (fixed while a curve is traced).
+
+    ``bound_tests``: ``(index in the state's test values, test, reach)`` for each bound,
+    with ``reach`` = 1/√w_k, the most its component can move per unit of step (the tangent
+    is a unit vector in the weighted norm)."""
+
+    __slots__ = ("options", "weights", "unit_weights", "e_last", "bound_tests")
+
+    def __init__(
+        self,
+        options: ContinuationOptions,
+        weights: np.ndarray,
+        bound_tests: tuple[tuple[int, BoundTest, float], ...],
+    ) -> None:
+        self.options = options
+        self.weights = weights
+        # unit weights (one unknown): the weighted products are plain ones
+        self.unit_weights = bool((weights == 1.0).all())
+        self.e_last = np.zeros(weights.size)
+        self.e_last[-1] = 1.0
+        self.bound_tests = bound_tests
+
+    def wnorm(self, x: np.ndarray) -> float:
+        return math.sqrt(x.dot(self.weights * x))
+
+
+class Trial(NamedTuple):
+    """An accepted step: the corrector's result ``res`` (its ``z`` is the new point), the
+    unit tangent ``t`` there, the border ``row`` of the corrector, the tangent's turn
+    ``angle`` (degrees), the step size ``ds`` used and the new point's pseudo-arclength
+    ``h`` from the last one, ``rt`` (det [∂G/∂z; (W t)ᵀ] has the sign of the corrector's
+    determinant times the sign of ``rt``), the number of rejected tries, whether it was a
+    corner step, the bound test it was aimed at (or None), and whether the damped
+    fallback corrector was used."""
+
+    res: NewtonResult
+    t: np.ndarray
+    row: np.ndarray
+    angle: float
+    ds: float
+    h: float
+    rt: float
+    rejected: int = 0
+    corner: bool = False
+    aimed: BoundTest | None = None
+    used_fallback: bool = False
+
+
+class Failure(NamedTuple):
+    """A step that could not be taken: the branch's status, the message and the typed
+    error (raised, or logged when the tracer does not throw)."""
+
+    status: str
+    message: str
+    error: ContinuationError
+
+
+def advance(rules: StepRules, state: TracerState) -> Trial | Failure:
+    """Predict and correct one step from the last point of ``state``."""
+    last = state.last
+    z, t = last.z, last.t
+    z_prev = None if last.prev is None else last.prev.z
+    secant = None
+    if rules.options.predictor == "secant" and z_prev is not None:
+        d = z - z_prev
+        nd = rules.wnorm(d)
+        if nd > 0:
+            secant = d / nd
+    if state.stalled >= _STALL_STEPS:
+        # creeping at ds near ds_min (say, Newton with a Jacobian differenced across a
+        # kink): try to pass the corner directly
+        corner = corner_step(rules, state.system, z, t, state.ds, z_prev)
+        if corner is not None:
+            return corner
+    elif secant is None and rules.bound_tests:
+        aimed = aim_at_bound(rules, state, z, t, state.ds)
+        if aimed is not None:
+            return aimed
+    return _arclength_step(rules, state, secant, z_prev)
+
+
+def _arclength_step(
+    rules: StepRules, state: TracerState, secant: np.ndarray | None, z_prev: np.ndarray | None
+) -> Trial | Failure:
+    """The pseudo-arclength step, halved until it is accepted; at ``ds_min``, the corner
+    step and then failure."""
+    o = rules.options
+    z, t = state.last.z, state.last.t
+    direction = t if secant is None else secant
+    row = direction if rules.unit_weights else rules.weights * direction
+    ds = state.ds
+    rejected = 0
+    while True:
+        res, tried, reason = _try(rules, state.system, z, t, ds, direction, row, secant)
+        if tried is not None:
+            return tried._replace(rejected=rejected) if rejected else tried
+        if ds <= o.ds_min:
+            corner = corner_step(rules, state.system, z, t, state.ds, z_prev)
+            if corner is not None:
+                return corner
+            return _failure(state.system, z, ds, res, reason, o)
+        ds = max(0.5 * ds, o.ds_min)
+        rejected += 1
+
+
+def _try(
+    rules: StepRules,
+    system: CurveSystem,
+    z: np.ndarray,
+    t: np.ndarray,
+    ds: float,
+    direction: np.ndarray,
+    row: np.ndarray,
+    secant: np.ndarray | None,
+) -> tuple[NewtonResult, Trial | None, str]:
+    """One corrector solve at ``ds``: the result, the trial if it is accepted (else None)
+    and the reason it is not."""
+    o = rules.options
+    W = rules.weights
+    unit_w = rules.unit_weights
+    z_pred = z + ds * direction
+    # above ds_min a wandering Newton gives up early (the step is halved anyway)
+    c = row.dot(z_pred)
+    res = newton(
+        system,
+        z_pred,
+        row,
+        c,
+        tol=o.tol,
+        step_tol=o.step_tol,
+        max_iter=o.max_newton_iterations,
+        contract=ds > o.ds_min,
+    )
+    used_fallback = False
+    if not res.converged and ds <= o.ds_min:
+        res = damped_newton(
+            system,
+            z_pred,
+            row,
+            c,
+            tol=o.tol,
+            step_tol=o.step_tol,
+            max_iter=5 * o.max_newton_iterations,
+        )
+        used_fallback = True
+    if not res.converged:
+        return res, None, res.reason
+    t_new = res.lu.solve(rules.e_last)
+    t_new /= math.sqrt(t_new.dot(t_new if unit_w else W * t_new))
+    rt = row.dot(t_new)
+    cosang = rt if secant is None else t_new.dot(W * t)
+    angle = math.degrees(math.acos(max(-1.0, min(1.0, cosang))))
+    dc = res.z - z_pred
+    correction = math.sqrt(dc.dot(dc if unit_w else W * dc))
+    if angle > o.max_angle:
+        return res, None, f"tangent turned {angle:.1f} degrees"
+    if correction > ds:
+        return res, None, "correction larger than the step"
+    if used_fallback:
+        logger.info("step accepted by the damped fallback corrector at ds=%g", ds)
+    # the pseudo-arclength of the step: row·(z1 − z) = ds·(row·direction) = ds, as the
+    # corrector satisfies the (linear) hyperplane equation to rounding
+    return res, Trial(res, t_new, row, angle, ds, ds, rt, used_fallback=used_fallback), ""
+
+
+def _failure(
+    system: CurveSystem, z: np.ndarray, ds: float, res: NewtonResult, reason: str, o: Any
+) -> Failure:
+    values = system.values(z)
+    if reason == "nonfinite":
+        msg = (
+            f"the residual is not finite within ds_min={o.ds_min:g} of "
+            f"{format_values(values)}; the branch stops there"
+        )
+        return Failure("nonfinite_residual", msg, NonFiniteResidualError(msg, values=values))
+    exc = ConvergenceError(
+        f"Newton's method and the damped fallback failed ({reason})",
+        values=values,
+        ds=ds,
+        iterations=res.iterations,
+        residual_norm=res.residual_norm,
+        remedy=_REMEDY,
+    )
+    return Failure("convergence_failure", str(exc), exc)
+
+
+def format_values(values: Mapping[str, float], limit: int = 6) -> str:
+    items = list(values.items())
+    text = ", ".join(f"{k}={v:.10g}" for k, v in items[:limit])
+    return text + (" ..." if len(items) > limit else "")
+
+
+def corner_step(
+    rules: StepRules,
+    system: CurveSystem,
+    z: np.ndarray,
+    t: np.ndarray,
+    ds_hint: float,
+    z_prev: np.ndarray | None = None,
+) -> Trial | None:
+    """Fallback at a corner of the curve (a non-smooth turning point, where the tangent
+    turns by more than 90° so no pseudo-arclength hyperplane meets the curve beyond):
+    natural-parameter steps in one component at a time, largest tangent components
+    first, each moving the way it was moving.
+
+    The variable that turns at a corner is the one with the large tangent component before
+    it: the smaller components are tried first (the "control component", as in contique);
+    the approach to a corner halves ds at every step, so the trial sizes start higher, and
+    at each size every component is tried."""
+    o = rules.options
+    W = rules.weights
+    incoming = None
+    if z_prev is not None and rules.wnorm(z - z_prev) > 0:
+        incoming = (z - z_prev) / rules.wnorm(z - z_prev)
+    mags = np.abs(t) * np.sqrt(W)
+    order = [j for j in np.argsort(mags) if mags[j] > 1e-6 * mags.max()][:4]
+    h0 = max(ds_hint, 1e-4 * o.ds_max)
+    sizes = [h for h in (h0 * 0.25**k for k in range(12)) if h >= 10 * o.ds_min]
+    for h in sizes:
+        for j in order:
+            found = _natural_step(rules, system, z, t, int(j), h, incoming)
+            if found is not None:
+                logger.info("corner passed by a natural-parameter step in %s", system.names[j])
+                return found
+    return None
+
+
+def _natural_step(
+    rules: StepRules,
+    system: CurveSystem,
+    z: np.ndarray,
+    t: np.ndarray,
+    j: int,
+    h: float,
+    incoming: np.ndarray | None,
+) -> Trial | None:
+    """A step of ``h`` (weighted) in component ``j`` alone, the way it was moving."""
+    o = rules.options
+    W = rules.weights
+    sign = 1.0 if t[j] > 0 else -1.0
+    row = np.zeros(system.dim)
+    row[j] = 1.0
+    target = z[j] + sign * h / math.sqrt(W[j])
+    z0 = z.copy()
+    z0[j] = target
+    res = newton(
+        system,
+        z0,
+        row,
+        target,
+        tol=o.tol,
+        step_tol=o.step_tol,
+        max_iter=2 * o.max_newton_iterations,
+    )
+    # the other components move by (slope)·h: a looser guard than for arclength steps,
+    # still against jumping to a distant branch
+    if not res.converged or rules.wnorm(res.z - z) > 20.0 * h:
+        return None
+    if incoming is not None:  # never back along the way we came
+        chord = res.z - z
+        along = float(chord @ (W * incoming))
+        if along < 0 and rules.wnorm(chord - along * incoming) < 0.1 * rules.wnorm(chord):
+            return None
+    # oriented by the stepped component (the chord through the corner is not aligned with
+    # the tangent beyond it)
+    t_new = res.lu.solve(rules.e_last)
+    if t_new[j] == 0.0:
+        return None
+    t_new *= sign / t_new[j]
+    t_new /= rules.wnorm(t_new)
+    cos = float(t_new @ (W * t))
+    angle = math.degrees(math.acos(max(-1.0, min(1.0, cos))))
+    row = W * t_new
+    ds = rules.wnorm(res.z - z)
+    return Trial(res, t_new, row, angle, ds, float(row.dot(res.z - z)), row.dot(t_new), corner=True)
+
+
+def aim_at_bound(
+    rules: StepRules, state: TracerState, z: np.ndarray, t: np.ndarray, ds: float
+) -> Trial | None:
+    """A step that would cross a bound ends on it instead: from the tangent predictor's
+    crossing of the bound, Newton with that component fixed (one solve, where a step past
+    the bound and locating it would take two). Used only where the bound is transversal
+    with margin — the tangent within 90° − ``max_angle`` of the bound's normal (in the
+    weighted metric), so that the curve, turning by at most ``max_angle``, still crosses
+    it — and accepted under the same guards as any step; otherwise None (a normal step).
+
+    The trial's ``h`` is the pseudo-arclength of the end point along ``t`` (also its ``ds``),
+    ``rt`` the factor by which det [∂G/∂z; (W t_new)ᵀ] differs in sign from the corrector's
+    determinant."""
+    o = rules.options
+    for i, tt, reach in rules.bound_tests:
+        old = state.tests[i]
+        if old is None or old == 0.0 or abs(old) > ds * reach:  # not within reach
+            continue
+        k = tt.k
+        tk = float(t[k])
+        if tk == 0.0:
+            continue
+        sigma = -old / tk  # where the tangent line meets the bound
+        if not 0.0 < sigma <= ds or not tt.crossed(old, old + ds * tk):
+            continue
+        if math.sqrt(rules.weights[k]) * abs(tk) < math.sin(math.radians(o.max_angle)):
+            return None  # grazing: a normal step, then locating
+        return _aimed(rules, state.system, z, t, ds, tt, sigma, tk)
+    return None
+
+
+def _aimed(
+    rules: StepRules,
+    system: CurveSystem,
+    z: np.ndarray,
+    t: np.ndarray,
+    ds: float,
+    tt: BoundTest,
+    sigma: float,
+    tk: float,
+) -> Trial | None:
+    o = rules.options
+    W = rules.weights
+    k = tt.k
+    z_pred = z + sigma * t
+    z_pred[k] = tt.value_at
+    row = np.zeros(z.size)
+    row[k] = 1.0
+    res = newton(
+        system,
+        z_pred,
+        row,
+        tt.value_at,
+        tol=o.tol,
+        step_tol=o.step_tol,
+        max_iter=o.max_newton_iterations,
+        contract=True,
+    )
+    if not res.converged:
+        return None
+    z1 = res.z.copy()
+    z1[k] = tt.value_at  # the constraint is linear: snap away the last rounding
+    res = res._replace(z=z1)
+    # [∂G/∂z; e_kᵀ] tan = e_last gives a tangent (with tan_k = 1), oriented like t
+    tan = res.lu.solve(rules.e_last)
+    wt = W * t
+    t_new = oriented_tangent(tan, wt, W)
+    if t_new is None:
+        return None
+    rt = float(t_new.dot(tan))  # the sign factor of det [∂G/∂z; (W t_new)ᵀ]
+    angle = math.degrees(math.acos(max(-1.0, min(1.0, float(t_new.dot(wt))))))
+    h = float(wt.dot(z1 - z))
+    dc = z1 - z_pred
+    if angle > o.max_angle or t_new[k] * tk <= 0.0 or h <= 0.0 or rules.wnorm(dc) > ds:
+        return None
+    return Trial(res, t_new, row, angle, h, h, rt, aimed=tt)
+
+
+def next_step_size(options: ContinuationOptions, trial: Trial) -> float:
+    """The next ``ds``: scaled by ``target_newton_iterations / iterations`` and by
+    ``target_angle / angle``, whichever is smaller, within ``[0.5, growth]`` (not above 1
+    after a rejected try) and ``[ds_min, ds_max]``."""
+    o = options
+    k = max(trial.res.iterations, 1)
+    f_newton = o.target_newton_iterations / k
+    f_angle = o.target_angle / max(trial.angle, 1e-12)
+    factor = min(o.growth, max(0.5, min(f_newton, f_angle)))
+    if trial.rejected:
+        factor = min(factor, 1.0)
+    return min(o.ds_max, max(o.ds_min, trial.ds * factor))
+
+
+__all__ = ["Failure", "StepRules", "Trial", "advance", "next_step_size"]

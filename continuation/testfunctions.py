@@ -1,0 +1,410 @@
+"""Test functions: scalar functions on a curve whose sign changes mark its special points.
+
+A test function is an object with
+
+- ``value(system, z, t, sdet)``: its value at a point ``z`` of the curve with unit tangent
+  ``t`` (``sdet``: the sign of det [∂G/∂z; (W t)ᵀ], from the corrector's factorization, or
+  None when the curve does not track it);
+- ``crossed(old, new)``: whether a change between two accepted points counts (a direction of
+  crossing, or leaving through a bound one started on);
+- ``locate(bracket, f_a, f_b)``: the zero inside an accepted step (a :class:`~.locate.Located`);
+- ``record(system, located, bracket, weights, interval)``: the special-point record stored on
+  the branch, and, for terminal tests, ``ending(located)``: the branch's status, message and
+  extra records.
+
+The generic ones are defined here: the fold (turning point) of any component, the branch
+point, targets and bounds of a component, and user events. A curve system owns the tests
+that belong to it (:meth:`~.system.CurveSystem.test_functions`): an ordinary branch brings
+the fold in its free parameter, a fold curve brings its cusp and codimension-2 tests (in
+:mod:`.foldcurve`); the tracer only evaluates whatever tests its system gives it.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping, Sequence
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+from .errors import NonFiniteResidualError, ProblemDefinitionError, SingularMatrixError
+from .events import Event
+from .linalg import bordered, factor
+from .locate import (
+    Bracket,
+    Located,
+    branch_point_directions,
+    locate_component,
+    locate_fold,
+    locate_on_arc,
+    tangent_at,
+)
+from .problem import has_exact_jacobian
+
+if TYPE_CHECKING:
+    from .options import ContinuationOptions
+    from .system import CurveSystem
+
+#: a special-point record on a branch row: (kind, label, with_respect_to, status, interval,
+#: details), turned into a :class:`~.branch.SpecialPoint` when the branch is assembled
+Record = tuple[str, str, "str | None", str, "tuple[float, float] | None", dict]
+
+
+class TestFunction:
+    """Base class of the test functions (see the module docstring).
+
+    ``kind``: the special point's kind (``"fold"``, ``"branch_point"``, ...); ``label``: its
+    name on the branch; ``wrt``: the component it concerns (or None); ``direction``: +1 only
+    upward crossings count, −1 only downward, 0 both; ``terminal``: the branch ends at the
+    located point.
+    """
+
+    __slots__ = ("label", "wrt", "direction", "terminal")
+    __test__ = False  # not a pytest test class
+    kind = "test"
+
+    def __init__(
+        self, label: str, wrt: str | None = None, direction: int = 0, terminal: bool = False
+    ) -> None:
+        self.label, self.wrt = label, wrt
+        self.direction, self.terminal = direction, terminal
+
+    def __repr__(self) -> str:
+        return f"<{type(self).__name__} {self.label!r}>"
+
+    def value(self, system: CurveSystem, z: np.ndarray, t: Any, sdet: Any) -> float:
+        raise NotImplementedError  # pragma: no cover - interface
+
+    def crossed(self, old: float | None, new: float) -> bool:
+        """Does the change ``old → new`` between two accepted points count?"""
+        if old is None or old == 0.0:
+            return False
+        if new == 0.0:
+            up = old < 0
+        elif (old < 0) == (new < 0):
+            return False
+        else:
+            up = new > 0
+        if self.direction == 0:
+            return True
+        return (self.direction > 0) == up
+
+    def locate(self, br: Bracket, f_a: float, f_b: float) -> Located:
+        """The zero inside the step ``br`` (``f_a``, ``f_b``: the values at its ends)."""
+
+        def f(z: np.ndarray) -> float:
+            return self.value(br.system, z, None, None)
+
+        return locate_on_arc(br, f, f_a, f_b)
+
+    def record(
+        self,
+        system: CurveSystem,
+        loc: Located,
+        br: Bracket | None,
+        weights: np.ndarray,
+        interval: tuple[float, float],
+    ) -> Record:
+        """The special-point record of a located zero."""
+        details = dict(loc.details)
+        details["iterations"] = loc.iterations
+        return (self.kind, self.label, self.wrt, loc.status, interval, details)
+
+    def ending(self, loc: Located) -> tuple[str, str, tuple[Record, ...]]:
+        """For a terminal test: the branch's status and message, and extra records."""
+        return (
+            "terminal_event",
+            f"terminal event {self.label!r} occurred",
+            (("endpoint", self.label, self.wrt, loc.status, None, {}),),
+        )
+
+
+class ComponentTest(TestFunction):
+    """``z_k − value``: a component reaching a value."""
+
+    __slots__ = ("k", "value_at")
+
+    def __init__(
+        self,
+        label: str,
+        wrt: str,
+        k: int,
+        value_at: float,
+        direction: int = 0,
+        terminal: bool = False,
+    ) -> None:
+        super().__init__(label, wrt, direction, terminal)
+        self.k, self.value_at = k, value_at
+
+    def value(self, system, z, t, sdet) -> float:
+        return float(z[self.k]) - self.value_at
+
+    def locate(self, br: Bracket, f_a: float, f_b: float) -> Located:
+        found = locate_component(br, self.k, self.value_at)
+        if found is not None:
+            return found
+        return locate_on_arc(br, lambda z: z[self.k] - self.value_at, f_a, f_b)
+
+
+class TargetTest(ComponentTest):
+    """A point located exactly at ``z_k = value`` and inserted into the branch."""
+
+    __slots__ = ()
+    kind = "target"
+
+
+class BoundTest(ComponentTest):
+    """The end of the branch at ``z_k = value`` (``direction`` −1 a lower bound, +1 an upper
+    one); ``pair`` is the bound interval it belongs to, ``(low, high)``."""
+
+    __slots__ = ("pair",)
+    kind = "bound"
+
+    def __init__(
+        self, name: str, k: int, value_at: float, direction: int, pair: tuple[float, float]
+    ) -> None:
+        super().__init__(f"bound {name}={value_at:g}", name, k, value_at, direction, True)
+        self.pair = pair
+
+    def violated_by(self, z: np.ndarray) -> bool:
+        """Is ``z`` on the wrong side of this bound?"""
+        v = z[self.k]
+        return v < self.value_at if self.direction < 0 else v > self.value_at
+
+    def crossed(self, old: float | None, new: float) -> bool:
+        if old == 0.0:
+            # starting exactly on a bound: leaving through it ends the branch at once
+            return new < 0 if self.direction < 0 else new > 0
+        return super().crossed(old, new)
+
+    def record(self, system, loc, br, weights, interval) -> Record:
+        kind, label, wrt, status, interval, details = super().record(
+            system, loc, br, weights, interval
+        )
+        return ("endpoint", label, wrt, status, interval, details)
+
+    def ending(self, loc: Located) -> tuple[str, str, tuple[Record, ...]]:
+        return "bound", f"the branch reached {self.label}", ()
+
+
+class FoldTest(TestFunction):
+    """The tangent component ``t_k``: a turning point of component ``k`` (a fold with respect
+    to the free parameter, or the snap-back of a monitored unknown)."""
+
+    __slots__ = ("k",)
+    kind = "fold"
+
+    def __init__(self, name: str, k: int) -> None:
+        super().__init__(f"fold in {name}", name)
+        self.k = k
+
+    def value(self, system, z, t, sdet) -> float:
+        return float(t[self.k])
+
+    def locate(self, br: Bracket, f_a: float, f_b: float) -> Located:
+        return _check_fold_resolution(self._locate(br, f_a, f_b), br)
+
+    def _locate(self, br: Bracket, f_a: float, f_b: float) -> Located:
+        found = locate_fold(br, self.k)
+        if found is not None:
+            return found
+
+        def tangent_k(z):
+            return tangent_at(br.system, z, br.row, br.weights)[self.k]
+
+        # a poor start (a long step, or two folds close together): bracket the fold
+        # coarsely by regula falsi and restart Newton from there
+        rough = locate_on_arc(br, tangent_k, f_a, f_b, rtol=1e-3)
+        start_tangent = tangent_at(br.system, rough.z, br.row, br.weights)
+        found = locate_fold(br, self.k, start=rough.z, tangent=start_tangent)
+        if found is not None:
+            method = "minimally augmented Newton (after regula falsi)"
+            return found._replace(details={**found.details, "method": method})
+        # Newton failed: regula falsi on the tangent component. The fold system has no
+        # regular solution here (a kink, or derivatives too rough to locate it): the point
+        # is a bracketed estimate only
+        found = locate_on_arc(br, tangent_k, f_a, f_b)
+        details = {**found.details, "method": "Illinois on the tangent component (Newton failed)"}
+        ends = details.get("test_values", (0.0, 0.0))
+        if min(abs(ends[0]), abs(ends[1])) > 1e-6:
+            # the tangent component jumps instead of passing through zero
+            details["non_smooth"] = True
+        return found._replace(status="guess", details=details)
+
+
+def _check_fold_resolution(found: Located, br: Bracket) -> Located:
+    """With finite-difference derivatives, a fold whose radius of curvature is within 100
+    difference steps cannot be told from a kink smoothed by the stencil: it is then reported
+    as a bracketed guess."""
+    problem = getattr(br.system, "problem", None)
+    if problem is None or has_exact_jacobian(problem):
+        return found
+    method = getattr(problem, "derivatives", "central")
+    rel = np.finfo(float).eps ** (1 / 3 if method == "central" else 1 / 2)
+    h_fd = rel * (1.0 + float(np.max(np.abs(found.z))))
+    cos = float(br.t_a @ (br.weights * br.t_b))
+    turn = math.acos(max(-1.0, min(1.0, cos)))
+    if turn > 0 and abs(br.h) / turn < 100 * h_fd:
+        reason = (
+            f"radius of curvature {abs(br.h) / turn:.2g} is within 100 finite-difference "
+            f"steps ({h_fd:.2g}): possibly a kink; supply a jacobian to decide"
+        )
+        details = {**found.details, "non_smooth": True, "reason": reason}
+        return found._replace(status="guess", details=details)
+    return found
+
+
+class BranchPointTest(TestFunction):
+    """The sign of det [∂G/∂z; (W t)ᵀ]: it changes at a simple branch point (where a second
+    curve crosses) and nowhere else on a regular curve."""
+
+    __slots__ = ()
+    kind = "branch_point"
+
+    def __init__(self) -> None:
+        super().__init__("branch point")
+
+    def value(self, system, z, t, sdet) -> float:
+        return sdet
+
+    def locate(self, br: Bracket, f_a: float, f_b: float) -> Located:
+        ref = _bordered_det(br.system, br.z_a, br.row)
+
+        def f(z):
+            try:
+                sgn, logdet = _bordered_det(br.system, z, br.row)
+            except SingularMatrixError:  # landed exactly on the branch point
+                return 0.0
+            return sgn * math.exp(min(logdet - ref[1], 700.0))
+
+        fa = ref[0]
+        sb, lb = _bordered_det(br.system, br.z_b, br.row)
+        fb = sb * math.exp(min(lb - ref[1], 700.0))
+        if fa * fb > 0:  # the sign change was seen with a different border: bisect on it
+            fb = -fa
+        return locate_on_arc(br, f, fa, fb)
+
+    def record(self, system, loc, br, weights, interval) -> Record:
+        kind, label, wrt, status, interval, details = super().record(
+            system, loc, br, weights, interval
+        )
+        tan = tangent_at(system, loc.z, br.row, weights, br)
+        details.update(branch_point_directions(system, loc.z, tan, weights))
+        details["names"] = tuple(system.names)
+        return (kind, label, wrt, status, interval, details)
+
+
+def _bordered_det(system, z: np.ndarray, row: np.ndarray) -> tuple[float, float]:
+    lu = factor(bordered(system.jacobian(z), row))
+    return lu.sign_det(), lu.log_abs_det()
+
+
+class EventTest(TestFunction):
+    """A user :class:`~.events.Event`: ``function(u, p)`` of the unknowns and parameters."""
+
+    __slots__ = ("event",)
+    kind = "event"
+
+    def __init__(self, event: Event) -> None:
+        super().__init__(event.label, None, event.direction, event.terminal)
+        self.event = event
+
+    def value(self, system, z, t, sdet) -> float:
+        u, p = system.split(z)
+        val = float(self.event.function(u, p))
+        if not math.isfinite(val):
+            raise NonFiniteResidualError(
+                f"event {self.label!r} returned {val} at {system.values(z)}",
+                values=system.values(z),
+            )
+        return val
+
+
+# --- building the generic tests of a curve
+
+
+def generic_tests(
+    system: CurveSystem,
+    options: ContinuationOptions,
+    *,
+    fold_components: Sequence[str] = (),
+    monitor: Sequence[str] = (),
+    targets: Mapping[str, Sequence[float]] | None = None,
+    bounds: Mapping[str, tuple[float, float]] | None = None,
+    events: Sequence[Event] = (),
+) -> list[TestFunction]:
+    """The tests every curve offers, in the order they are evaluated: folds in
+    ``fold_components`` (if ``options.detect_folds``) and in the monitored components,
+    branch points (if ``options.detect_branch_points``), targets, bounds, events."""
+    tests: list[TestFunction] = []
+    if options.detect_folds:
+        for name in fold_components:
+            tests.append(FoldTest(name, _component(system, name, "free parameter")))
+    for name in monitor or ():
+        k = _component(system, name, "monitor")
+        if name not in fold_components:
+            tests.append(FoldTest(name, k))
+    if options.detect_branch_points:
+        tests.append(BranchPointTest())
+    tests.extend(_target_tests(system, targets))
+    tests.extend(_bound_tests(system, bounds))
+    for ev in events or ():
+        if not isinstance(ev, Event):
+            raise ProblemDefinitionError(f"events must be Event objects, got {ev!r}")
+        tests.append(EventTest(ev))
+    return tests
+
+
+def _component(system: CurveSystem, name: str, what: str) -> int:
+    k = system.index(name)
+    if k is None:
+        raise ProblemDefinitionError(
+            f"{what} names {name!r}, which is not traced on this curve; it must be one of "
+            f"{list(system.names)} (fixed parameters cannot be bounded or monitored)"
+        )
+    return k
+
+
+def _target_tests(system, targets) -> list[TestFunction]:
+    tests: list[TestFunction] = []
+    for name, values in (targets or {}).items():
+        k = _component(system, name, "targets")
+        for v in np.atleast_1d(np.asarray(values, dtype=float)):
+            if not math.isfinite(v):
+                raise ProblemDefinitionError(f"targets[{name!r}] must be finite, got {v}")
+            tests.append(TargetTest(f"{name}={v:g}", name, k, float(v)))
+    return tests
+
+
+def _bound_tests(system, bounds) -> list[TestFunction]:
+    tests: list[TestFunction] = []
+    for name, pair in (bounds or {}).items():
+        k = _component(system, name, "bounds")
+        try:
+            lo, hi = (float(x) for x in pair)
+        except (TypeError, ValueError):
+            raise ProblemDefinitionError(
+                f"bounds[{name!r}] must be a pair (low, high), got {pair!r}"
+            ) from None
+        if not lo < hi or math.isnan(lo) or math.isnan(hi):
+            raise ProblemDefinitionError(
+                f"bounds[{name!r}] must satisfy low < high, got ({lo}, {hi})"
+            )
+        if math.isfinite(lo):
+            tests.append(BoundTest(name, k, lo, -1, (lo, hi)))
+        if math.isfinite(hi):
+            tests.append(BoundTest(name, k, hi, +1, (lo, hi)))
+    return tests
+
+
+__all__ = [
+    "BoundTest",
+    "BranchPointTest",
+    "ComponentTest",
+    "EventTest",
+    "FoldTest",
+    "Record",
+    "TargetTest",
+    "TestFunction",
+    "generic_tests",
+]
