@@ -23,7 +23,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping, Sequence
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, Protocol
 
 import numpy as np
 
@@ -43,7 +43,24 @@ from .problem import has_exact_jacobian
 
 if TYPE_CHECKING:
     from .options import ContinuationOptions
-    from .system import CurveSystem
+
+
+class CurveSystem(Protocol):
+    """What a test function uses of the curve it is evaluated on (the interface of
+    :class:`~.system.CurveSystem`, written here so that this module does not import it)."""
+
+    names: tuple[str, ...]
+    problem: Any
+
+    def index(self, name: str) -> int | None: ...
+
+    def values(self, z: np.ndarray) -> dict[str, float]: ...
+
+    def split(self, z: np.ndarray) -> tuple[np.ndarray, dict[str, float]]: ...
+
+    def jacobian(self, z: np.ndarray) -> Any: ...
+
+    def residual(self, z: np.ndarray) -> np.ndarray: ...
 
 #: a special-point record on a branch row: (kind, label, with_respect_to, status, interval,
 #: details), turned into a :class:`~.branch.SpecialPoint` when the branch is assembled
