@@ -34,13 +34,13 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 def records(models=None) -> list[dict]:
     """Derive, verify and compare; one JSON-ready dict per equation."""
-    from cusp.verification import symbolic
+    import cusp.verification as verification
 
-    impl = symbolic.check_implementation(models)
+    impl = verification.check_implementation(models)
     unavailable = impl.get("*")
     out = []
-    for der in symbolic.derive_all():
-        verdict = symbolic.check_printed(der)
+    for der in verification.derive_all():
+        verdict = verification.check_printed(der)
         rec = {
             "equation": der.equation,
             "title": der.title,

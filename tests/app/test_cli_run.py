@@ -50,7 +50,7 @@ def test_fig6_scene_writes_summary_csv_and_figures(tmp_path, capsys):
     for key in "OABCD":
         assert set(s["points"][key]) >= {"g_T", "F_T", "F_N", "A_SL"}
     # the closed forms (tests/models/test_contact_loss.py checks them to 1e-10 at 50 digits;
-    # these literals are the sympy values printed by cusp.verification.symbolic.contact_loss_path())
+    # these literals are the sympy values printed by cusp.verification.contact_loss_path())
     assert s["points"]["C"]["g_T"] == pytest.approx(0.52813876635581604949, rel=1e-10)
     assert s["points"]["D"]["F_T"] == pytest.approx(64.039258064963450428, rel=1e-10)
     assert s["energy"]["snap_back"] == pytest.approx(0.21302894093713884714, rel=1e-8)

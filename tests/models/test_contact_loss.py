@@ -1,6 +1,6 @@
 """The contact-loss path (cusp.models.contact_loss) against closed forms and mpmath references.
 
-Exponential heights: the sympy closed forms of :func:`cusp.verification.symbolic.contact_loss_path`
+Exponential heights: the sympy closed forms of :func:`cusp.verification.contact_loss_path`
 evaluated at 50+ digits (derived from the GW integrals, not from the traced path).
 Gaussian heights and spheres: the independent mpmath computations of ``_contact_oracles``.
 Tolerances are the issue's: points ≤ 1e-10 relative, energies ≤ 1e-8 relative.
@@ -65,19 +65,19 @@ def _check_energies(res, ref, rtol=ENERGY_RTOL):
 
 
 # ------------------------------------------------------------------ exponential: sympy
-symbolic = pytest.importorskip("cusp.verification.symbolic")
+verification = pytest.importorskip("cusp.verification")
 
 
 def _exponential_reference(sigma, nu, mu, F_N0, g_A, F_Np):
     """Points and energies from the sympy closed forms, at the exact binary inputs."""
-    S = symbolic.SYMBOLS
+    S = verification.SYMBOLS
     lam = sigma * (2.0 - nu) / (2.0 * (1.0 - nu))  # the float λ the model uses
     syms = (S["sigma"], S["mu"], S["lambda"], S["F_N0"], S["g_A"], S["Fp_N"])
     vals = (sigma, mu, lam, F_N0, g_A, F_Np)
-    cf = symbolic.contact_loss_path()
+    cf = verification.contact_loss_path()
 
     def ev(key):
-        return symbolic.exact_value(cf[key], syms, vals)
+        return verification.exact_value(cf[key], syms, vals)
 
     F_A = ev("F_A")
     c_exists = F_A < mu * F_Np
