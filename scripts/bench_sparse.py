@@ -162,7 +162,8 @@ def main(argv=None) -> int:
         "Reproduce from the repository root: `python scripts/bench_sparse.py` (needs the test "
         "extra for the mpmath references).",
         "",
-        "FD Bratu with N interior nodes (TEST-PROBLEMS.md §2): tridiagonal scipy.sparse "
+        "FD Bratu with N interior nodes ([test problem §2](../test-problems.md#2-bratu-problem)): "
+        "tridiagonal scipy.sparse "
         "Jacobian, traced from u = 0, λ = 0 to u(½) = 2 through the fold with default "
         'options. Wall time is the best of 3 runs (1 run above 20 000 unknowns). "LU units" '
         "is the trace's time divided by one SuperLU factorization of the bordered start "
