@@ -205,7 +205,7 @@ class ContactLoss:
 
     def __init__(
         self,
-        body,
+        body: PathBody,
         normal_load: float,
         max_slip: float,
         reduced_normal_load: float,
@@ -502,11 +502,11 @@ class ContactLoss:
             for sp in br.special("fold"):
                 phys = _point(sp.values, self.scales, self.levels.names)
                 wrt = sp.with_respect_to
-                kind = kinds.get(wrt, ("turning point", names.get(wrt, wrt)))
+                label = kinds.get(wrt, ("turning point", names.get(wrt, wrt)))
                 out.append(
                     {
-                        "kind": kind[0],
-                        "control": kind[1],
+                        "kind": label[0],
+                        "control": label[1],
                         "point": None,
                         "corner": False,
                         "leg": leg,

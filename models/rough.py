@@ -30,6 +30,7 @@ from __future__ import annotations
 
 import functools
 import math
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -42,6 +43,9 @@ from .errors import (
     check_positive,
     check_ratio,
 )
+
+if TYPE_CHECKING:
+    from .protocol import ContactLevels
 
 __all__ = ["RoughSurface", "RoughLevels", "monotone_root"]
 
@@ -189,6 +193,11 @@ class RoughSurface:
 
     # ---------------------------------------------------------------- density integrals
     # Defaults by quadrature over self.pdf; closed-form subclasses override them.
+    def pdf(self, z):
+        """Φ(z) [1/µm], the summit-height density at heights z [µm] (each density defines
+        it)."""
+        raise NotImplementedError(f"{type(self).__name__} defines no height density pdf(z)")
+
     def load_integral(self, h):
         """J(h) = ∫_h^∞ (z − h)^{3/2} Φ(z) dz  [µm^{3/2}]."""
         from ._quadrature import moment
@@ -411,7 +420,7 @@ class RoughSurface:
         return np.minimum(out, 1.0)
 
     # ---------------------------------------------------------------- contact-loss path
-    def contact_levels(self, normal_load: float, max_slip: float) -> RoughLevels:
+    def contact_levels(self, normal_load: float, max_slip: float) -> ContactLevels:
         """The levels of this surface for the contact-loss path at F_N0 = ``normal_load`` [N]
         and g_A = ``max_slip`` [µm] (:class:`RoughLevels`; needs the load scale, else
         MissingLoadScaleError)."""

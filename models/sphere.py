@@ -19,6 +19,7 @@ Numerics: Eq 21 cancels as F̂_T → 1 (two numbers near 1); for F̂_T > 1/2 it 
 from __future__ import annotations
 
 import math
+from typing import cast
 
 import numpy as np
 
@@ -144,8 +145,8 @@ class Sphere:
     # ------------------------------------------------------------------ contact-loss path
     def contact_levels(self, normal_load: float, max_slip: float) -> SphereLevels:
         """The levels of this sphere for the contact-loss path at F_N0 = ``normal_load`` [N]
-        and g_A = ``max_slip`` [µm] (:class:`SphereLevels`; needs all four parameters)."""
-        self._require("the contact-loss path (compliance law, Eq 2)")
+        and g_A = ``max_slip`` [µm] (:class:`SphereLevels`; needs all four parameters, else
+        ModelParameterError)."""
         return SphereLevels(self, normal_load, max_slip)
 
     def __repr__(self) -> str:
@@ -169,13 +170,13 @@ class SphereLevels:
     p0 = 1.0  # a = a0 under F_N0
 
     def __init__(self, sphere: Sphere, F_N0: float, g_A: float) -> None:
+        sphere._require("the contact-loss path (compliance law, Eq 2)")
+        nu, radius = cast(float, sphere.nu), cast(float, sphere.radius)  # checked just above
         a0 = float(sphere.contact_radius(F_N0))
         #: a0 [µm]
         self.scale = a0
         #: κ [µm]
-        self.kappa = (
-            (2.0 - sphere.nu) * sphere.E_star * a0**2 / (2.0 * sphere.G * 0.5 * sphere.radius)
-        )
+        self.kappa = (2.0 - nu) * sphere.E_star * a0**2 / (2.0 * sphere.G * 0.5 * radius)
 
     def log_normal_load(self, p: float) -> tuple[float, float]:
         """log(F_N/F_N0) = 3 log p and its derivative (Hertz)."""
