@@ -76,11 +76,12 @@ def build_body(scene: Scene) -> Any:
     """The body a scene describes, built by its entry in :mod:`cusp.models.registry` (which
     imports only that body's module)."""
     from cusp.models import registry
+    from cusp.models.protocol import require_path_body
 
     params = dict(scene.surface)
     model = params.pop("model")
     try:
-        return registry.build_body(model, **params)
+        return require_path_body(registry.build_body(model, **params))
     except ValueError as exc:
         raise SceneError(f"{scene.source}: [surface] {exc}") from None
 
@@ -88,7 +89,7 @@ def build_body(scene: Scene) -> Any:
 def run_scene(scene: Scene, *, plots: bool = True) -> tuple[SceneRun, dict]:
     """Trace every case of a scene; returns the run and the rendered figures (bytes)."""
     from cusp.models.contact_loss import DEFAULT_OPTIONS, ContactLoss
-    from cusp.models.errors import ModelParameterError
+    from cusp.models.errors import ModelParameterError, NoComplianceLawError
 
     t0 = time.perf_counter()
     body = build_body(scene)
@@ -110,6 +111,8 @@ def run_scene(scene: Scene, *, plots: bool = True) -> tuple[SceneRun, dict]:
             )
         except ModelParameterError as exc:
             raise SceneError(f"{scene.source}: [loading] {exc}") from None
+        except NoComplianceLawError as exc:  # a registered body without a path or a refusal
+            raise SceneError(f"{scene.source}: [surface] {exc}") from None
         cases.append((load, model.run(options)))
     t1 = time.perf_counter()
     figures = {}
