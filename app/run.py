@@ -15,7 +15,6 @@ from __future__ import annotations
 import csv
 import io
 import json
-import math
 import os
 import platform
 import shutil
@@ -33,17 +32,10 @@ __all__ = ["run_scene", "SceneRun", "summary", "branch_csv", "write_outputs", "D
 #: the scene ``cusp run`` runs without an argument (the paper's Fig 6)
 DEFAULT_SCENE = "fig6.toml"
 
-_UNITS = {
-    "g_T": "µm",
-    "F_T": "N",
-    "F_N": "N",
-    "A_SL": "1",
-    "d": "µm",
-    "d0": "µm",
-    "a": "µm",
-    "c": "µm",
-    "energy": "N·µm (= µJ)",
-}
+#: units of the path columns; the two levels of every body are lengths [µm]
+#: (cusp.models.protocol.ContactLevels.scale)
+_UNITS = {"g_T": "µm", "F_T": "N", "F_N": "N", "A_SL": "1", "energy": "N·µm (= µJ)"}
+_LEVEL_UNIT = "µm"
 
 
 def add_arguments(parser) -> None:
@@ -80,30 +72,16 @@ class SceneRun:
     timing: dict[str, float]
 
 
-def build_body(scene: Scene):
-    """The body a scene describes (imports only that model's module)."""
-    s = dict(scene.surface)
-    model = s.pop("model")
+def build_body(scene: Scene) -> Any:
+    """The body a scene describes, built by its entry in :mod:`cusp.models.registry` (which
+    imports only that body's module)."""
+    from cusp.models import registry
+    from cusp.models.protocol import require_path_body
+
+    params = dict(scene.surface)
+    model = params.pop("model")
     try:
-        if model == "rough-exponential":
-            from cusp.models.exponential import ExponentialRoughSurface
-
-            return ExponentialRoughSurface(**s)
-        if model == "rough-gaussian":
-            from cusp.models.gaussian import GaussianRoughSurface
-
-            return GaussianRoughSurface(**s)
-        if model == "rough-weibull":
-            from cusp.models.density import GeneralRoughSurface, HeightDensity
-
-            k = s.pop("shape")
-            # Weibull scale such that the heights have standard deviation sigma
-            spread = math.sqrt(math.gamma(1 + 2 / k) - math.gamma(1 + 1 / k) ** 2)
-            heights = HeightDensity.weibull(k, s["sigma"] / spread)
-            return GeneralRoughSurface(heights, **s)
-        from cusp.models.sphere import Sphere
-
-        return Sphere(**s)
+        return require_path_body(registry.build_body(model, **params))
     except ValueError as exc:
         raise SceneError(f"{scene.source}: [surface] {exc}") from None
 
@@ -111,7 +89,7 @@ def build_body(scene: Scene):
 def run_scene(scene: Scene, *, plots: bool = True) -> tuple[SceneRun, dict]:
     """Trace every case of a scene; returns the run and the rendered figures (bytes)."""
     from cusp.models.contact_loss import DEFAULT_OPTIONS, ContactLoss
-    from cusp.models.errors import ModelParameterError
+    from cusp.models.errors import ModelParameterError, NoComplianceLawError
 
     t0 = time.perf_counter()
     body = build_body(scene)
@@ -133,6 +111,8 @@ def run_scene(scene: Scene, *, plots: bool = True) -> tuple[SceneRun, dict]:
             )
         except ModelParameterError as exc:
             raise SceneError(f"{scene.source}: [loading] {exc}") from None
+        except NoComplianceLawError as exc:  # a registered body without a path or a refusal
+            raise SceneError(f"{scene.source}: [surface] {exc}") from None
         cases.append((load, model.run(options)))
     t1 = time.perf_counter()
     figures = {}
@@ -174,7 +154,11 @@ def summary(run: SceneRun) -> dict[str, Any]:
         "messages": first["messages"],
         "solver": first["solver"],
         "cases": cases,
-        "units": {k: _UNITS[k] for k in ("g_T", "F_T", "F_N", "A_SL", *level_names, "energy")},
+        "units": {
+            **{k: _UNITS[k] for k in ("g_T", "F_T", "F_N", "A_SL")},
+            **dict.fromkeys(level_names, _LEVEL_UNIT),
+            "energy": _UNITS["energy"],
+        },
         "software": {
             "python": platform.python_version(),
             "numpy": numpy.__version__,

@@ -13,6 +13,7 @@ Schema (units in brackets)::
 
     [surface]
     model = "rough-exponential"   # rough-exponential | rough-gaussian | rough-weibull | sphere
+                                  #  (the built-in bodies) | any registered body
     sigma = 2.0                   # composite rms roughness σ* [µm]        (rough-*)
     nu = 0.3                      # Poisson ratio, in (-1, 0.5]
     mu = 0.1                      # friction coefficient, > 0
@@ -38,63 +39,47 @@ Schema (units in brackets)::
     [output]
     figures = ["force-slip", "force-slip-detail", "force-area"]
 
-The cylinder and flat planes are recognised but rejected: the paper gives them no compliance
-law, so they have no load–displacement path.
+The ``[surface]`` part is read from the body registry (:mod:`cusp.models.registry`): the
+model names, each body's parameters with unit and allowed range, which are required and
+which form an all-or-none group (the load scale of the exponential surface). A body
+registered with :func:`cusp.models.registry.register_body` is a model here at once. The
+cylinder and flat planes are registered but refused, with the registry's reason: the paper
+gives them no compliance law, so they have no load–displacement path.
 """
 
 from __future__ import annotations
 
-import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import Any, NoReturn
+
+from cusp.models import registry
+from cusp.models.registry import Parameter
 
 try:
     import tomllib
 except ModuleNotFoundError:  # Python 3.10
     import tomli as tomllib
 
-__all__ = ["Scene", "SceneError", "load_scene", "parse_scene", "MODELS", "FIGURES"]
+__all__ = ["Scene", "SceneError", "load_scene", "parse_scene", "FIGURES"]
 
 #: figure names a scene may ask for
 FIGURES = ("force-slip", "force-slip-detail", "force-area")
 
-_LOAD_SCALE = ("E", "radius", "density", "nominal_area")
-
-#: surface model -> (required keys, optional keys)
-MODELS: dict[str, tuple[tuple[str, ...], tuple[str, ...]]] = {
-    "rough-exponential": (("sigma", "nu", "mu"), _LOAD_SCALE),
-    "rough-gaussian": (("sigma", "nu", "mu") + _LOAD_SCALE, ()),
-    "rough-weibull": (("sigma", "nu", "mu", "shape") + _LOAD_SCALE, ()),
-    "sphere": (("radius", "E", "nu", "mu"), ()),
-}
-_NO_COMPLIANCE = {
-    "cylinder": "a cylinder has no compliance law in the paper (its 2-D elastic displacement is "
-    "defined only up to a datum), so it has no contact-loss path",
-    "flat": "flat planes have no compliance law (they slide as a whole at F_T = mu F_N), so "
-    "they have no contact-loss path",
-}
-
-# key -> (unit, lower bound, lower inclusive, upper bound, upper inclusive)
-_NUMBERS: dict[str, tuple[str, float, bool, float, bool]] = {
-    "sigma": ("µm", 0.0, False, math.inf, False),
-    "nu": ("", -1.0, False, 0.5, True),
-    "mu": ("", 0.0, False, math.inf, False),
-    "E": ("N/µm²", 0.0, False, math.inf, False),
-    "radius": ("µm", 0.0, False, math.inf, False),
-    "density": ("1/µm²", 0.0, False, math.inf, False),
-    "nominal_area": ("µm²", 0.0, False, math.inf, False),
-    "shape": ("", 0.0, False, math.inf, False),
-    "normal_load": ("N", 0.0, False, math.inf, False),
-    "max_slip": ("µm", 0.0, False, math.inf, False),
-    "reduced_normal_load": ("N", 0.0, False, math.inf, False),
-    "ds_max": ("", 0.0, False, 1.0, True),
-    "tol": ("", 0.0, False, 1e-4, True),
+#: the numbers of [loading] and [solver] (those of [surface] come from the body registry)
+_NUMBERS: dict[str, Parameter] = {
+    p.name: p
+    for p in (
+        Parameter("normal_load", "N"),
+        Parameter("max_slip", "µm"),
+        Parameter("reduced_normal_load", "N"),
+        Parameter("ds_max", "", 0.0, 1.0, upper_inclusive=True),
+        Parameter("tol", "", 0.0, 1e-4, upper_inclusive=True),
+    )
 }
 
 _SECTIONS = {
     "scene": {"name", "title"},
-    "surface": {"model", "sigma", "nu", "mu", "shape", *_LOAD_SCALE},
     "loading": {"normal_load", "max_slip", "reduced_normal_load"},
     "options": {"area_reading"},
     "solver": {"ds_max", "tol"},
@@ -102,8 +87,13 @@ _SECTIONS = {
 }
 _REQUIRED_SECTIONS = ("surface", "loading")
 
-#: units of every numeric field, for the echo in summary.json
-UNITS = {key: spec[0] for key, spec in _NUMBERS.items()}
+#: units of the numeric fields of [loading] and [solver], for the echo in summary.json
+UNITS = {key: spec.unit for key, spec in _NUMBERS.items()}
+
+
+def _section_keys(section: str) -> set[str] | frozenset[str]:
+    """The keys a section may hold ([surface]: those of every registered body)."""
+    return registry.surface_keys() if section == "surface" else _SECTIONS[section]
 
 
 class SceneError(ValueError):
@@ -124,6 +114,8 @@ class Scene:
     options: dict[str, Any]
     solver: dict[str, Any]
     figures: tuple[str, ...]
+    #: units of the [surface] numbers, from the body's registry entry
+    surface_units: dict[str, str] = field(default_factory=dict)
 
     @property
     def reduced_normal_loads(self) -> tuple[float, ...]:
@@ -134,8 +126,9 @@ class Scene:
         out: dict[str, Any] = {"source": self.source, "name": self.name, "title": self.title}
         for section in ("surface", "loading", "options", "solver"):
             block = getattr(self, section)
+            units = self.surface_units if section == "surface" else UNITS
             out[section] = {
-                k: ({"value": v, "unit": UNITS[k]} if k in UNITS else v) for k, v in block.items()
+                k: ({"value": v, "unit": units[k]} if k in units else v) for k, v in block.items()
             }
         out["output"] = {"figures": list(self.figures)}
         return out
@@ -174,89 +167,15 @@ def parse_scene(text: str, *, source: str = "<scene>", default_name: str = "scen
     except tomllib.TOMLDecodeError as exc:
         raise SceneError(f"{source}: malformed TOML: {exc}") from None
     chk = _Checker(source)
-    for section, value in data.items():
-        if section not in _SECTIONS:
-            chk.fail(f"unknown section [{section}]", f"sections are {_list(_SECTIONS)}")
-        if not isinstance(value, dict):
-            chk.fail(
-                f"{section} = {value!r} must be a [{section}] table",
-                f"write it as a section [{section}]",
-            )
-        unknown = set(value) - _SECTIONS[section]
-        if unknown:
-            key = sorted(unknown)[0]
-            chk.fail(
-                f"[{section}] unknown key {key!r}",
-                f"keys of [{section}] are {_list(_SECTIONS[section])}",
-            )
-    for section in _REQUIRED_SECTIONS:
-        if section not in data:
-            chk.fail(f"missing section [{section}]", "a scene needs [surface] and [loading]")
+    _check_sections(chk, data)
 
     meta = data.get("scene", {})
     name = chk.string("scene", "name", meta.get("name", default_name))
     if not name or any(ch in name for ch in "/\\\0") or name in (".", ".."):
         chk.fail(f"[scene] name = {name!r}", "a non-empty file-name-safe label")
     title = chk.string("scene", "title", meta.get("title", ""))
-
-    surf_in = data["surface"]
-    if "model" not in surf_in:
-        chk.fail("[surface] missing key 'model'", f"one of {_list(MODELS)}")
-    model = chk.string("surface", "model", surf_in["model"])
-    if model in _NO_COMPLIANCE:
-        chk.fail(
-            f"[surface] model = {model!r}: {_NO_COMPLIANCE[model]}",
-            f"models with a contact-loss path are {_list(MODELS)}",
-        )
-    if model not in MODELS:
-        chk.fail(f"[surface] model = {model!r} is not a known model", f"one of {_list(MODELS)}")
-    required, optional = MODELS[model]
-    extra = set(surf_in) - {"model", *required, *optional}
-    if extra:
-        key = sorted(extra)[0]
-        chk.fail(
-            f"[surface] key {key!r} does not apply to model {model!r}",
-            f"{model} takes {_list(required + optional)}",
-        )
-    surface: dict[str, Any] = {"model": model}
-    for key in required:
-        if key not in surf_in:
-            chk.fail(
-                f"[surface] missing key {key!r} for model {model!r}",
-                f"{model} needs {_list(required)}",
-            )
-        surface[key] = chk.number("surface", key, surf_in[key])
-    given = [k for k in optional if k in surf_in]
-    if given and len(given) != len(optional):
-        missing = [k for k in optional if k not in surf_in]
-        chk.fail(
-            f"[surface] {', '.join(given)} given without {', '.join(missing)}",
-            f"the load scale needs all of {_list(optional)} or none",
-        )
-    for key in given:
-        surface[key] = chk.number("surface", key, surf_in[key])
-
-    load_in = data["loading"]
-    loading: dict[str, Any] = {}
-    for key in ("normal_load", "max_slip", "reduced_normal_load"):
-        if key not in load_in:
-            chk.fail(
-                f"[loading] missing key {key!r}",
-                "[loading] needs normal_load, max_slip and reduced_normal_load",
-            )
-    loading["normal_load"] = chk.number("loading", "normal_load", load_in["normal_load"])
-    loading["max_slip"] = chk.number("loading", "max_slip", load_in["max_slip"])
-    red = load_in["reduced_normal_load"]
-    reds = red if isinstance(red, list) else [red]
-    if not reds:
-        chk.fail("[loading] reduced_normal_load = []", "a number or a non-empty list of numbers")
-    loading["reduced_normal_load"] = [chk.number("loading", "reduced_normal_load", v) for v in reds]
-    for v in loading["reduced_normal_load"]:
-        if v >= loading["normal_load"]:
-            chk.fail(
-                f"[loading] reduced_normal_load = {v!r} N",
-                f"less than normal_load = {loading['normal_load']!r} N (a reduction)",
-            )
+    surface, surface_units = _check_surface(chk, data["surface"])
+    loading = _check_loading(chk, data["loading"])
 
     opts_in = data.get("options", {})
     reading = chk.string("options", "area_reading", opts_in.get("area_reading", "printed"))
@@ -279,17 +198,111 @@ def parse_scene(text: str, *, source: str = "<scene>", default_name: str = "scen
         options={"area_reading": reading},
         solver=solver,
         figures=tuple(dict.fromkeys(figs)),
+        surface_units=surface_units,
     )
+
+
+def _check_sections(chk: _Checker, data: dict[str, Any]) -> None:
+    """Known sections, each a table of known keys; [surface] and [loading] present."""
+    sections = {*_SECTIONS, "surface"}
+    for section, value in data.items():
+        if section not in sections:
+            chk.fail(f"unknown section [{section}]", f"sections are {_list(sections)}")
+        if not isinstance(value, dict):
+            chk.fail(
+                f"{section} = {value!r} must be a [{section}] table",
+                f"write it as a section [{section}]",
+            )
+        keys = _section_keys(section)
+        unknown = set(value) - keys
+        if unknown:
+            key = sorted(unknown)[0]
+            chk.fail(
+                f"[{section}] unknown key {key!r}",
+                f"keys of [{section}] are {_list(set(keys))}",
+            )
+    for section in _REQUIRED_SECTIONS:
+        if section not in data:
+            chk.fail(f"missing section [{section}]", "a scene needs [surface] and [loading]")
+
+
+def _check_surface(chk: _Checker, surf_in: dict[str, Any]) -> tuple[dict[str, Any], dict[str, str]]:
+    """[surface] against the registry entry of its model: the values and their units."""
+    with_path = registry.body_names(with_path=True)
+    if "model" not in surf_in:
+        chk.fail("[surface] missing key 'model'", f"one of {_list(with_path)}")
+    model = chk.string("surface", "model", surf_in["model"])
+    if model in registry.body_names(with_path=False):
+        chk.fail(
+            f"[surface] model = {model!r}: {registry.body_entry(model).refusal}",
+            f"models with a contact-loss path are {_list(with_path)}",
+        )
+    if model not in with_path:
+        chk.fail(f"[surface] model = {model!r} is not a known model", f"one of {_list(with_path)}")
+    entry = registry.body_entry(model)
+    params = entry.parameters
+    required = tuple(p.name for p in entry.required)
+    optional = tuple(p.name for p in entry.optional)
+    extra = set(surf_in) - {"model", *params}
+    if extra:
+        key = sorted(extra)[0]
+        chk.fail(
+            f"[surface] key {key!r} does not apply to model {model!r}",
+            f"{model} takes {_list(required + optional)}",
+        )
+    surface: dict[str, Any] = {"model": model}
+    for key in required:
+        if key not in surf_in:
+            chk.fail(
+                f"[surface] missing key {key!r} for model {model!r}",
+                f"{model} needs {_list(required)}",
+            )
+        surface[key] = chk.number("surface", key, surf_in[key], params[key])
+    given = [k for k in optional if k in surf_in]
+    if given and len(given) != len(optional):
+        missing = [k for k in optional if k not in surf_in]
+        chk.fail(
+            f"[surface] {', '.join(given)} given without {', '.join(missing)}",
+            f"{entry.optional_name} needs all of {_list(optional)} or none",
+        )
+    for key in given:
+        surface[key] = chk.number("surface", key, surf_in[key], params[key])
+    return surface, {k: params[k].unit for k in surface if k != "model"}
+
+
+def _check_loading(chk: _Checker, load_in: dict[str, Any]) -> dict[str, Any]:
+    """[loading]: the three loads, the reductions as a list, each below normal_load."""
+    loading: dict[str, Any] = {}
+    for key in ("normal_load", "max_slip", "reduced_normal_load"):
+        if key not in load_in:
+            chk.fail(
+                f"[loading] missing key {key!r}",
+                "[loading] needs normal_load, max_slip and reduced_normal_load",
+            )
+    loading["normal_load"] = chk.number("loading", "normal_load", load_in["normal_load"])
+    loading["max_slip"] = chk.number("loading", "max_slip", load_in["max_slip"])
+    red = load_in["reduced_normal_load"]
+    reds = red if isinstance(red, list) else [red]
+    if not reds:
+        chk.fail("[loading] reduced_normal_load = []", "a number or a non-empty list of numbers")
+    loading["reduced_normal_load"] = [chk.number("loading", "reduced_normal_load", v) for v in reds]
+    for v in loading["reduced_normal_load"]:
+        if v >= loading["normal_load"]:
+            chk.fail(
+                f"[loading] reduced_normal_load = {v!r} N",
+                f"less than normal_load = {loading['normal_load']!r} N (a reduction)",
+            )
+    return loading
 
 
 class _Checker:
     def __init__(self, source: str) -> None:
         self.source = source
 
-    def fail(self, what: str, allowed: str):
+    def fail(self, what: str, allowed: str) -> NoReturn:
         raise SceneError(f"{self.source}: {what}; allowed: {allowed}")
 
-    def string(self, section: str, key: str, value) -> str:
+    def string(self, section: str, key: str, value: Any) -> str:
         if not isinstance(value, str):
             self.fail(
                 f"[{section}] {key} = {value!r} has the wrong type ({type(value).__name__})",
@@ -297,24 +310,18 @@ class _Checker:
             )
         return value
 
-    def number(self, section: str, key: str, value) -> float:
-        unit, lo, lo_in, hi, hi_in = _NUMBERS[key]
-        u = f" [{unit}]" if unit else ""
-        rng = (
-            f"{'[' if lo_in else '('}{lo:g}, {hi:g}{']' if hi_in else ')'}"
-            if math.isfinite(hi)
-            else f"{'>=' if lo_in else '>'} {lo:g}"
-        )
+    def number(self, section: str, key: str, value: Any, spec: Parameter | None = None) -> float:
+        """A finite number in the range of ``spec`` (default: the [loading]/[solver] key's)."""
+        spec = _NUMBERS[key] if spec is None else spec
         if isinstance(value, bool) or not isinstance(value, (int, float)):
             self.fail(
                 f"[{section}] {key} = {value!r} has the wrong type ({type(value).__name__})",
-                f"a finite number {rng}{u}",
+                spec.allowed(),
             )
-        v = float(value)
-        ok = math.isfinite(v) and (v >= lo if lo_in else v > lo) and (v <= hi if hi_in else v < hi)
-        if not ok:
-            self.fail(f"[{section}] {key} = {value!r}{u}", f"a finite number {rng}{u}")
-        return v
+        if not spec.accepts(float(value)):
+            u = f" [{spec.unit}]" if spec.unit else ""
+            self.fail(f"[{section}] {key} = {value!r}{u}", spec.allowed())
+        return float(value)
 
 
 def _list(items) -> str:

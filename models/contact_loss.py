@@ -23,6 +23,12 @@ a0 at F_N0). In these the equilibrium of the contact reads, for every state on t
 * compliance                g_T = μ s(p, q)                     (Eqs 4–5; Eq 2)
 * slipped area              Â_SL = (1 − Â_ST(p, q)) + ΔA_r/A_r (Eq 32)
 
+The body supplies ℓ, F̂_T, s, Â_ST and A_r(p)/A_r(p0), with their derivatives, through the
+protocol of :mod:`cusp.models.protocol` (``body.contact_levels(F_N0, g_A)`` returns a
+:class:`~cusp.models.protocol.ContactLevels`); this module knows no body by name. The
+exponential surface's levels are in :mod:`cusp.models.exponential`, those of any other
+height density in :mod:`cusp.models.rough`, the sphere's in :mod:`cusp.models.sphere`.
+
 plus one constraint for the leg: F_N = F_N0 (OA), the frozen stick zone q = q_A (AB) or
 F_N = F'_N (BC). Mindlin and Deresiewicz freeze the stick zone of every asperity while the
 tractions are removed from the lost annulus; summed over the contact this is their rule
@@ -54,7 +60,6 @@ Units: lengths µm, forces N, energies N·µm (= µJ).
 
 from __future__ import annotations
 
-import functools
 import math
 from dataclasses import dataclass, field
 from typing import Any
@@ -63,7 +68,8 @@ import numpy as np
 
 from cusp.continuation import Branch, ContinuationOptions, Problem, points_at, trace
 
-from .errors import ModelParameterError, NoComplianceLawError, check_positive
+from .errors import ModelParameterError, check_positive
+from .protocol import ContactLevels, PathBody, require_levels, require_path_body
 
 __all__ = [
     "ContactLoss",
@@ -85,173 +91,6 @@ DEFAULT_OPTIONS = ContinuationOptions(ds=0.02, ds_max=0.05)
 
 _QUAD_RTOL = 1e-13
 _QUAD_MAX_NODES = 256
-
-
-# ------------------------------------------------------------------------------------------
-# Levels: the body's equilibrium in (p, q). Each method returns value and partial derivatives.
-
-
-class _ExponentialLevels:
-    """Exponential heights: p = d/u, q = d0/u, everything in closed form.
-
-    The unit u = σ*·max(1, x_A), x_A = g_A/(μλ) the stick-threshold gap at A over σ*, keeps
-    q − p of order one at A however large x_A is (small μ or σ*)."""
-
-    names = ("d", "d0")
-
-    def __init__(self, surf, F_N0: float, g_A: float) -> None:
-        self.c = max(1.0, g_A / (surf.mu * surf.lam))
-        self.scale = surf.sigma * self.c
-        self.lam = surf.lam * self.c  # g_T = mu * lam * (q - p)
-        # the response is invariant under shifts of the mean plane: without a load scale the
-        # datum is put at d = 0 under F_N0
-        self.p0 = float(surf.separation(F_N0)) / self.scale if surf.has_load_scale else 0.0
-
-    def ell(self, p):
-        return -self.c * (p - self.p0), -self.c
-
-    def ratio(self, p, q):
-        c = self.c
-        e = math.exp(-c * (q - p))
-        return -math.expm1(-c * (q - p)), -c * e, c * e
-
-    def slip(self, p, q):
-        return self.lam * (q - p), -self.lam, self.lam
-
-    def stick_area(self, p, q):
-        c = self.c
-        x = c * (q - p)
-        e = math.exp(-x)
-        return e * (1.0 + x), c * x * e, -c * x * e
-
-    def area_ratio(self, p):
-        r = math.exp(-self.c * (p - self.p0))
-        return r, -self.c * r
-
-    def slip_limit(self, p) -> float:
-        return math.inf
-
-
-class _RoughLevels:
-    """Any height density: p = d/u, q = d0/u (u as for the exponential), with the
-    surface's GW integrals."""
-
-    names = ("d", "d0")
-
-    def __init__(self, surf, F_N0: float, g_A: float) -> None:
-        self.surf = surf
-        c = max(1.0, g_A / (surf.mu * surf.lam))
-        self.scale = s = surf.sigma * c
-        self.lam = surf.lam * c
-        d0 = float(surf.separation(F_N0))  # raises MissingLoadScaleError without the scale
-        self.p0 = d0 / s
-        self.j0 = math.log(F_N0 / surf.load_scale)
-        self.A0 = float(surf.area_integral(d0))
-
-    @functools.lru_cache(maxsize=16)  # noqa: B019 - levels live as long as their model
-    def _at(self, p: float):
-        """(log J, d log J/dp, A, ∫Φ, Φ) at h = u·p: each GW integral once per level (a
-        residual and its Jacobian need them at p and q, several times over)."""
-        surf, h = self.surf, self.scale * p
-        J = float(surf.load_integral(h))
-        return (
-            float(surf.log_load_integral(h)),
-            self.scale * float(surf.load_integral_derivative(h)) / J,
-            float(surf.area_integral(h)),
-            float(surf.tail_probability(h)),
-            float(surf.pdf(h)),
-        )
-
-    def ell(self, p):
-        j, dj = self._at(p)[:2]
-        return j - self.j0, dj
-
-    def ratio(self, p, q):
-        jp, djp = self._at(p)[:2]
-        jq, djq = self._at(q)[:2]
-        e = math.exp(jq - jp)
-        return -math.expm1(jq - jp), e * djp, -e * djq
-
-    def slip(self, p, q):
-        return self.lam * (q - p), -self.lam, self.lam
-
-    def stick_area(self, p, q):
-        s = self.scale
-        _, _, den, tail, _ = self._at(p)
-        _, _, area0, tail0, pdf0 = self._at(q)
-        num = area0 + s * (q - p) * tail0
-        val = num / den
-        dnum_p = -s * tail0
-        dnum_q = -s * s * (q - p) * pdf0
-        return val, (dnum_p + val * s * tail) / den, dnum_q / den
-
-    def area_ratio(self, p):
-        _, _, area, tail, _ = self._at(p)
-        return area / self.A0, -self.scale * tail / self.A0
-
-    def slip_limit(self, p) -> float:
-        return math.inf
-
-
-class _SphereLevels:
-    """Hertz–Mindlin sphere: p = a/a0, q = c/a0 (a0 the Hertz radius under F_N0).
-
-    F_N ∝ a³, F_T = μ(F_N − F_N(c)) (Eq 19), g_T = μκ(p² − q²) with
-    κ = (2 − ν) E* a0² / (2 G R*) (Eq 2 with Hertz), A_r ∝ a², A_ST ∝ c².
-    """
-
-    names = ("a", "c")
-    p0 = 1.0  # a = a0 under F_N0
-
-    def __init__(self, sphere, F_N0: float, g_A: float) -> None:
-        a0 = float(sphere.contact_radius(F_N0))
-        self.scale = a0
-        self.kappa = (
-            (2.0 - sphere.nu) * sphere.E_star * a0**2 / (2.0 * sphere.G * 0.5 * sphere.radius)
-        )
-
-    def ell(self, p):
-        return 3.0 * math.log(p), 3.0 / p
-
-    def ratio(self, p, q):
-        k = q / p
-        return 1.0 - k**3, 3.0 * k**3 / p, -3.0 * k * k / p
-
-    def slip(self, p, q):
-        return self.kappa * (p * p - q * q), 2.0 * self.kappa * p, -2.0 * self.kappa * q
-
-    def stick_area(self, p, q):
-        k = q / p
-        return k * k, -2.0 * k * k / p, 2.0 * k / p
-
-    def area_ratio(self, p):
-        return p * p, 2.0 * p
-
-    def slip_limit(self, p) -> float:
-        return self.kappa * p * p
-
-
-def _levels_for(body, F_N0: float, g_A: float):
-    from .rough import RoughSurface
-    from .sphere import Sphere
-
-    if isinstance(body, RoughSurface):
-        if not body.load_dependent:
-            return _ExponentialLevels(body, F_N0, g_A)
-        return _RoughLevels(body, F_N0, g_A)
-    if isinstance(body, Sphere):
-        body._require("the contact-loss path (compliance law, Eq 2)")
-        return _SphereLevels(body, F_N0, g_A)
-    name = type(body).__name__
-    if name in ("Cylinder", "FlatPlane"):
-        raise NoComplianceLawError(
-            f"a {name} cannot follow the contact-loss path: the paper gives it no compliance "
-            f"law (no load-displacement relation g_T(F_T, F_N)), so there is no O-A-B-C path "
-            f"to trace; use a rough surface or a sphere"
-        )
-    raise ModelParameterError(
-        f"body must be a rough surface or a Sphere, got {type(body).__name__}"
-    )
 
 
 # ------------------------------------------------------------------------------------------
@@ -339,16 +178,20 @@ def _point(values: dict[str, float], scales, level_names) -> dict[str, float]:
 
 
 class ContactLoss:
-    """The contact-loss loading path of a body (rough surface or sphere).
+    """The contact-loss loading path of a body (rough surface, sphere, or any body that follows
+    :class:`cusp.models.protocol.PathBody`).
 
     Parameters
     ----------
     body:
-        an :class:`~cusp.models.ExponentialRoughSurface`,
+        a :class:`~cusp.models.protocol.PathBody`: an
+        :class:`~cusp.models.ExponentialRoughSurface`,
         :class:`~cusp.models.GaussianRoughSurface`,
         :class:`~cusp.models.GeneralRoughSurface` (these two need the load scale: E, radius,
-        density, nominal_area) or a :class:`~cusp.models.Sphere` with all four parameters.
-        Cylinders and flat planes raise :class:`~cusp.models.NoComplianceLawError`.
+        density, nominal_area), a :class:`~cusp.models.Sphere` with all four parameters, or
+        a body of your own. Cylinders and flat planes raise
+        :class:`~cusp.models.NoComplianceLawError` (no compliance law); an object that does
+        not follow the protocol raises :class:`~cusp.models.ModelParameterError`.
     normal_load:
         F_N0 [N], held on OA.
     max_slip:
@@ -362,7 +205,7 @@ class ContactLoss:
 
     def __init__(
         self,
-        body,
+        body: PathBody,
         normal_load: float,
         max_slip: float,
         reduced_normal_load: float,
@@ -377,15 +220,15 @@ class ContactLoss:
                 f"area_reading must be one of {AREA_READINGS}, got {area_reading!r}"
             )
         self.area_reading = area_reading
-        self.body = body
-        self.levels = _levels_for(body, self.F_N0, self.g_A)
-        self.mu0 = float(body.mu)
+        self.body: PathBody = require_path_body(body)
+        self.levels: ContactLevels = require_levels(body.contact_levels(self.F_N0, self.g_A), body)
+        self.mu0 = check_positive("mu", body.mu)
         if self.F_Np >= self.F_N0:
             raise ModelParameterError(
                 f"reduced_normal_load must be < normal_load = {self.F_N0!r} N (a reduction), "
                 f"got {self.F_Np!r} N"
             )
-        g_lim = self.mu0 * self.levels.slip_limit(1.0)
+        g_lim = self.mu0 * self.levels.slip_limit(self.levels.p0)
         if self.g_A >= g_lim:
             raise ModelParameterError(
                 f"max_slip must be < {g_lim!r} µm, the slip at which this body slides under "
@@ -412,8 +255,8 @@ class ContactLoss:
         """Residual (5) and its derivatives with respect to (g, t, n, A_SL, p, q, mu)."""
         g, t, n, a_sl, p, q = x
         L = self.levels
-        ell, dell = L.ell(p)
-        F, dF_p, dF_q = L.ratio(p, q)
+        ell, dell = L.log_normal_load(p)
+        F, dF_p, dF_q = L.tangential_ratio(p, q)
         s, ds_p, ds_q = L.slip(p, q)
         ast, dast_p, dast_q = L.stick_area(p, q)
         r, dr_p = L.area_ratio(p)
@@ -516,7 +359,6 @@ class ContactLoss:
         o = options or DEFAULT_OPTIONS
         L = self.levels
         p0 = L.p0
-        messages: list[str] = []
         # O -> A: slip raised at F_N0
         prob = self.problem("OA", start=0.0)
         oa = trace(
@@ -554,7 +396,7 @@ class ContactLoss:
         elif d_exists:
             bounds["g"] = (-math.inf, 1.0)
         if math.isfinite(L.slip_limit(B["p"])):
-            bounds["q"] = (0.0, math.inf)  # sphere: the stick zone vanishes at gross slip
+            bounds["q"] = (0.0, math.inf)  # e.g. a sphere: the stick zone vanishes at gross slip
         prob_bc = self.problem("BC", start=B["g"], constant=B["n"])
         bc = trace(
             prob_bc,
@@ -568,18 +410,7 @@ class ContactLoss:
         _require_end(bc, "BC", "F_T = F_A" if c_exists else "g_T = g_A")
         C = _polish(prob_bc, bc, "t", A["t"], o) if c_exists else None
         D = _polish(prob_bc, bc, "g", 1.0, o) if d_exists else None
-        if not c_exists:
-            messages.append(
-                f"F_A = {A['t'] * self.scales['t']:.6g} N >= mu F'_N = "
-                f"{self.mu0 * self.F_Np:.6g} N: under force control the block slides (gross "
-                f"sliding); there is no point C and no snap-through energy"
-            )
-        if not d_exists:
-            messages.append(
-                f"g_A = {self.g_A:.6g} µm exceeds the slip at which the body slides under F'_N:"
-                f" under displacement control the block slides (gross sliding); there is no "
-                f"point D and no snap-back energy"
-            )
+        messages = self._gross_sliding_messages(A["t"], c_exists, d_exists)
         legs = {"OA": oa, "AB": ab, "BC": bc}
         energy, error = self._energies(legs, prob_ab, prob_bc, A, B, C, D, o)
         raw = {"O": oa.point(0), "A": A, "B": B, "C": C, "D": D}
@@ -598,6 +429,23 @@ class ContactLoss:
             point_rows=_point_rows(legs, c_exists, d_exists),
             stats={name: _leg_stats(br) for name, br in legs.items()},
         )
+
+    def _gross_sliding_messages(self, t_A: float, c_exists: bool, d_exists: bool) -> list[str]:
+        """Why C or D does not exist (t_A = F_A/(μ0 F_N0))."""
+        messages: list[str] = []
+        if not c_exists:
+            messages.append(
+                f"F_A = {t_A * self.scales['t']:.6g} N >= mu F'_N = "
+                f"{self.mu0 * self.F_Np:.6g} N: under force control the block slides (gross "
+                f"sliding); there is no point C and no snap-through energy"
+            )
+        if not d_exists:
+            messages.append(
+                f"g_A = {self.g_A:.6g} µm exceeds the slip at which the body slides under F'_N:"
+                f" under displacement control the block slides (gross sliding); there is no "
+                f"point D and no snap-back energy"
+            )
+        return messages
 
     def _energies(self, legs, prob_ab, prob_bc, A, B, C, D, o):
         """Areas ABD and ABC [N·µm] by Gauss–Legendre in g on the corrected branches."""
@@ -654,11 +502,11 @@ class ContactLoss:
             for sp in br.special("fold"):
                 phys = _point(sp.values, self.scales, self.levels.names)
                 wrt = sp.with_respect_to
-                kind = kinds.get(wrt, ("turning point", names.get(wrt, wrt)))
+                label = kinds.get(wrt, ("turning point", names.get(wrt, wrt)))
                 out.append(
                     {
-                        "kind": kind[0],
-                        "control": kind[1],
+                        "kind": label[0],
+                        "control": label[1],
                         "point": None,
                         "corner": False,
                         "leg": leg,

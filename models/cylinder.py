@@ -18,10 +18,12 @@ that would need one raise :class:`cusp.models.errors.NoComplianceLawError`.
 from __future__ import annotations
 
 import math
+from typing import NoReturn
 
 import numpy as np
 
 from .errors import NoComplianceLawError, check_ratio
+from .protocol import no_compliance_law
 
 __all__ = ["Cylinder", "u_minus_sin_u"]
 
@@ -86,6 +88,11 @@ class Cylinder:
         raise NoComplianceLawError(_MESSAGE)
 
     compliance = tangential_slip
+
+    def contact_levels(self, normal_load: float, max_slip: float) -> NoReturn:
+        """Not available: raises NoComplianceLawError (no compliance law, so no contact-loss
+        path; see the module docstring)."""
+        raise no_compliance_law(type(self).__name__)
 
     def __repr__(self) -> str:
         return f"Cylinder(nu={self.nu!r}, mu={self.mu!r})"

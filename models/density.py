@@ -21,7 +21,7 @@ import numpy as np
 from .errors import ModelParameterError, check_positive
 from .rough import RoughSurface
 
-__all__ = ["HeightDensity", "GeneralRoughSurface"]
+__all__ = ["HeightDensity", "GeneralRoughSurface", "weibull_surface"]
 
 
 class HeightDensity:
@@ -173,3 +173,37 @@ class GeneralRoughSurface(RoughSurface):
 
     def _center(self) -> float:
         return self._mean
+
+
+def weibull_surface(
+    sigma: float,
+    nu: float,
+    mu: float,
+    shape: float,
+    E: float | None = None,
+    radius: float | None = None,
+    density: float | None = None,
+    nominal_area: float | None = None,
+) -> GeneralRoughSurface:
+    """A rough surface over Weibull summit heights of shape k = ``shape`` whose standard
+    deviation is ``sigma`` [µm] (the scene model ``rough-weibull``).
+
+    The Weibull scale is σ*/√(Γ(1 + 2/k) − Γ(1 + 1/k)²) [µm], so that the heights have
+    standard deviation σ*; ν, μ and the load scale (E [N/µm²], ρ* [µm], η [1/µm²],
+    A_n [µm²]) as for :class:`GeneralRoughSurface`.
+    """
+    k = check_positive("shape", shape)
+    sigma = check_positive("sigma", sigma, "µm")
+    # Weibull scale such that the heights have standard deviation sigma
+    spread = math.sqrt(math.gamma(1 + 2 / k) - math.gamma(1 + 1 / k) ** 2)
+    heights = HeightDensity.weibull(k, sigma / spread)
+    return GeneralRoughSurface(
+        heights,
+        nu,
+        mu,
+        sigma=sigma,
+        E=E,
+        radius=radius,
+        density=density,
+        nominal_area=nominal_area,
+    )

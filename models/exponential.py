@@ -24,7 +24,7 @@ from scipy import special as sc
 from .errors import ModelParameterError, check_finite_array, check_ratio
 from .rough import RoughSurface
 
-__all__ = ["ExponentialRoughSurface"]
+__all__ = ["ExponentialRoughSurface", "ExponentialLevels"]
 
 _GAMMA_5_2 = 0.75 * math.sqrt(math.pi)
 _LOG_GAMMA_5_2 = math.log(_GAMMA_5_2)
@@ -41,6 +41,11 @@ class ExponentialRoughSurface(RoughSurface):
     """
 
     load_dependent = False
+
+    def contact_levels(self, normal_load: float, max_slip: float) -> ExponentialLevels:
+        """The closed-form levels of this surface for the contact-loss path at F_N0 =
+        ``normal_load`` [N] and g_A = ``max_slip`` [µm] (:class:`ExponentialLevels`)."""
+        return ExponentialLevels(self, normal_load, max_slip)
 
     # ---------------------------------------------------------------- integrals (closed form)
     def pdf(self, z):
@@ -123,6 +128,66 @@ class ExponentialRoughSurface(RoughSurface):
             x = -np.log1p(-F)
             out = np.where(F <= 0.5, 1.0 - sc.gammainc(2.0, x), (1.0 - F) * (1.0 + x))
         return np.where(F == 1.0, 0.0, out)
+
+
+class ExponentialLevels:
+    """Contact levels of the exponential surface (:class:`cusp.models.protocol.ContactLevels`):
+    p = d/u, q = d0/u, every relation in closed form.
+
+    The unit u = σ*·c [µm], c = max(1, x_A) with x_A = g_A/(μλ) the stick-threshold gap at A
+    over σ*, keeps q − p of order one at A however large x_A is (small μ or σ*). With
+    x = c(q − p) = g_N0/σ* and J ∝ e^{−d/σ*}:
+
+    * log(F_N/F_N0) = −c(p − p0)             (Eq 11)
+    * F̂_T = 1 − e^{−x}                       (Eq 9)
+    * g_T = μλ(d0 − d)/σ* = μ (λc)(q − p)    (Eqs 4–5)
+    * Â_ST = e^{−x}(1 + x)                   (Eq 15)
+    * A_r/A_r(F_N0) = e^{−c(p − p0)}         (Eq 13, A_r ∝ F_N)
+
+    and the surface never slides as a whole at finite slip (``slip_limit`` = inf).
+    """
+
+    names = ("d", "d0")
+
+    def __init__(self, surf: ExponentialRoughSurface, F_N0: float, g_A: float) -> None:
+        self.c = max(1.0, g_A / (surf.mu * surf.lam))
+        #: u [µm]
+        self.scale = surf.sigma * self.c
+        #: λc [µm]: g_T = μ λc (q − p)
+        self.lam = surf.lam * self.c
+        # the response is invariant under shifts of the mean plane: without a load scale the
+        # datum is put at d = 0 under F_N0
+        self.p0 = float(surf.separation(F_N0)) / self.scale if surf.has_load_scale else 0.0
+
+    def log_normal_load(self, p: float) -> tuple[float, float]:
+        """log(F_N/F_N0) = −c(p − p0) and its derivative (Eq 11)."""
+        return -self.c * (p - self.p0), -self.c
+
+    def tangential_ratio(self, p: float, q: float) -> tuple[float, float, float]:
+        """F̂_T = 1 − e^{−c(q − p)} and its derivatives (Eq 9)."""
+        c = self.c
+        e = math.exp(-c * (q - p))
+        return -math.expm1(-c * (q - p)), -c * e, c * e
+
+    def slip(self, p: float, q: float) -> tuple[float, float, float]:
+        """g_T/μ = λc (q − p) [µm] and its derivatives (Eqs 4–5)."""
+        return self.lam * (q - p), -self.lam, self.lam
+
+    def stick_area(self, p: float, q: float) -> tuple[float, float, float]:
+        """Â_ST = e^{−x}(1 + x), x = c(q − p), and its derivatives (Eq 15)."""
+        c = self.c
+        x = c * (q - p)
+        e = math.exp(-x)
+        return e * (1.0 + x), c * x * e, -c * x * e
+
+    def area_ratio(self, p: float) -> tuple[float, float]:
+        """A_r/A_r(F_N0) = e^{−c(p − p0)} and its derivative (Eq 13)."""
+        r = math.exp(-self.c * (p - self.p0))
+        return r, -self.c * r
+
+    def slip_limit(self, p: float) -> float:
+        """inf: a rough surface does not slide as a whole at finite slip."""
+        return math.inf
 
 
 def _check_unused_load(normal_load, separation) -> None:

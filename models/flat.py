@@ -11,9 +11,12 @@ There is no compliance law either (the slip is 0 until gross sliding, then indet
 
 from __future__ import annotations
 
+from typing import NoReturn
+
 import numpy as np
 
-from .errors import NoComplianceLawError, check_ratio
+from .errors import NoComplianceLawError, check_positive, check_ratio
+from .protocol import no_compliance_law
 
 __all__ = ["FlatPlane"]
 
@@ -24,7 +27,11 @@ _MESSAGE = (
 
 
 class FlatPlane:
-    """Two ideally flat surfaces in contact. ``FlatPlane()``."""
+    """Two ideally flat surfaces in contact. ``FlatPlane(mu=None)``: the friction coefficient
+    μ > 0 is optional (the stick ratios do not depend on it)."""
+
+    def __init__(self, mu=None) -> None:
+        self.mu = None if mu is None else check_positive("mu", mu)
 
     @staticmethod
     def stick_force_ratio(FT_hat):
@@ -44,5 +51,10 @@ class FlatPlane:
     def tangential_force(self, g_T, F_N):
         raise NoComplianceLawError(_MESSAGE)
 
+    def contact_levels(self, normal_load: float, max_slip: float) -> NoReturn:
+        """Not available: raises NoComplianceLawError (no compliance law, so no contact-loss
+        path; see the module docstring)."""
+        raise no_compliance_law(type(self).__name__)
+
     def __repr__(self) -> str:
-        return "FlatPlane()"
+        return "FlatPlane()" if self.mu is None else f"FlatPlane(mu={self.mu!r})"

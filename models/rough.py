@@ -28,7 +28,9 @@ adaptive quadrature (imported lazily, only when a default is actually used).
 
 from __future__ import annotations
 
+import functools
 import math
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -42,7 +44,10 @@ from .errors import (
     check_ratio,
 )
 
-__all__ = ["RoughSurface", "monotone_root"]
+if TYPE_CHECKING:
+    from .protocol import ContactLevels
+
+__all__ = ["RoughSurface", "RoughLevels", "monotone_root"]
 
 _LOAD_SCALE_KEYS = ("E", "radius", "density", "nominal_area")
 
@@ -188,6 +193,11 @@ class RoughSurface:
 
     # ---------------------------------------------------------------- density integrals
     # Defaults by quadrature over self.pdf; closed-form subclasses override them.
+    def pdf(self, z):
+        """Φ(z) [1/µm], the summit-height density at heights z [µm] (each density defines
+        it)."""
+        raise NotImplementedError(f"{type(self).__name__} defines no height density pdf(z)")
+
     def load_integral(self, h):
         """J(h) = ∫_h^∞ (z − h)^{3/2} Φ(z) dz  [µm^{3/2}]."""
         from ._quadrature import moment
@@ -409,7 +419,97 @@ class RoughSurface:
         # A_ST ≤ A_r exactly; guard against a last-ulp excess at tiny slips
         return np.minimum(out, 1.0)
 
+    # ---------------------------------------------------------------- contact-loss path
+    def contact_levels(self, normal_load: float, max_slip: float) -> ContactLevels:
+        """The levels of this surface for the contact-loss path at F_N0 = ``normal_load`` [N]
+        and g_A = ``max_slip`` [µm] (:class:`RoughLevels`; needs the load scale, else
+        MissingLoadScaleError)."""
+        return RoughLevels(self, normal_load, max_slip)
+
     def __repr__(self) -> str:
         keys = ["sigma", "nu", "mu", *_LOAD_SCALE_KEYS]
         args = ", ".join(f"{k}={getattr(self, k)!r}" for k in keys if getattr(self, k) is not None)
         return f"{type(self).__name__}({args})"
+
+
+class RoughLevels:
+    """Contact levels of a rough surface over any height density
+    (:class:`cusp.models.protocol.ContactLevels`), from the surface's GW integrals.
+
+    p = d/u, q = d0/u with u = σ*·c [µm], c = max(1, g_A/(μλ)) (as for the exponential
+    surface: q − p of order one at A). With J, A, Q = ∫_h^∞ Φ the load, area and tail
+    integrals of the surface (module docstring) and d_A the separation under F_N0:
+
+    * log(F_N/F_N0) = log J(d) − log J(d_A)                  (Eq 11)
+    * F̂_T = 1 − J(d0)/J(d)                                   (Eq 9)
+    * g_T = μλ(d0 − d)/σ* = μ (λc)(q − p)                    (Eqs 4–5)
+    * Â_ST = [A(d0) + (d0 − d) Q(d0)]/A(d)                    (Eq 14 over Eq 13)
+    * A_r/A_r(F_N0) = A(d)/A(d_A)                            (Eq 13)
+
+    and the surface never slides as a whole at finite slip (``slip_limit`` = inf). Needs the
+    load scale (d_A is absolute).
+    """
+
+    names = ("d", "d0")
+
+    def __init__(self, surf: RoughSurface, F_N0: float, g_A: float) -> None:
+        self.surf = surf
+        c = max(1.0, g_A / (surf.mu * surf.lam))
+        #: u [µm]
+        self.scale = s = surf.sigma * c
+        #: λc [µm]: g_T = μ λc (q − p)
+        self.lam = surf.lam * c
+        d0 = float(surf.separation(F_N0))  # raises MissingLoadScaleError without the scale
+        self.p0 = d0 / s
+        self.j0 = math.log(F_N0 / surf.load_scale)
+        self.A0 = float(surf.area_integral(d0))
+
+    @functools.lru_cache(maxsize=16)  # noqa: B019 - levels live as long as their model
+    def _at(self, p: float) -> tuple[float, float, float, float, float]:
+        """(log J, d log J/dp, A, ∫Φ, Φ) at h = u·p: each GW integral once per level (a
+        residual and its Jacobian need them at p and q, several times over)."""
+        surf, h = self.surf, self.scale * p
+        J = float(surf.load_integral(h))
+        return (
+            float(surf.log_load_integral(h)),
+            self.scale * float(surf.load_integral_derivative(h)) / J,
+            float(surf.area_integral(h)),
+            float(surf.tail_probability(h)),
+            float(surf.pdf(h)),
+        )
+
+    def log_normal_load(self, p: float) -> tuple[float, float]:
+        """log(F_N/F_N0) = log J(d) − log J(d_A) and its derivative (Eq 11)."""
+        j, dj = self._at(p)[:2]
+        return j - self.j0, dj
+
+    def tangential_ratio(self, p: float, q: float) -> tuple[float, float, float]:
+        """F̂_T = 1 − J(d0)/J(d) and its derivatives (Eq 9)."""
+        jp, djp = self._at(p)[:2]
+        jq, djq = self._at(q)[:2]
+        e = math.exp(jq - jp)
+        return -math.expm1(jq - jp), e * djp, -e * djq
+
+    def slip(self, p: float, q: float) -> tuple[float, float, float]:
+        """g_T/μ = λc (q − p) [µm] and its derivatives (Eqs 4–5)."""
+        return self.lam * (q - p), -self.lam, self.lam
+
+    def stick_area(self, p: float, q: float) -> tuple[float, float, float]:
+        """Â_ST = [A(d0) + (d0 − d) Q(d0)]/A(d) and its derivatives (Eqs 13–14)."""
+        s = self.scale
+        _, _, den, tail, _ = self._at(p)
+        _, _, area0, tail0, pdf0 = self._at(q)
+        num = area0 + s * (q - p) * tail0
+        val = num / den
+        dnum_p = -s * tail0
+        dnum_q = -s * s * (q - p) * pdf0
+        return val, (dnum_p + val * s * tail) / den, dnum_q / den
+
+    def area_ratio(self, p: float) -> tuple[float, float]:
+        """A_r/A_r(F_N0) = A(d)/A(d_A) and its derivative (Eq 13)."""
+        _, _, area, tail, _ = self._at(p)
+        return area / self.A0, -self.scale * tail / self.A0
+
+    def slip_limit(self, p: float) -> float:
+        """inf: a rough surface does not slide as a whole at finite slip."""
+        return math.inf

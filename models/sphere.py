@@ -18,6 +18,9 @@ Numerics: Eq 21 cancels as F̂_T → 1 (two numbers near 1); for F̂_T > 1/2 it 
 
 from __future__ import annotations
 
+import math
+from typing import cast
+
 import numpy as np
 
 from .errors import (
@@ -29,7 +32,7 @@ from .errors import (
     check_ratio,
 )
 
-__all__ = ["Sphere"]
+__all__ = ["Sphere", "SphereLevels"]
 
 
 class Sphere:
@@ -139,8 +142,67 @@ class Sphere:
         with np.errstate(divide="ignore"):
             return self.mu * F_N * -np.expm1(1.5 * np.log1p(-r))
 
+    # ------------------------------------------------------------------ contact-loss path
+    def contact_levels(self, normal_load: float, max_slip: float) -> SphereLevels:
+        """The levels of this sphere for the contact-loss path at F_N0 = ``normal_load`` [N]
+        and g_A = ``max_slip`` [µm] (:class:`SphereLevels`; needs all four parameters, else
+        ModelParameterError)."""
+        return SphereLevels(self, normal_load, max_slip)
+
     def __repr__(self) -> str:
         return f"Sphere(radius={self.radius!r}, E={self.E!r}, nu={self.nu!r}, mu={self.mu!r})"
+
+
+class SphereLevels:
+    """Contact levels of the Hertz–Mindlin sphere (:class:`cusp.models.protocol.ContactLevels`):
+    p = a/a0, q = c/a0 (a0 [µm] the Hertz radius under F_N0).
+
+    * log(F_N/F_N0) = 3 log p                  (Hertz, F_N ∝ a³)
+    * F̂_T = 1 − (q/p)³                         (Eq 19)
+    * g_T = μκ(p² − q²)                        (Eq 2 with Hertz)
+    * Â_ST = (q/p)²,  A_r/A_r(F_N0) = p²       (A_ST ∝ c², A_r ∝ a²)
+
+    with κ = (2 − ν) E* a0² / (2 G R*) [µm]; the spheres slide as a whole when the stick
+    zone vanishes, at g_T = μκp² (``slip_limit``).
+    """
+
+    names = ("a", "c")
+    p0 = 1.0  # a = a0 under F_N0
+
+    def __init__(self, sphere: Sphere, F_N0: float, g_A: float) -> None:
+        sphere._require("the contact-loss path (compliance law, Eq 2)")
+        nu, radius = cast(float, sphere.nu), cast(float, sphere.radius)  # checked just above
+        a0 = float(sphere.contact_radius(F_N0))
+        #: a0 [µm]
+        self.scale = a0
+        #: κ [µm]
+        self.kappa = (2.0 - nu) * sphere.E_star * a0**2 / (2.0 * sphere.G * 0.5 * radius)
+
+    def log_normal_load(self, p: float) -> tuple[float, float]:
+        """log(F_N/F_N0) = 3 log p and its derivative (Hertz)."""
+        return 3.0 * math.log(p), 3.0 / p
+
+    def tangential_ratio(self, p: float, q: float) -> tuple[float, float, float]:
+        """F̂_T = 1 − (q/p)³ and its derivatives (Eq 19)."""
+        k = q / p
+        return 1.0 - k**3, 3.0 * k**3 / p, -3.0 * k * k / p
+
+    def slip(self, p: float, q: float) -> tuple[float, float, float]:
+        """g_T/μ = κ(p² − q²) [µm] and its derivatives (Eq 2)."""
+        return self.kappa * (p * p - q * q), 2.0 * self.kappa * p, -2.0 * self.kappa * q
+
+    def stick_area(self, p: float, q: float) -> tuple[float, float, float]:
+        """Â_ST = (q/p)² and its derivatives (Eq 22)."""
+        k = q / p
+        return k * k, -2.0 * k * k / p, 2.0 * k / p
+
+    def area_ratio(self, p: float) -> tuple[float, float]:
+        """A_r/A_r(F_N0) = p² and its derivative."""
+        return p * p, 2.0 * p
+
+    def slip_limit(self, p: float) -> float:
+        """κp² [µm]: the stick zone vanishes (gross sliding) at g_T = μκp²."""
+        return self.kappa * p * p
 
 
 def _positive_load(F_N):

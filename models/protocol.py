@@ -1,0 +1,203 @@
+"""What a body must provide to follow the contact-loss path (:mod:`cusp.models.contact_loss`).
+
+This module is the reference for adding a body. A body is any object with
+
+* ``mu`` — its friction coefficient μ (> 0, dimensionless);
+* ``tangential_force(g_T, F_N)`` — F_T [N] on its loading curve at slip g_T [µm] under the
+  normal load F_N [N]. The path uses it only to check the depth of the reduction before
+  tracing (F'_N ≥ F_N0 − F_A/μ); the traced path never calls it;
+* ``contact_levels(normal_load, max_slip)`` — its :class:`ContactLevels` for the path with
+  F_N0 = ``normal_load`` [N] and g_A = ``max_slip`` [µm]. A body without a compliance law
+  raises :class:`~cusp.models.errors.NoComplianceLawError` here, saying what it lacks (the
+  cylinder and the flat planes do, see :func:`no_compliance_law`).
+
+That is :class:`PathBody`. The levels are two numbers that locate the state of the contact:
+the contact level p and the stick level q (a rough surface: the mean-plane separation d and
+the stick-threshold level d0 = d + g_N0, Eq 5; a sphere: the contact radius a and the stick
+radius c). In them the equilibrium of the contact is four relations, the same on every leg
+of the path (μ the friction coefficient, F_N0 the normal load on OA):
+
+* normal equilibrium      log(F_N/F_N0) = ``log_normal_load(p)``    (Eq 11; Hertz for a sphere)
+* tangential equilibrium  F_T/(μF_N) = ``tangential_ratio(p, q)``   (Eq 9; Eq 19)
+* compliance              g_T = μ ``slip(p, q)``                     (Eqs 4–5; Eq 2)
+* slipped area            Â_SL = (1 − ``stick_area(p, q)``) + (1 − ``area_ratio(p)``)  (Eq 32)
+
+(the last line is the printed reading of Eq 32, ΔA_r/A_r = 1 − A'_r/A_r; the consistent
+reading is Â_SL = 1 − ``area_ratio(p)`` · ``stick_area(p, q)``). The path adds one
+constraint per leg: F_N = F_N0 on OA, q frozen at its value at A on AB (the
+Mindlin–Deresiewicz rule: the stick zone of every asperity is kept while the tractions are
+removed from the lost annulus), F_N = F'_N on BC.
+
+Every relation is a method returning its value and its partial derivatives with respect to
+the levels, ``(value, d/dp)`` or ``(value, d/dp, d/dq)``, at float arguments; the
+derivatives enter the analytic Jacobian of the continuation problem, so they must be exact
+(the tests of a body should compare them with finite differences). The levels are
+nondimensional: ``scale`` [µm] converts them to lengths (the path reports p·scale and
+q·scale in µm under the column names ``names``), and a good scale keeps q − p of order one
+at A. Along the path p and q stay within the domain where the relations hold (q ≥ 0 for a
+sphere: ``slip_limit`` tells the path where the stick zone vanishes).
+
+To add a body: write its module (the body class with ``mu``, ``tangential_force`` and
+``contact_levels``, and its levels class), then register it with one line,
+:func:`cusp.models.registry.register_body`, so that scenes can name it.
+
+Units: lengths µm, forces N, energies N·µm.
+"""
+
+from __future__ import annotations
+
+from typing import Any, Protocol, runtime_checkable
+
+from .errors import ModelParameterError, NoComplianceLawError
+
+__all__ = [
+    "ContactLevels",
+    "PathBody",
+    "require_path_body",
+    "require_levels",
+    "no_compliance_law",
+    "RESERVED_COLUMNS",
+]
+
+#: column names of the path that the level names must not shadow
+RESERVED_COLUMNS = ("g_T", "F_T", "F_N", "A_SL")
+
+
+@runtime_checkable
+class ContactLevels(Protocol):
+    """The equilibrium of a body in its contact level p and stick level q (module docstring).
+
+    Attributes
+    ----------
+    names:
+        the physical names of (p, q), e.g. ``("d", "d0")`` or ``("a", "c")``: the column
+        names of the levels in the path's points, ``path()`` and ``branch.csv``.
+    scale:
+        µm per unit of level: p·scale and q·scale are the levels as lengths [µm].
+    p0:
+        the contact level under the normal load F_N0 of the path, so that
+        ``log_normal_load(p0) == 0``; the path starts at p = q = p0 (no slip, O).
+    """
+
+    names: tuple[str, str]
+    scale: float
+    p0: float
+
+    def log_normal_load(self, p: float) -> tuple[float, float]:
+        """ℓ(p) = log(F_N/F_N0) and dℓ/dp: normal equilibrium (Eq 11 for a rough surface,
+        log of Hertz's F_N ∝ a³ for a sphere). Dimensionless."""
+        ...
+
+    def tangential_ratio(self, p: float, q: float) -> tuple[float, float, float]:
+        """F̂_T = F_T/(μF_N) and its derivatives in p and q: tangential equilibrium
+        (Eq 9: 1 − J(d0)/J(d) for a rough surface; Eq 19: 1 − (c/a)³ for a sphere).
+        Dimensionless, in [0, 1]; 0 at q = p (no slip)."""
+        ...
+
+    def slip(self, p: float, q: float) -> tuple[float, float, float]:
+        """s(p, q) [µm] with g_T = μ s, and its derivatives: the compliance law (Eqs 4–5:
+        (λ/σ*)(d0 − d) for a rough surface; Eq 2 with Hertz: κ(a² − c²) for a sphere)."""
+        ...
+
+    def stick_area(self, p: float, q: float) -> tuple[float, float, float]:
+        """Â_ST = A_ST/A_r, the stick share of the current real contact area, and its
+        derivatives (Eq 14 over Eq 13 for a rough surface; (c/a)² for a sphere).
+        Dimensionless, in [0, 1]; 1 at q = p."""
+        ...
+
+    def area_ratio(self, p: float) -> tuple[float, float]:
+        """A_r(p)/A_r(p0), the real contact area over the one under F_N0, and d/dp; enters
+        the slipped area of Eq 32 as ΔA_r/A_r = 1 − area_ratio. Dimensionless."""
+        ...
+
+    def slip_limit(self, p: float) -> float:
+        """s(p, 0) [µm], the slip at which the stick zone vanishes at contact level p: μ
+        times it is the slip g_T at which the body slides as a whole under that load (κ(a/a0)²
+        for a sphere, Eq 2); inf if it never does at finite slip (a rough surface). The
+        path refuses g_A ≥ μ·slip_limit(p0); when it is finite the reloading leg is bounded
+        at q = 0 (the stick zone gone), so q = 0 must be the stick level of gross sliding."""
+        ...
+
+
+@runtime_checkable
+class PathBody(Protocol):
+    """A body that can follow the contact-loss path (module docstring).
+
+    ``mu``: friction coefficient μ > 0. ``tangential_force(g_T, F_N)``: F_T [N] on the
+    loading curve at slip g_T [µm] and normal load F_N [N]. ``contact_levels(normal_load,
+    max_slip)``: the body's :class:`ContactLevels` for F_N0 [N] and g_A [µm] (raises
+    :class:`~cusp.models.errors.NoComplianceLawError` for a body without a compliance law,
+    :class:`~cusp.models.errors.ModelParameterError` for one missing a parameter the path
+    needs).
+    """
+
+    mu: Any
+
+    def tangential_force(self, g_T: Any, F_N: Any) -> Any: ...
+
+    def contact_levels(self, normal_load: float, max_slip: float) -> ContactLevels: ...
+
+
+_BODY_MEMBERS = ("mu", "tangential_force", "contact_levels")
+_LEVEL_MEMBERS = (
+    "names",
+    "scale",
+    "p0",
+    "log_normal_load",
+    "tangential_ratio",
+    "slip",
+    "stick_area",
+    "area_ratio",
+    "slip_limit",
+)
+
+
+def require_path_body(body: object) -> PathBody:
+    """``body`` if it satisfies :class:`PathBody`; else a ModelParameterError naming its type,
+    what is missing and what the protocol requires."""
+    if isinstance(body, PathBody):
+        return body
+    missing = [m for m in _BODY_MEMBERS if not hasattr(body, m)]
+    raise ModelParameterError(
+        f"body must follow the contact-loss protocol cusp.models.protocol.PathBody (attribute "
+        f"mu, methods tangential_force(g_T, F_N) and contact_levels(normal_load, max_slip)), "
+        f"got {type(body).__name__}, which lacks {', '.join(missing)}; a rough surface or a "
+        f"Sphere follows it"
+    )
+
+
+def require_levels(levels: object, body: object) -> ContactLevels:
+    """The levels ``body.contact_levels`` returned, if they satisfy :class:`ContactLevels`
+    with two distinct level names that do not shadow a path column; else a
+    ModelParameterError naming the body's type and what is wrong."""
+    where = f"{type(body).__name__}.contact_levels() returned {type(levels).__name__}"
+    if not isinstance(levels, ContactLevels):
+        missing = [m for m in _LEVEL_MEMBERS if not hasattr(levels, m)]
+        raise ModelParameterError(
+            f"{where}, which lacks {', '.join(missing)}; it must follow "
+            f"cusp.models.protocol.ContactLevels ({', '.join(_LEVEL_MEMBERS)})"
+        )
+    names = levels.names
+    ok = (
+        isinstance(names, tuple)
+        and len(names) == 2
+        and all(isinstance(n, str) and n for n in names)
+        and names[0] != names[1]
+        and not set(names) & set(RESERVED_COLUMNS)
+    )
+    if not ok:
+        raise ModelParameterError(
+            f"{where} with names = {names!r}; names must be two distinct non-empty strings "
+            f"other than {', '.join(RESERVED_COLUMNS)}"
+        )
+    return levels
+
+
+def no_compliance_law(name: str) -> NoComplianceLawError:
+    """The error a body without a compliance law raises from ``contact_levels`` (``name``:
+    the body's class name)."""
+    return NoComplianceLawError(
+        f"a {name} cannot follow the contact-loss path: the paper gives it no compliance "
+        f"law (no load-displacement relation g_T(F_T, F_N)), so there is no O-A-B-C path "
+        f"to trace; use a rough surface or a sphere"
+    )
