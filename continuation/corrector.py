@@ -91,11 +91,10 @@ def newton(
     residual = system.residual
     row_dot = row.dot
     sn_prev = math.inf
-    lu = f = piv = None
-    reason = "max_iterations"
-    converged = False
-    chord = False
-    k = 0
+    lu: Any = None
+    f: Any = None
+    piv: Any = None
+    reason, converged, chord, k = "max_iterations", False, False, 0
     rhs[m] = row_dot(z) - c
     for k in range(1, max_iter + 1):
         rhs[:m] = g
@@ -136,14 +135,8 @@ def newton(
         rn = rn_new
         chord = not chord and sn <= sq_step_tol
         sn_prev = sn
-    return NewtonResult(
-        z,
-        converged,
-        k,
-        rn,
-        lu if f is None else DenseLU.from_factors(f, piv),
-        "" if converged else reason,
-    )
+    lu = lu if f is None else DenseLU.from_factors(f, piv)
+    return NewtonResult(z, converged, k, rn, lu, "" if converged else reason)
 
 
 def damped_newton(

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 import scipy.sparse as sp
@@ -111,10 +112,11 @@ def fd_jacobian(
     )
 
 
-def fd_derivative(f: Callable[[float], np.ndarray], x: float, *, method: str = "central"):
+def fd_derivative(f: Callable[[Any], Any], x: float, *, method: str = "central") -> np.ndarray:
     """Derivative of a vector function of one real variable."""
     if method == "complex":
-        return np.imag(np.asarray(f(x + 1j * _H_COMPLEX), dtype=complex)) / _H_COMPLEX
+        value = np.asarray(f(x + 1j * _H_COMPLEX), dtype=complex)
+        return np.imag(value) / _H_COMPLEX
     if method == "forward":
         h = (x + _H_FORWARD * max(1.0, abs(x))) - x
         return (np.asarray(f(x + h), dtype=float) - np.asarray(f(x), dtype=float)) / h

@@ -82,8 +82,8 @@ class DenseLU:
             for i, (x, q) in enumerate(zip(self.lu.diagonal().tolist(), self.piv.tolist())):
                 odd += (x < 0) + (i != q)
         else:
-            odd = np.count_nonzero(np.diagonal(self.lu) < 0)
-            odd += np.count_nonzero(self.piv != np.arange(self.n))
+            odd = int(np.count_nonzero(np.diagonal(self.lu) < 0))
+            odd += int(np.count_nonzero(self.piv != np.arange(self.n)))
         return -1.0 if odd % 2 else 1.0
 
     def log_abs_det(self) -> float:

@@ -15,7 +15,7 @@ import math
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from types import MappingProxyType
-from typing import NamedTuple
+from typing import TYPE_CHECKING, Any, NamedTuple
 
 import numpy as np
 
@@ -32,6 +32,9 @@ from .linalg import (
     unit_last,
 )
 
+if TYPE_CHECKING:
+    from .options import ContinuationOptions
+
 _EPS = float(np.finfo(float).eps)
 _SQRT_EPS = _EPS**0.5
 _CBRT_EPS = _EPS ** (1.0 / 3.0)
@@ -44,13 +47,14 @@ _FORWARD_D2_ERROR = 1e-7
 class Bracket:
     """An accepted step: end points, unit tangents and the pseudo-arclength ``h`` of ``z_b``."""
 
-    system: object
+    system: Any
+    """The curve system (a :class:`~.system.CurveSystem`)."""
     z_a: np.ndarray
     t_a: np.ndarray
     z_b: np.ndarray
     t_b: np.ndarray
     weights: np.ndarray
-    options: object
+    options: ContinuationOptions
     row: np.ndarray = field(init=False)
     h: float = field(init=False)
     d_a: np.ndarray = field(init=False)
@@ -281,9 +285,9 @@ def locate_fold(
     (or from ``start`` with its ``tangent``); None if it fails or leaves the bracket."""
     o = br.options
     system = br.system
-    if start is None:
+    if start is None or tangent is None:
         z, tangent = br.guess_and_derivative(br.turning_theta(k))
-    else:
+    if start is not None:
         z = start.copy()
     # the components other than k (a slice for the usual fold in the last one)
     keep = slice(None, -1) if k == z.size - 1 else np.arange(z.size) != k

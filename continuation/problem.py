@@ -21,8 +21,11 @@ class ContinuationProblem(Protocol):
     finite differences or complex step when the user does not.
     """
 
-    unknowns: tuple[str, ...]
-    params: Mapping[str, float]
+    @property
+    def unknowns(self) -> tuple[str, ...]: ...
+
+    @property
+    def params(self) -> Mapping[str, float]: ...
 
     def residual(self, u: np.ndarray, p: Mapping[str, float]) -> np.ndarray: ...
 

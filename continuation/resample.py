@@ -12,9 +12,8 @@ whatever the spacing of the branch.
 
 from __future__ import annotations
 
-from collections.abc import Sequence
-
 import numpy as np
+from numpy.typing import ArrayLike
 
 from .branch import Branch
 from .corrector import newton
@@ -30,7 +29,7 @@ def points_at(
     problem,
     branch: Branch,
     name: str,
-    values: Sequence[float] | float,
+    values: ArrayLike,
     *,
     options: ContinuationOptions | None = None,
 ) -> dict[str, np.ndarray]:

@@ -26,9 +26,11 @@ def from_sympy(
 
     ``unknowns`` are sympy symbols (or names); ``params`` maps symbols (or names) to values.
 
-    >>> import sympy as sp                                          # doctest: +SKIP
+    >>> import sympy as sp
     >>> x, a, b = sp.symbols("x a b")
     >>> prob = from_sympy([x**3 - a*x - b], [x], {a: 1.0, b: -1.0})
+    >>> prob.jacobian([2.0], {"a": 1.0, "b": 0.0})  # 3x² − a, differentiated by sympy
+    array([[11.]])
     """
     import sympy
 

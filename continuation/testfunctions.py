@@ -62,6 +62,7 @@ class CurveSystem(Protocol):
 
     def residual(self, z: np.ndarray) -> np.ndarray: ...
 
+
 #: a special-point record on a branch row: (kind, label, with_respect_to, status, interval,
 #: details), turned into a :class:`~.branch.SpecialPoint` when the branch is assembled
 Record = tuple[str, str, "str | None", str, "tuple[float, float] | None", dict]

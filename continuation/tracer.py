@@ -233,7 +233,7 @@ class Tracer:
             else t.value(system, z0, t0, sdet)
             for t in self.tests
         )
-        record = ("endpoint", start_label, None, "converged", None, {})
+        record: Record = ("endpoint", start_label, None, "converged", None, {})
         first = Point(z0, t0, 0.0, iters, 0, residual, o.ds, (record,), None)
         self._check_start_in_bounds(z0)
         return TracerState(first, system, o.ds, tests, 0)
@@ -445,6 +445,7 @@ class Tracer:
     ) -> Point:
         tan = loc.tangent
         if tan is None:
+            assert br is not None  # only the aimed end point is located without a bracket
             tan = tangent_at(system, loc.z, br.row, self.weights, br)
         rn = loc.residual_norm
         if rn is None:

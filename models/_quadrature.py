@@ -90,7 +90,7 @@ def _gauss_jacobi(m: int):
     return 0.5 * (1.0 + x), w * 2.0**-2.5  # ∫_0^1 v^{3/2} f(v) dv ≈ Σ w f(v)
 
 
-_GJ = {}
+_GJ: dict[int, tuple[np.ndarray, np.ndarray]] = {}
 
 
 def _pdf_values(pdf, z: np.ndarray) -> np.ndarray:

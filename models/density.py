@@ -89,32 +89,28 @@ class HeightDensity:
     @classmethod
     def histogram(cls, edges: Sequence[float], counts: Sequence[float]) -> HeightDensity:
         """Piecewise-constant Φ from a histogram of measured summit heights (edges in µm)."""
-        edges = np.asarray(edges, dtype=float)
-        counts = np.asarray(counts, dtype=float)
-        if edges.ndim != 1 or edges.size < 2 or not np.all(np.isfinite(edges)):
-            raise ModelParameterError(f"edges must be >= 2 finite values [µm], got {edges!r}")
-        if np.any(np.diff(edges) <= 0):
-            raise ModelParameterError(f"edges must be strictly increasing, got {edges!r}")
-        if counts.shape != (edges.size - 1,) or np.any(~np.isfinite(counts)) or np.any(counts < 0):
-            raise ModelParameterError(
-                f"counts must be {edges.size - 1} finite values >= 0, got {counts!r}"
-            )
-        if counts.sum() <= 0:
-            raise ModelParameterError(f"counts must not all be zero, got {counts!r}")
-        heights = counts / (counts.sum() * np.diff(edges))
+        e = np.asarray(edges, dtype=float)
+        n = np.asarray(counts, dtype=float)
+        if e.ndim != 1 or e.size < 2 or not np.all(np.isfinite(e)):
+            raise ModelParameterError(f"edges must be >= 2 finite values [µm], got {e!r}")
+        if np.any(np.diff(e) <= 0):
+            raise ModelParameterError(f"edges must be strictly increasing, got {e!r}")
+        if n.shape != (e.size - 1,) or np.any(~np.isfinite(n)) or np.any(n < 0):
+            raise ModelParameterError(f"counts must be {e.size - 1} finite values >= 0, got {n!r}")
+        if n.sum() <= 0:
+            raise ModelParameterError(f"counts must not all be zero, got {n!r}")
+        heights = n / (n.sum() * np.diff(e))
 
         def pdf(z):
             z = np.asarray(z, dtype=float)
-            i = np.clip(np.searchsorted(edges, z, side="right") - 1, 0, heights.size - 1)
-            return np.where((z >= edges[0]) & (z < edges[-1]), heights[i], 0.0)
+            i = np.clip(np.searchsorted(e, z, side="right") - 1, 0, heights.size - 1)
+            return np.where((z >= e[0]) & (z < e[-1]), heights[i], 0.0)
 
-        centers = 0.5 * (edges[1:] + edges[:-1])
-        w = counts / counts.sum()
+        centers = 0.5 * (e[1:] + e[:-1])
+        w = n / n.sum()
         mean = float(np.sum(w * centers))
-        std = math.sqrt(float(np.sum(w * ((centers - mean) ** 2 + np.diff(edges) ** 2 / 12))))
-        return cls(
-            pdf, (edges[0], edges[-1]), tuple(edges[1:-1]), scale=max(std, 1e-12), name="histogram"
-        )
+        std = math.sqrt(float(np.sum(w * ((centers - mean) ** 2 + np.diff(e) ** 2 / 12))))
+        return cls(pdf, (e[0], e[-1]), tuple(e[1:-1]), scale=max(std, 1e-12), name="histogram")
 
     def moments(self) -> tuple[float, float]:
         """(mean, standard deviation) [µm] by quadrature."""

@@ -30,7 +30,7 @@ from __future__ import annotations
 
 import functools
 import math
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, cast
 
 import numpy as np
 
@@ -173,23 +173,33 @@ class RoughSurface:
                 f"surface need none of them."
             )
 
+    def _load_scale_values(self, what: str) -> tuple[float, float, float, float]:
+        """``(E, radius, density, nominal_area)``, all given (else MissingLoadScaleError)."""
+        self._require_load_scale(what)
+        return (
+            cast(float, self.E),
+            cast(float, self.radius),
+            cast(float, self.density),
+            cast(float, self.nominal_area),
+        )
+
     @property
     def E_star(self) -> float:
         """E* = E / [2 (1 − ν²)]  [N/µm²] (two identical bodies)."""
-        self._require_load_scale("E_star")
-        return self.E / (2.0 * (1.0 - self.nu**2))
+        E = self._load_scale_values("E_star")[0]
+        return E / (2.0 * (1.0 - self.nu**2))
 
     @property
     def load_scale(self) -> float:
         """K = (4/3) E* √ρ* η A_n  [N/µm^{3/2}], so that F_N = K J(d)."""
-        self._require_load_scale("the load scale")
-        return 4.0 / 3.0 * self.E_star * math.sqrt(self.radius) * self.density * self.nominal_area
+        _, radius, density, nominal_area = self._load_scale_values("the load scale")
+        return 4.0 / 3.0 * self.E_star * math.sqrt(radius) * density * nominal_area
 
     @property
     def area_scale(self) -> float:
         """π ρ* η A_n  [µm], so that A_r = area_scale · A(d)."""
-        self._require_load_scale("the real contact area")
-        return math.pi * self.radius * self.density * self.nominal_area
+        _, radius, density, nominal_area = self._load_scale_values("the real contact area")
+        return math.pi * radius * density * nominal_area
 
     # ---------------------------------------------------------------- density integrals
     # Defaults by quadrature over self.pdf; closed-form subclasses override them.

@@ -90,42 +90,52 @@ class Sphere:
                 f"{', '.join(missing)}"
             )
 
+    def _values(self, what: str) -> tuple[float, float, float, float]:
+        """``(radius, E, nu, mu)``, all given (else a ModelParameterError naming ``what``)."""
+        self._require(what)
+        return (
+            cast(float, self.radius),
+            cast(float, self.E),
+            cast(float, self.nu),
+            cast(float, self.mu),
+        )
+
     @property
     def E_star(self) -> float:
         """E* = E/[2(1 − ν²)]  [N/µm²]."""
-        self._require("E_star")
-        return self.E / (2.0 * (1.0 - self.nu**2))
+        _, E, nu, _ = self._values("E_star")
+        return E / (2.0 * (1.0 - nu**2))
 
     @property
     def G(self) -> float:
         """G = E/[2(1 + ν)]  [N/µm²], shear modulus of each sphere."""
-        self._require("G")
-        return self.E / (2.0 * (1.0 + self.nu))
+        _, E, nu, _ = self._values("G")
+        return E / (2.0 * (1.0 + nu))
 
     def contact_radius(self, F_N):
         """Hertz a = [3 F_N R*/(4 E*)]^{1/3}, R* = R/2  [µm] at normal load F_N [N]."""
-        self._require("contact_radius")
+        radius = self._values("contact_radius")[0]
         F_N = _positive_load(F_N)
-        return np.cbrt(3.0 * F_N * (0.5 * self.radius) / (4.0 * self.E_star))
+        return np.cbrt(3.0 * F_N * (0.5 * radius) / (4.0 * self.E_star))
 
     def slip_limit(self, F_N):
         """g_T at the onset of gross sliding, 3 (2 − ν) μ F_N / (8 G a)  [µm]."""
-        self._require("slip_limit")
+        _, _, nu, mu = self._values("slip_limit")
         F_N = _positive_load(F_N)
-        return 3.0 * (2.0 - self.nu) * self.mu * F_N / (8.0 * self.G * self.contact_radius(F_N))
+        return 3.0 * (2.0 - nu) * mu * F_N / (8.0 * self.G * self.contact_radius(F_N))
 
     def tangential_slip(self, F_T, F_N):
         """g_T(F_T; F_N) [µm] by Eq 2; F_T ≥ μ F_N (gross sliding) raises GrossSlidingError."""
-        self._require("tangential_slip")
+        mu = self._values("tangential_slip")[3]
         F_T = check_finite_array("F_T", F_T, lower=0.0, unit="N")
         F_N = _positive_load(F_N)
         F_T, F_N = np.broadcast_arrays(F_T, F_N)
-        ratio = F_T / (self.mu * F_N)
+        ratio = F_T / (mu * F_N)
         if np.any(ratio >= 1.0):
             i = int(np.flatnonzero(np.ravel(ratio >= 1.0))[0])
             raise GrossSlidingError(
                 f"F_T must be < mu*F_N (gross sliding otherwise): F_T = {np.ravel(F_T)[i]!r} N, "
-                f"mu*F_N = {self.mu * np.ravel(F_N)[i]!r} N"
+                f"mu*F_N = {mu * np.ravel(F_N)[i]!r} N"
             )
         return self.slip_limit(F_N) * -np.expm1(np.log1p(-ratio) * (2.0 / 3.0))
 
@@ -134,13 +144,13 @@ class Sphere:
 
         For g_T ≥ g_lim (:meth:`slip_limit`) the spheres slide: F_T = μ F_N.
         """
-        self._require("tangential_force")
+        mu = self._values("tangential_force")[3]
         g_T = check_finite_array("g_T", g_T, lower=0.0, unit="µm")
         F_N = _positive_load(F_N)
         g_T, F_N = np.broadcast_arrays(g_T, F_N)
         r = np.minimum(g_T / self.slip_limit(F_N), 1.0)
         with np.errstate(divide="ignore"):
-            return self.mu * F_N * -np.expm1(1.5 * np.log1p(-r))
+            return mu * F_N * -np.expm1(1.5 * np.log1p(-r))
 
     # ------------------------------------------------------------------ contact-loss path
     def contact_levels(self, normal_load: float, max_slip: float) -> SphereLevels:

@@ -1,0 +1,29 @@
+"""The examples in the package's docstrings run and print what they say."""
+
+from __future__ import annotations
+
+import doctest
+import importlib
+
+import pytest
+
+from tests.test_layout import _modules
+
+MODULES = sorted(name for name in _modules() if not name.endswith("__main__"))
+
+
+@pytest.mark.parametrize("name", MODULES)
+def test_docstring_examples(name):
+    module = importlib.import_module(name)
+    flags = doctest.ELLIPSIS | doctest.NORMALIZE_WHITESPACE
+    result = doctest.testmod(module, optionflags=flags, report=True, verbose=False)
+    assert result.failed == 0, f"{result.failed} of {result.attempted} examples failed"
+
+
+def test_the_examples_are_counted():
+    """The package does have examples (a collection error would otherwise pass silently)."""
+    finder = doctest.DocTestFinder()
+    total = 0
+    for name in ("cusp.continuation", "cusp.continuation.tracer"):
+        total += sum(len(t.examples) for t in finder.find(importlib.import_module(name)))
+    assert total >= 8
