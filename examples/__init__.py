@@ -66,7 +66,6 @@ from .structures import (
     shallow_arch,
 )
 from .trusses import (
-    SNAP,
     snapback_control,
     snapback_cusp,
     snapback_monitor,
@@ -109,7 +108,6 @@ __all__ = [
     "CO_FOLDS_K04",
     "CO_Q",
     "DERIVATIVES",
-    "SNAP",
     "Example",
     "Reference",
     "ab_cusp",

@@ -6,11 +6,14 @@ from __future__ import annotations
 
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
-from typing import Any, NamedTuple
+from typing import TYPE_CHECKING, Any, NamedTuple
 
 import numpy as np
 
 from cusp.continuation import Problem
+
+if TYPE_CHECKING:
+    from cusp.continuation import Branch
 
 #: How an example's :class:`Problem` gets its derivatives: ``"analytic"`` (the hand-written
 #: Jacobian and parameter derivatives) or one of the solver's fallbacks (``"central"`` or
@@ -64,17 +67,19 @@ class Example:
 
     @property
     def unknowns(self) -> tuple[str, ...]:
+        """The problem's unknowns, in the order of ``u``."""
         return self.problem.unknowns
 
     @property
     def params(self) -> dict[str, float]:
+        """A copy of the problem's parameter values."""
         return dict(self.problem.params)
 
     def references(self) -> tuple[Reference, ...]:
         """The known special points (closed form or mpmath; see each example's docstring)."""
         return () if self.reference_points is None else tuple(self.reference_points())
 
-    def trace(self, **options: Any):
+    def trace(self, **options: Any) -> Branch:
         """``trace(problem, u0, free=free, bounds=bounds, monitor=monitor, **options)``; any of
         those may be overridden by keyword."""
         from cusp.continuation import trace

@@ -11,6 +11,8 @@
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping
+from typing import Any
 
 import numpy as np
 
@@ -130,7 +132,7 @@ def _poly_eval(coeffs, x, derivative=0):
     return total
 
 
-def co_quartic(q2, k, q=CO_Q):
+def co_quartic(q2: Any, k: Any, q: Mapping[str, Any] = CO_Q) -> list[Any]:
     """Coefficients (ascending in x) of the CO model's quartic P(x; q2, k) with the rate
     constants ``q`` (default :data:`CO_Q`), in the numbers given (mpmath numbers give mpmath
     coefficients).

@@ -10,6 +10,7 @@ from __future__ import annotations
 import functools
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from ._base import DPS, Example, Reference, make_example
 
@@ -103,7 +104,7 @@ def cusp_folds(a: float = 1.0) -> tuple[tuple[float, float], ...]:
         return tuple((float(s * x), float(-2 * (s * x) ** 3)) for s in (-1, 1))
 
 
-def cusp_fold_curve(x):
+def cusp_fold_curve(x: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
     """The fold curve of the cusp parametrised by the fold state: ``(a, b) = (3x², −2x³)``
     (from x³ − a x − b = 0 and 3x² − a = 0); it satisfies 4a³ = 27b²."""
     x = np.asarray(x, dtype=float)

@@ -13,6 +13,8 @@ a load P pushing the apex down by v.
 
 from __future__ import annotations
 
+from typing import Any
+
 import numpy as np
 
 from ._base import DPS, Example, Reference, make_example
@@ -22,13 +24,13 @@ from ._base import DPS, Example, Reference, make_example
 # ---------------------------------------------------------------------------------------------
 
 
-def truss_green_force(v, EA: float = 1.0, L: float = 1.0, H: float = 0.5):
-    """Load of the Green-strain truss at apex deflection v: ``P = (EA/l0³) v (H − v)(2H − v)``,
-    ``l0² = L² + H²``."""
+def truss_green_force(v: Any, EA: float = 1.0, L: float = 1.0, H: float = 0.5) -> Any:
+    """Load of the Green-strain truss at apex deflection v (a float, an array, or a complex or
+    mpmath number): ``P = (EA/l0³) v (H − v)(2H − v)``, ``l0² = L² + H²``."""
     return EA / (L**2 + H**2) ** 1.5 * v * (H - v) * (2 * H - v)
 
 
-def truss_green_stiffness(v, EA: float = 1.0, L: float = 1.0, H: float = 0.5):
+def truss_green_stiffness(v: Any, EA: float = 1.0, L: float = 1.0, H: float = 0.5) -> Any:
     """dP/dv of :func:`truss_green_force`: ``(EA/l0³)(2H² − 6Hv + 3v²)``."""
     return EA / (L**2 + H**2) ** 1.5 * (2 * H**2 - 6 * H * v + 3 * v**2)
 
@@ -253,9 +255,6 @@ def truss_2dof_references(EA: float = 1.0, L: float = 1.0, H: float = 2.0) -> di
 # Snap-back: the Green truss in series with a spring k_s
 # ---------------------------------------------------------------------------------------------
 
-#: The snap-back set-up: Green truss EA = L = 1, H = 0.1, spring k_s = 0.005 (< K H² = 0.00985).
-SNAP = {"EA": 1.0, "L": 1.0, "H": 0.1, "ks": 0.005}
-
 
 def snapback_monitor(
     EA: float = 1.0,
@@ -268,7 +267,8 @@ def snapback_monitor(
     """Truss + spring under load control: ``P = P_truss(v)``, ``δ = v + P/k_s``.
 
     Unknowns ``v`` (truss deflection) and ``delta`` (end displacement), parameters ``P`` and
-    ``ks``. Start v = δ = 0, P = 0; free ``P``, monitor ``delta``; bounds v ∈ [−0.05, 0.25].
+    ``ks``; by default EA = L = 1, H = 0.1, k_s = 0.005 < K H² = 0.00985 (a snap-back).
+    Start v = δ = 0, P = 0; free ``P``, monitor ``delta``; bounds v ∈ [−0.05, 0.25].
 
     Special points: the limit points of the truss in P (:func:`truss_green_limits`), and the
     snap-back: two turning points with respect to the unknown δ
