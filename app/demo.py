@@ -12,28 +12,19 @@ def add_arguments(parser) -> None:
 
 
 def main(args) -> int:
-    import numpy as np
-
-    from cusp.continuation import Problem, trace
+    from cusp.continuation import trace
+    from cusp.examples import cusp_normal_form
 
     a = args.a
     if not (math.isfinite(a) and a > 0):
         print(f"cusp demo: --a must be a finite number > 0, got {a!r}")
         return 2
-    prob = Problem(
-        lambda u, p: np.array([u[0] ** 3 - p["a"] * u[0] - p["b"]]),
-        unknowns=["x"],
-        params={"a": a, "b": -1.0},
-        jacobian=lambda u, p: np.array([[3.0 * u[0] ** 2 - p["a"]]]),
-        param_jacobian=lambda u, p, name: np.array([-1.0]) if name == "b" else -u[:1],
-    )
     exact = 2.0 * (a / 3.0) ** 1.5
     bmax = max(1.0, 2.0 * exact)  # wide enough to hold both folds
-    roots = np.roots([1.0, 0.0, -a, bmax])
-    x0 = float(roots[np.abs(roots.imag) < 1e-9].real.min())  # leftmost real root at b = -bmax
-    prob = prob.with_params(b=-bmax)
+    # analytic derivatives; u0 the leftmost real root at b = -bmax; bounds b in [-bmax, bmax]
+    example = cusp_normal_form(a=a, b=-bmax)
     start = time.perf_counter()
-    br = trace(prob, [x0], free="b", bounds={"b": (-bmax, bmax)})
+    br = trace(example.problem, example.u0, free="b", bounds=example.bounds)
     elapsed = time.perf_counter() - start
     print(f"cusp normal form x^3 - a x - b = 0, a = {a:g}: traced b in [{-bmax:g}, {bmax:g}]")
     print(f"  {len(br)} points, status {br.status!r}: {br.message} ({elapsed * 1e3:.2f} ms)")

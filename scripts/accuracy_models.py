@@ -14,17 +14,15 @@ import sys
 
 import mpmath as mp
 
-ROOT = pathlib.Path(__file__).resolve().parents[1]
-if str(ROOT) not in sys.path:
-    sys.path.insert(0, str(ROOT))
-
-from cusp.models import (  # noqa: E402
+from cusp.models import (
     Cylinder,
     ExponentialRoughSurface,
     FlatPlane,
     GaussianRoughSurface,
     Sphere,
 )
+
+ROOT = pathlib.Path(__file__).resolve().parents[1]
 
 EXTREMES = [1e-300, 1e-100, 1e-14, 1e-9, 1e-6, 1e-3, 0.999, 1 - 1e-6, 1 - 1e-9, 1 - 2.0**-40,
             1 - 2.0**-52]  # fmt: skip

@@ -25,11 +25,9 @@ import tempfile
 import time
 from pathlib import Path
 
-ROOT = Path(__file__).resolve().parents[1]
-if str(ROOT) not in sys.path:
-    sys.path.insert(0, str(ROOT))
+from bench_trace import PROBLEMS, run_ours
 
-from scripts.bench_trace import PROBLEMS, run_ours  # noqa: E402
+ROOT = Path(__file__).resolve().parents[1]
 
 
 def load_revision(rev: str | None, into: Path, name: str):

@@ -22,30 +22,25 @@ from __future__ import annotations
 import argparse
 import functools
 import platform
-import sys
 import time
 from pathlib import Path
 
 import numpy as np
 from scipy.optimize import fsolve
 
+import cusp.examples as ex
+from cusp.continuation import Problem, fold_curve, trace
+
+from _report import save_figure
+
 ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT))
 
-from cusp.continuation import Problem, fold_curve, trace  # noqa: E402
-from scripts._report import save_figure  # noqa: E402
-
-X0 = -1.324717957244746  # root of x³ − x + 1 (a = 1, b = −1)
+X0 = ex.cusp_start(1.0, -1.0)  # -1.324717957244746, root of x³ − x + 1 (a = 1, b = −1)
 
 
 def cusp_problem() -> Problem:
-    return Problem(
-        lambda u, p: np.array([u[0] ** 3 - p["a"] * u[0] - p["b"]]),
-        ["x"],
-        {"a": 1.0, "b": -1.0},
-        jacobian=lambda u, p: np.array([[3 * u[0] ** 2 - p["a"]]]),
-        param_jacobian=lambda u, p, n: np.array([-1.0]) if n == "b" else -u[:1],
-    )
+    """x³ − a x − b = 0 at a = 1, b = −1, analytic derivatives (`cusp.examples`)."""
+    return ex.cusp_normal_form(a=1.0, b=-1.0).problem
 
 
 def start_fold(prob):
@@ -65,6 +60,8 @@ def run_ours(prob, fold):
     )
 
 
+# The plain loop's own fold system [F; F_x] of the same cusp (x, b unknown at fixed a) and its
+# Jacobian, written out as a user of fsolve would.
 def _fold_system(xb, a):
     x, b = xb
     return [x**3 - a * x - b, 3 * x**2 - a]
@@ -156,7 +153,7 @@ def figure(ours, loop, path_png: Path):
 
     fig, ax = plt.subplots(figsize=(6.0, 4.2), constrained_layout=True)
     xs = np.linspace(-1 / np.sqrt(3.0), 1 / np.sqrt(3.0), 401)
-    ax.plot(3 * xs**2, -2 * xs**3, color="0.75", lw=4, label="exact: $4a^3 = 27b^2$")
+    ax.plot(*ex.cusp_fold_curve(xs), color="0.75", lw=4, label="exact: $4a^3 = 27b^2$")
     ax.plot(
         ours["a"],
         ours["b"],

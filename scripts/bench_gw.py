@@ -24,12 +24,11 @@ import numpy as np
 import scipy
 from scipy import integrate, special
 
-ROOT = pathlib.Path(__file__).resolve().parents[1]
-if str(ROOT) not in sys.path:
-    sys.path.insert(0, str(ROOT))
+from cusp.models.gw import gw_integral, log_gw_integral
 
-from cusp.models.gw import gw_integral, log_gw_integral  # noqa: E402
-from scripts._report import write_report  # noqa: E402
+from _report import write_report
+
+ROOT = pathlib.Path(__file__).resolve().parents[1]
 
 N_ACC = 481  # accuracy grid
 N_TIME = 200_000  # vectorised timing sample (ours); quad/pbdv timed on fewer values

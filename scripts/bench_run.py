@@ -27,13 +27,11 @@ import time
 from datetime import datetime, timezone
 from pathlib import Path
 
+from _report import write_report
+
 ROOT = Path(__file__).resolve().parents[1]
 SCENE = ROOT / "scenes" / "fig6.toml"
 DOC = ROOT / "docs" / "benchmarks" / "run.md"
-if str(ROOT) not in sys.path:
-    sys.path.insert(0, str(ROOT))
-
-from scripts._report import write_report  # noqa: E402
 
 _CHILD = r"""
 import json, sys, time

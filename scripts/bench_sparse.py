@@ -6,7 +6,7 @@ The problem is TEST-PROBLEMS.md §2, the finite-difference Bratu problem
 u'' + λ e^u = 0 on (0, 1), u(0) = u(1) = 0, with N interior nodes. Its Jacobian is
 tridiagonal and is given as scipy.sparse (CSC), with ∂R/∂λ = e^u. The branch is traced
 from u = 0, λ = 0 to u at the midpoint = 2, past the fold, with the default options
-(max_steps = 400). The problem and its references come from `tests/continuation/oracles.py`.
+(max_steps = 400). The problem and its references come from `cusp.examples` (`bratu`).
 
 For each N the script reports:
 - wall time of the whole trace (best of the repeats), steps, and Newton iterations;
@@ -28,29 +28,26 @@ import datetime
 import pathlib
 import platform
 import subprocess
-import sys
 import time
 
 import numpy as np
 import scipy
 import scipy.sparse.linalg as spla
 
-ROOT = pathlib.Path(__file__).resolve().parents[1]
-if str(ROOT) not in sys.path:
-    sys.path.insert(0, str(ROOT))
+import cusp.examples as ex
+from cusp.continuation import trace
+from cusp.continuation.system import BranchSystem
 
-from cusp.continuation import trace  # noqa: E402
-from cusp.continuation.system import BranchSystem  # noqa: E402
-from scripts._report import write_report  # noqa: E402
-from tests.continuation import oracles as orc  # noqa: E402
+from _report import write_report
+
+ROOT = pathlib.Path(__file__).resolve().parents[1]
 
 
 def run(n: int, sparse: bool):
-    case = orc.bratu_problem(n, "analytic", sparse=sparse)
+    # u = 0 at λ = 0, bounds u at the midpoint in [-1, 2] (past the fold)
+    case = ex.bratu(n, sparse=sparse)
     t0 = time.perf_counter()
-    br = trace(
-        case.problem, u0=np.zeros(n), free="lam", bounds={f"u{n // 2}": (-1.0, 2.0)}, max_steps=400
-    )
+    br = trace(case.problem, u0=case.u0, free="lam", bounds=case.bounds, max_steps=400)
     elapsed = time.perf_counter() - t0
     folds = [sp for sp in br.special_points if sp.kind == "fold"]
     return elapsed, br, folds
@@ -58,7 +55,7 @@ def run(n: int, sparse: bool):
 
 def lu_time(n: int, repeat: int) -> float:
     """Best time of one SuperLU factorization of the bordered start matrix [J, e^u; e_λ]."""
-    case = orc.bratu_problem(n, "analytic", sparse=True)
+    case = ex.bratu(n, sparse=True)
     system = BranchSystem(case.problem, "lam")
     z = np.zeros(n + 1)
     row = np.zeros(n + 1)
@@ -74,9 +71,9 @@ def lu_time(n: int, repeat: int) -> float:
 
 def reference_fold(n: int):
     if n == 99_999:
-        return orc.BRATU_FOLD_N99999, "stored 40-digit shooting value"
+        return ex.BRATU_FOLD_N99999, "stored 40-digit shooting value"
     if n <= 9_999:
-        return float(orc.bratu_fd_fold(n)[0]), "mpmath shooting"
+        return float(ex.bratu_fd_fold(n)[0]), "mpmath shooting"
     return None, "none"
 
 

@@ -11,6 +11,8 @@ count, then the best of `--repeat` rounds, per full branch; rounds interleaved a
 * Green-strain von Mises truss (EA = L = 1, H = 0.5), P from P(v=-0.5) to P(v=1.5) (limit
   points at v = H(1 -+ 1/sqrt 3)).
 
+Both come from `cusp.examples` (`cusp_normal_form`, `truss_green`), with their references.
+
 Tools:
 
 * ours: `trace` with the analytic Jacobian, and with the "central" finite-difference fallback;
@@ -40,7 +42,6 @@ import math
 import os
 import platform
 import subprocess
-import sys
 import time
 from pathlib import Path
 
@@ -48,78 +49,59 @@ import numpy as np
 import scipy
 import scipy.optimize
 
-ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT))
+import cusp.examples as ex
+from cusp.continuation import Problem, trace
 
-from cusp.continuation import Problem, trace  # noqa: E402
-from scripts._report import write_report  # noqa: E402
+from _report import write_report
+
+ROOT = Path(__file__).resolve().parents[1]
 
 TOL = 1e-10
 
 # ----------------------------------------------------------------------------- problems
-# Each problem: one unknown x, one parameter lam, residual f(x, lam), its derivatives, the
-# start (x0, lam0), the end lam1, and the exact folds [(x, lam), ...] in path order.
+# Each problem: an example of `cusp.examples` with one unknown x and one free parameter lam
+# (its other parameters fixed), the start (x0, lam0), the end lam1, and the exact folds
+# [(x, lam), ...] in path order (the example's mpmath references). Every tool calls the
+# example's own residual and derivatives.
 
 
 def _cusp():
-    def f(x, lam):
-        return x**3 - x - lam
-
-    def fx(x, lam):
-        return 3 * x**2 - 1.0
-
-    def fl(x, lam):
-        return -1.0
-
     # mpmath, 40 digits: r = 1/sqrt(3), b = 2 r^3 = 2/(3 sqrt 3), correctly rounded (in float
-    # arithmetic 2*(1/sqrt(3))**3 is 2 ulp high)
-    r, bf = 0.5773502691896257, 0.3849001794597505
-    x0 = -1.324717957244746  # root of x^3 - x + 1 (minus the plastic number)
+    # arithmetic 2*(1/sqrt(3))**3 is 2 ulp high); x0 = -1.324717957244746, the root of
+    # x^3 - x + 1 (minus the plastic number)
     return {
         "name": "cusp x³ − x − b, b ∈ [−1, 1]",
-        "f": f,
-        "fx": fx,
-        "fl": fl,
-        "x0": x0,
+        "example": ex.cusp_normal_form(a=1.0, b=-1.0),
+        "x0": ex.cusp_start(1.0, -1.0),
         "lam0": -1.0,
         "lam1": 1.0,
-        "x1": -x0,
-        "folds": [(-r, bf), (r, -bf)],
+        "folds": list(ex.cusp_folds(1.0)),
     }
 
 
 def _truss():
     H = 0.5
-    K = 1.0 / (1.0 + H**2) ** 1.5
-
-    def force(v):
-        return K * v * (H - v) * (2 * H - v)
-
-    def f(x, lam):
-        return lam - force(x)
-
-    def fx(x, lam):
-        return -K * (2 * H**2 - 6 * H * x + 3 * x**2)
-
-    def fl(x, lam):
-        return 1.0
-
     # mpmath, 40 digits: v = H(1 -+ 1/sqrt 3), P = K v (H - v)(2H - v), correctly rounded
-    folds = [(0.2113248654051871, 0.03442651863295482), (0.7886751345948129, -0.03442651863295482)]
     return {
         "name": "Green truss (EA = L = 1, H = 0.5), v ∈ [−0.5, 1.5]",
-        "f": f,
-        "fx": fx,
-        "fl": fl,
+        "example": ex.truss_green(EA=1.0, L=1.0, H=H),
         "x0": -0.5,
-        "lam0": force(-0.5),
-        "lam1": force(1.5),
-        "x1": 1.5,
-        "folds": folds,
+        "lam0": ex.truss_green_force(-0.5, 1.0, 1.0, H),
+        "lam1": ex.truss_green_force(1.5, 1.0, 1.0, H),
+        "folds": list(ex.truss_green_limits(1.0, 1.0, H)),
     }
 
 
 PROBLEMS = [_cusp(), _truss()]
+
+
+def _functions(pb):
+    """The example's residual, Jacobian and parameter derivative, its free parameter's name,
+    and its parameters at the start (a fresh dict)."""
+    example = pb["example"]
+    params = dict(example.params)
+    params[example.free] = pb["lam0"]
+    return example.residual, example.jacobian, example.param_jacobian, example.free, params
 
 
 # ----------------------------------------------------------------------------- runners
@@ -141,40 +123,35 @@ def run_ours(pb, analytic, api=None):
     (default: this checkout's ``continuation``; `bench_ab.py` passes other revisions)."""
     problem_cls, trace_fn = (Problem, trace) if api is None else (api.Problem, api.trace)
     cnt = {"f": 0}
-    f, fx, fl = pb["f"], pb["fx"], pb["fl"]
+    res, jac, pjac, free, params = _functions(pb)
+    unknowns = list(pb["example"].unknowns)
 
     def residual(u, p):
         cnt["f"] += 1
-        return np.array([f(u[0], p["lam"])])
+        return res(u, p)
 
     if analytic:
         prob = problem_cls(
-            residual,
-            unknowns=["x"],
-            params={"lam": pb["lam0"]},
-            jacobian=lambda u, p: np.array([[fx(u[0], p["lam"])]]),
-            param_jacobian=lambda u, p, name: np.array([fl(u[0], p["lam"])]),
+            residual, unknowns=unknowns, params=params, jacobian=jac, param_jacobian=pjac
         )
     else:
-        prob = problem_cls(
-            residual, unknowns=["x"], params={"lam": pb["lam0"]}, derivatives="central"
-        )
+        prob = problem_cls(residual, unknowns=unknowns, params=params, derivatives="central")
     lo, hi = sorted((pb["lam0"], pb["lam1"]))
-    br = trace_fn(prob, u0=[pb["x0"]], free="lam", bounds={"lam": (lo, hi)})
+    br = trace_fn(prob, u0=[pb["x0"]], free=free, bounds={free: (lo, hi)})
 
     def summary():
         folds = [
-            sp.values["lam"]
+            sp.values[free]
             for sp in br.special_points
             if sp.kind == "fold" and sp.status == "converged"
         ]
         return {
-            "points": len(br["lam"]),
+            "points": len(br[free]),
             "newton": int(np.sum(br.stats["newton_iterations"])),
             "nfev": cnt["f"],
             "folds": folds,
             "located": "refined (Newton)",
-            "ok": bool(br.success) and br["lam"][-1] == pb["lam1"],
+            "ok": bool(br.success) and br[free][-1] == pb["lam1"],
         }
 
     return summary
@@ -182,29 +159,36 @@ def run_ours(pb, analytic, api=None):
 
 def run_contique(pb, analytic, contique):
     cnt = {"f": 0}
-    f, fx, fl = pb["f"], pb["fx"], pb["fl"]
+    res, jac_u, pjac, free, p = _functions(pb)
 
     def fun(x, lpf):
         cnt["f"] += 1
-        return np.array([f(x[0], lpf)])
+        p[free] = lpf
+        return res(x, p)
 
     jac = None
     if analytic:
+
+        def jac_x(x, lpf, *_):
+            p[free] = lpf
+            return jac_u(x, p)
+
+        def jac_lpf(x, lpf, *_):
+            p[free] = lpf
+            return pjac(x, p, free)
+
         # contique calls the Jacobian parts with its `args` (default (None,)) appended
-        jac = (
-            lambda x, lpf, *_: np.array([[fx(x[0], lpf)]]),
-            lambda x, lpf, *_: np.array([fl(x[0], lpf)]),
-        )
+        jac = (jac_x, jac_lpf)
     lam1 = pb["lam1"]
     up = lam1 > pb["lam0"]
     lams, newton = [], 0
     with contextlib.redirect_stdout(io.StringIO()):
-        for res in contique.solve(
+        for res_ in contique.solve(
             fun, x0=np.array([pb["x0"]]), lpf0=pb["lam0"], jac=jac, tol=TOL, maxsteps=2000
         ):
-            lams.append(res.x[-1])
-            newton += res.niterations
-            if (res.x[-1] >= lam1) if up else (res.x[-1] <= lam1):
+            lams.append(res_.x[-1])
+            newton += res_.niterations
+            if (res_.x[-1] >= lam1) if up else (res_.x[-1] <= lam1):
                 break
 
     def summary():
@@ -235,21 +219,20 @@ def run_floor(pb):
 
     gesv, getrs = lapack.dgesv, lapack.dgetrs
     cnt = {"f": 0}
-    f, fx, fl = pb["f"], pb["fx"], pb["fl"]
-    params = {"lam": pb["lam0"]}
+    res, jac, pjac, free, params = _functions(pb)
 
     def residual(z):
         cnt["f"] += 1
         p = dict(params)
-        p["lam"] = z[-1]
-        return np.array([f(z[0], p["lam"])])
+        p[free] = z[-1]
+        return res(z[:-1], p)
 
     def bordered(z, row):
         p = dict(params)
-        p["lam"] = z[-1]
+        p[free] = z[-1]
         a = np.empty((2, 2))
-        a[:1, :1] = fx(z[0], p["lam"])
-        a[:1, 1] = fl(z[0], p["lam"])
+        a[:1, :1] = jac(z[:-1], p)
+        a[:1, 1] = pjac(z[:-1], p, free)
         a[1] = row
         return a
 
@@ -313,19 +296,22 @@ def run_scipy(pb, analytic):
     the failed one; the loop then jumps to the other sheet by retrying from guesses further
     along the last direction of motion of x."""
     cnt = {"f": 0}
-    f, fx = pb["f"], pb["fx"]
+    res, jac_u, _, free, params = _functions(pb)
     lam_grid = np.linspace(pb["lam0"], pb["lam1"], 201)
     folds, points, ok = [], 0, True
     x = pb["x0"]
 
     def solve(lam, guess):
+        p = dict(params)
+        p[free] = lam
+
         def fun(z):
             cnt["f"] += 1
-            return np.array([f(z[0], lam)])
+            return res(z, p)
 
-        jac = (lambda z: np.array([[fx(z[0], lam)]])) if analytic else None
+        jac = (lambda z: jac_u(z, p)) if analytic else None
         sol = scipy.optimize.root(fun, [guess], jac=jac, method="hybr", tol=TOL)
-        good = sol.success and abs(f(sol.x[0], lam)) <= 1e-9
+        good = sol.success and abs(res(sol.x, p)[0]) <= 1e-9
         return float(sol.x[0]), good
 
     for grid in (lam_grid, lam_grid[::-1]):

@@ -16,12 +16,11 @@ import sys
 
 import numpy as np
 
-ROOT = pathlib.Path(__file__).resolve().parents[1]
-if str(ROOT) not in sys.path:
-    sys.path.insert(0, str(ROOT))
+from cusp.models import Cylinder, ExponentialRoughSurface, FlatPlane, Sphere
 
-from cusp.models import Cylinder, ExponentialRoughSurface, FlatPlane, Sphere  # noqa: E402
-from scripts._report import save_figure  # noqa: E402
+from _report import save_figure
+
+ROOT = pathlib.Path(__file__).resolve().parents[1]
 
 
 def curves(n: int = 801, gaussian_t: float | None = None):

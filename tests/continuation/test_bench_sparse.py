@@ -8,7 +8,9 @@ import pathlib
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 
 
-def test_bench_sparse_writes_its_table(tmp_path):
+def test_bench_sparse_writes_its_table(tmp_path, monkeypatch):
+    # scripts import their siblings (`_report`) from scripts/, on sys.path when run as a script
+    monkeypatch.syspath_prepend(str(ROOT / "scripts"))
     spec = importlib.util.spec_from_file_location(
         "bench_sparse", ROOT / "scripts" / "bench_sparse.py"
     )
@@ -22,7 +24,7 @@ def test_bench_sparse_writes_its_table(tmp_path):
         if line.startswith(("| 31 ", "| 63 "))
     ]
     # sparse and dense at each size; the fold against the mpmath shooting reference
-    # (tests/continuation/oracles.bratu_fd_fold) to well below the 1e-10
+    # (cusp.examples.bratu_fd_fold) to well below the 1e-10
     assert [(r[0], r[1]) for r in rows] == [
         ("31", "sparse"),
         ("31", "dense"),

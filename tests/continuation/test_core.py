@@ -12,6 +12,7 @@ import numpy as np
 import pytest
 import scipy.sparse as sp
 
+import cusp.examples as ex
 from cusp.continuation import (
     ContinuationOptions,
     ConvergenceError,
@@ -28,20 +29,11 @@ from cusp.continuation import (
 # cusp normal form x^3 - a x - b: folds at x = ±sqrt(a/3), b = ∓2 (a/3)^{3/2};
 # at a = 1: |b| = 2/(3√3) = 0.38490017945975050967... (mpmath: 2/(3*mp.sqrt(3)))
 B_FOLD = 2.0 / (3.0 * math.sqrt(3.0))
-X0 = -1.324717957244746  # real root of x^3 - x + 1 (the plastic number, negated)
+X0 = ex.cusp_start()  # -1.324717957244746, real root of x^3 - x + 1 (the plastic number, negated)
 
 
 def cusp_problem(derivatives="central", analytic=False):
-    def res(u, p):
-        return np.array([u[0] ** 3 - p["a"] * u[0] - p["b"]])
-
-    kw = {}
-    if analytic:
-        kw = dict(
-            jacobian=lambda u, p: np.array([[3 * u[0] ** 2 - p["a"]]]),
-            param_jacobian=lambda u, p, n: np.array([-1.0]) if n == "b" else -u[:1],
-        )
-    return Problem(res, ["x"], {"a": 1.0, "b": -1.0}, derivatives=derivatives, **kw)
+    return ex.cusp_normal_form(derivatives="analytic" if analytic else derivatives).problem
 
 
 def folds(br, wrt=None):
@@ -197,14 +189,15 @@ def test_stats_are_per_point():
 
 
 def test_check_jacobian_finds_wrong_entry():
-    good = cusp_problem(analytic=True)
+    example = ex.cusp_normal_form()
+    good = example.problem
     assert check_jacobian(good, [0.7], {"a": 1.0, "b": 0.2}).ok
     bad = Problem(
-        good._residual,
+        example.residual,
         ["x"],
         {"a": 1.0, "b": -1.0},
         jacobian=lambda u, p: np.array([[3 * u[0] ** 2 + p["a"]]]),  # sign error
-        param_jacobian=good._param_jacobian,
+        param_jacobian=example.param_jacobian,
     )
     report = check_jacobian(bad, [0.7], {"a": 1.0, "b": 0.2})
     assert not report.ok
@@ -422,25 +415,8 @@ def test_secant_predictor():
 
 
 def bratu(n, *, analytic=True):
-    h = 1.0 / (n + 1)
-
-    def res(u, p):
-        r = -2.0 * u
-        r[1:] += u[:-1]
-        r[:-1] += u[1:]
-        return r / h**2 + p["lam"] * np.exp(u)
-
-    kw = {}
-    if analytic:
-        kw["jacobian"] = lambda u, p: sp.diags(
-            [np.full(n - 1, 1 / h**2), -2 / h**2 + p["lam"] * np.exp(u), np.full(n - 1, 1 / h**2)],
-            [-1, 0, 1],
-            format="csr",
-        )
-        kw["param_jacobian"] = lambda u, p, name: np.exp(u)
-    else:
-        kw["sparsity"] = sp.diags([np.ones(n - 1), np.ones(n), np.ones(n - 1)], [-1, 0, 1])
-    return Problem(res, [f"u{i}" for i in range(n)], {"lam": 0.0}, **kw)
+    # a sparse analytic Jacobian, or central differences grouped by the tridiagonal pattern
+    return ex.bratu(n, derivatives="analytic" if analytic else "central", sparse=True).problem
 
 
 def test_sparse_fd_with_sparsity_pattern_matches_analytic():
@@ -459,12 +435,12 @@ def test_branch_switching_simple(kind):
     # transcritical x (p - x): branches x = 0 and x = p (not orthogonal: needs the ABE);
     # pitchfork x (p - x^2): branches x = 0 and p = x^2
     if kind == "transcritical":
-        res = lambda u, p: np.array([u[0] * (p["p"] - u[0])])  # noqa: E731
+        example = ex.transcritical(p=-1.0, derivatives="central")
         on_other = lambda x, p: x - p  # noqa: E731
     else:
-        res = lambda u, p: np.array([u[0] * (p["p"] - u[0] ** 2)])  # noqa: E731
+        example = ex.pitchfork(p=-1.0, derivatives="central")
         on_other = lambda x, p: p - x**2  # noqa: E731
-    prob = Problem(res, ["x"], {"p": -1.0})
+    prob = example.problem
     br = trace(prob, [0.0], free="p", bounds={"p": (-1.0, 1.0)})
     bps = br.special("branch_point")
     assert len(bps) == 1 and abs(bps[0].values["p"]) < 1e-10
@@ -498,17 +474,18 @@ def test_corrector_takes_a_simplified_step_in_the_quadratic_regime():
     from cusp.continuation.system import BranchSystem
 
     calls = {"jacobian": 0}
+    example = ex.cusp_normal_form()  # a = 1, b = -1
 
     def jac(u, p):
         calls["jacobian"] += 1
-        return np.array([[3 * u[0] ** 2 - 1.0]])
+        return example.jacobian(u, p)
 
     prob = Problem(
-        lambda u, p: np.array([u[0] ** 3 - u[0] - p["b"]]),
+        example.residual,
         unknowns=["x"],
-        params={"b": -1.0},
+        params=example.params,
         jacobian=jac,
-        param_jacobian=lambda u, p, name: np.array([-1.0]),
+        param_jacobian=example.param_jacobian,
     )
     system = BranchSystem(prob, "b")
     row = np.array([0.0, 1.0])

@@ -2,25 +2,25 @@
 
 1. CO oxidation on a catalyst, Bykov–Yablonskii–Kim model in the form of Govaerts (2000) and
    of BifurcationKit.jl (``test/hopf_codim_2/COModel.jl``, ``docs/.../tutorialCO.md``):
-   fold curve in (q2, k). The reference cusp is computed here with sympy (elimination to one
-   quartic in x) and mpmath (its triple root, 40 digits).
+   fold curve in (q2, k). The reference cusp (`cusp.examples.CO_CUSP`) is recomputed here
+   with sympy (elimination to one quartic in x) and mpmath (its triple root, 40 digits).
 2. The A → B reaction in a CSTR (Uppal, Ray & Poore, Chem. Eng. Sci. 29, 1974), AUTO-07p demo
    ``ab``; the AUTO 97 tutorial (``doc/tutorial.tex`` in the auto-07p repository, "third run:
    a 2-parameter locus of folds", p2 = 14) continues a fold in (p1, p3) and reports its limit
-   point (the cusp). The cusp and the whole fold curve are in closed form (sympy below).
+   point (the cusp). The cusp and the whole fold curve are in closed form (sympy below;
+   `cusp.examples.ab_cusp`, `ab_folds`).
 
 Both references are also checked in the unreduced equations: F = 0, det ∂F/∂u = 0 and
 ⟨w, D²F[v, v]⟩ = 0 at 40 digits, with the null vectors from mpmath's SVD.
 """
-
-import math
 
 import mpmath as mp
 import numpy as np
 import pytest
 import sympy as sy
 
-from cusp.continuation import Problem, fold_curve, trace
+import cusp.examples as ex
+from cusp.continuation import fold_curve, trace
 
 
 def mp_cusp_conditions(F, unknowns, params, point, dps=40):
@@ -52,26 +52,19 @@ def mp_cusp_conditions(F, unknowns, params, point, dps=40):
 # ---------------------------------------------------------------------------------------
 # 1. CO oxidation (Bykov–Yablonskii–Kim)
 
-CO_Q = dict(q1=2.5, q3=10.0, q4=0.0675, q5=1.0, q6=0.1)
+CO_Q = ex.CO_Q
 
-# The cusp on the fold curve in (q2, k), from co_cusp_reference() below (mpmath, 40 digits):
-CO_CUSP = dict(
-    x="0.03594063654889180824117868429550515955046",
-    y="0.3520054309466026862549047942252525956342",
-    s="0.4513701117384072927127328666980025165018",
-    q2="1.006408329678317622669347937186045037361",
-    k="0.3559912732086765499450759422546292503564",
-)
+# The cusp on the fold curve in (q2, k), checked against co_cusp_reference() below (mpmath, 40
+# digits; the literal and its provenance are in cusp.examples.chemistry):
+CO_CUSP = ex.CO_CUSP
 # Published: BifurcationKit.jl test/hopf_codim_2/COModel.jl asserts the cusp at
 # k ≈ 0.35665351 (rtol = 1e-4). That value is WRONG: the cusp is at k = 0.3559912732086766,
 # so the published k is 6.6e-4 too high (1.9e-3 relative, 19 times the test's own rtol).
 # Its 1-parameter folds at k = 0.4, q2 ≈ 1.05220029 and 1.04204851, are right to all 9 digits.
 BK_CUSP_K = 0.35665351
-# folds in q2 at k = 0.4, from the same quartic (P = ∂P/∂x = 0, mpmath 40 digits)
-CO_FOLDS_K04 = (
-    "1.052200287869954692495685086585288461649",
-    "1.042048505378526659254108548428345232525",
-)
+# folds in q2 at k = 0.4, from the same quartic (P = ∂P/∂x = 0, mpmath 40 digits; in
+# cusp.examples.chemistry)
+CO_FOLDS_K04 = ex.CO_FOLDS_K04
 
 
 def co_quartic():
@@ -107,48 +100,13 @@ def co_cusp_reference(dps=40):
 
 
 def co_problem(derivatives="analytic"):
-    q1, q3, q4, q5, q6 = (CO_Q[n] for n in ("q1", "q3", "q4", "q5", "q6"))
-
-    def res(u, p):
-        x, y, s = u
-        z = 1 - x - y - s
-        return np.array(
-            [
-                2 * q1 * z**2 - 2 * q5 * x**2 - q3 * x * y,
-                p["q2"] * z - q6 * y - q3 * x * y,
-                q4 * (z - p["k"] * s),
-            ]
-        )
-
-    def jac(u, p):
-        x, y, s = u
-        z = 1 - x - y - s
-        a = -4 * q1 * z
-        return np.array(
-            [
-                [a - 4 * q5 * x - q3 * y, a - q3 * x, a],
-                [-p["q2"] - q3 * y, -p["q2"] - q6 - q3 * x, -p["q2"]],
-                [-q4, -q4, -q4 * (1 + p["k"])],
-            ]
-        )
-
-    def pjac(u, p, name):
-        z = 1 - u[0] - u[1] - u[2]
-        return np.array([0.0, z, 0.0]) if name == "q2" else np.array([0.0, 0.0, -q4 * u[2]])
-
-    kw = (
-        dict(jacobian=jac, param_jacobian=pjac)
-        if derivatives == "analytic"
-        else dict(derivatives=derivatives)
-    )
-    return Problem(res, ["x", "y", "s"], {"q2": 1.0, "k": 0.4}, **kw)
+    return ex.co_oxidation(derivatives=derivatives).problem  # q2 = 1, k = 0.4
 
 
 def co_folds(prob):
     # BifurcationKit's starting point (q2 = 1, k = 0.4) and range of q2
-    br = trace(
-        prob, [0.001137, 0.891483, 0.062345], free="q2", bounds={"q2": (0.5, 2.3)}, ds_max=0.01
-    )
+    start = ex.co_oxidation()
+    br = trace(prob, start.u0, free="q2", bounds=start.bounds, ds_max=0.01)
     return br.special("fold")
 
 
@@ -249,34 +207,8 @@ def ab_cusp_exact():
 
 
 def ab_problem(derivatives="analytic", p3=2.0):
-    def res(u, p):
-        u1, u2 = u
-        r = p["p1"] * (1 - u1) * np.exp(u2)
-        return np.array([-u1 + r, -u2 + p["p2"] * r - p["p3"] * u2])
-
-    def jac(u, p):
-        u1, u2 = u
-        a = p["p1"] * np.exp(u2)
-        return np.array(
-            [[-1 - a, a * (1 - u1)], [-p["p2"] * a, -1 + p["p2"] * a * (1 - u1) - p["p3"]]]
-        )
-
-    def pjac(u, p, name):
-        u1, u2 = u
-        e = (1 - u1) * np.exp(u2)
-        return {
-            "p1": np.array([e, p["p2"] * e]),
-            "p2": np.array([0.0, p["p1"] * e]),
-            "p3": np.array([0.0, -u2]),
-        }[name]
-
-    kw = (
-        dict(jacobian=jac, param_jacobian=pjac)
-        if derivatives == "analytic"
-        else dict(derivatives=derivatives)
-    )
     # the AUTO 97 tutorial's STPNT: p1 = 0, p2 = 14, p3 = 2, u = 0
-    return Problem(res, ["u1", "u2"], {"p1": 0.0, "p2": 14.0, "p3": p3}, **kw)
+    return ex.ab_reactor(p3=p3, derivatives=derivatives).problem
 
 
 def test_ab_cusp_exact_and_published():
@@ -287,7 +219,14 @@ def test_ab_cusp_exact_and_published():
         point = {"u1": "0.5", "u2": "2", "p1": mp.exp(-2), "p2": "14", "p3": "2.5"}
     res, det, coeff = mp_cusp_conditions(F, (u1, u2), (p1, p2, p3), point)
     assert res < 1e-38 and det < 1e-38 and coeff < 1e-38
-    exact = dict(p1=math.exp(-2), u1=0.5, u2=2.0, p3=2.5)
+    assert ex.ab_cusp() == {
+        "u1": float(cusp[u1]),
+        "u2": float(cusp[u2]),
+        "p1": float(cusp[p1]),
+        "p2": 14.0,
+        "p3": float(cusp[p3].subs(p2, 14)),
+    }
+    exact = {k: v for k, v in ex.ab_cusp().items() if k != "p2"}  # e^-2, (1/2, 2), 5/2
     rel = {k: abs(AB_PUBLISHED[k] - exact[k]) / exact[k] for k in exact}
     assert rel["p1"] < 1e-6 and rel["p3"] < 1e-6  # published parameters right to 6 digits
     assert 5e-4 < rel["u1"] < 1e-3 and 5e-4 < rel["u2"] < 1e-3  # published state is not
@@ -299,9 +238,9 @@ def test_ab_folds_closed_form():
     br = trace(ab_problem(), [0.0, 0.0], free="p1", bounds={"p1": (0.0, 0.15)})
     folds = br.special("fold")
     assert len(folds) == 2
-    for f, theta in zip(folds, ((7 - math.sqrt(7)) / 3, (7 + math.sqrt(7)) / 3)):
-        assert f.values["p1"] == pytest.approx((theta - 1) * math.exp(-theta), rel=1e-12)
-        assert f.values["u2"] == pytest.approx(theta, rel=1e-9)
+    for f, ref in zip(folds, ex.ab_folds(14.0, 2.0), strict=True):  # mpmath, 40 digits
+        assert f.values["p1"] == pytest.approx(ref["p1"], rel=1e-12)
+        assert f.values["u2"] == pytest.approx(ref["u2"], rel=1e-9)
 
 
 @pytest.mark.parametrize("derivatives", ["analytic", "complex"])
@@ -317,7 +256,7 @@ def test_ab_fold_curve_cusp(derivatives):
     assert len(cusps) == 1
     c = cusps[0]
     assert c.status == "converged" and c.details["method"] == "Newton on [F; g; a]"
-    exact = dict(p1=math.exp(-2), u1=0.5, u2=2.0, p3=2.5)
+    exact = {k: v for k, v in ex.ab_cusp().items() if k != "p2"}  # e^-2, (1/2, 2), 5/2
     for name, value in exact.items():
         # achieved: parameters ~4e-16, state ~4e-11
         tol = 1e-13 if name in ("p1", "p3") else 1e-10

@@ -6,24 +6,14 @@ import math
 import numpy as np
 import pytest
 
-from cusp.continuation import Event, Problem, fold_curve, trace
+import cusp.examples as ex
+from cusp.continuation import Event, fold_curve, trace
 
-X0 = -1.324717957244746  # root of x^3 - x + 1
+X0 = ex.cusp_start()  # -1.324717957244746, root of x^3 - x + 1
 
 
 def cusp_problem(analytic=True):
-    kw = {}
-    if analytic:
-        kw = dict(
-            jacobian=lambda u, p: np.array([[3 * u[0] ** 2 - p["a"]]]),
-            param_jacobian=lambda u, p, n: np.array([-1.0]) if n == "b" else -u[:1],
-        )
-    return Problem(
-        lambda u, p: np.array([u[0] ** 3 - p["a"] * u[0] - p["b"]]),
-        ["x"],
-        {"a": 1.0, "b": -1.0},
-        **kw,
-    )
+    return ex.cusp_normal_form(derivatives="analytic" if analytic else "central").problem
 
 
 def cusp_folds(prob):
@@ -87,16 +77,9 @@ def test_one_direction_and_events_on_fold_curve():
 
 def arch(e):
     """Shallow pinned sinusoidal arch, two-mode Ritz model (TEST-PROBLEMS.md §5): the
-    gradient of Π = (1/8)(ξ1² − 2eξ1 + 4ξ2²)² + ξ1² + 16ξ2² − pξ1."""
-
-    def res(q, p):
-        x1, x2 = q
-        a = x1**2 - 2 * p["e"] * x1 + 4 * x2**2
-        return np.array(
-            [0.25 * a * (2 * x1 - 2 * p["e"]) + 2 * x1 - p["p"], 2.0 * a * x2 + 32 * x2]
-        )
-
-    return Problem(res, ["xi1", "xi2"], {"p": 0.0, "e": e})
+    gradient of Π = (1/8)(ξ1² − 2eξ1 + 4ξ2²)² + ξ1² + 16ξ2² − pξ1, without its Jacobian
+    (central differences)."""
+    return ex.shallow_arch(e, derivatives="central").problem
 
 
 def test_arch_limit_point_meets_branch_point_at_sqrt22():
@@ -141,12 +124,7 @@ def test_snap_back_fold_curve_closes_in_a_cusp():
     # meet in a cusp at k_s = K H², K = EA/l0³.
     H = 0.1
     K = 1 / math.hypot(1.0, H) ** 3
-
-    def res(q, p):
-        v, d = q
-        return np.array([p["P"] - K * v * (H - v) * (2 * H - v), d - v - p["P"] / p["ks"]])
-
-    prob = Problem(res, ["v", "delta"], {"P": 0.0, "ks": 0.005}, derivatives="complex")
+    prob = ex.snapback_monitor(H=H, ks=0.005, derivatives="complex").problem
     br = trace(
         prob, [0.0, 0.0], free="P", monitor=["delta"], bounds={"v": (-0.01, 0.25)}, ds_max=0.05
     )

@@ -2,27 +2,20 @@
 
 from __future__ import annotations
 
-import mpmath as mp
 import numpy as np
 import pytest
 
+import cusp.examples as ex
 from cusp.continuation import Problem, ProblemDefinitionError, points_at, trace
 
 
 def _cusp(a=1.0):
-    return Problem(
-        lambda u, p: np.array([u[0] ** 3 - p["a"] * u[0] - p["b"]]),
-        unknowns=["x"],
-        params={"a": a, "b": -1.0},
-        jacobian=lambda u, p: np.array([[3 * u[0] ** 2 - p["a"]]]),
-    )
+    return ex.cusp_normal_form(a=a).problem
 
 
 def _root(b, near):
     # the root of x^3 - x - b nearest to ``near`` (mpmath polyroots, 30 digits)
-    with mp.workdps(30):
-        roots = [r.real for r in mp.polyroots([1, 0, -1, -b]) if abs(r.imag) < 1e-20]
-    return float(min(roots, key=lambda r: abs(r - near)))
+    return min(ex.cusp_real_roots(1.0, b, dps=30), key=lambda r: abs(r - near))
 
 
 def test_points_at_the_free_parameter_are_exact_roots():

@@ -1,9 +1,9 @@
 """Oracle tests: the published problems of TEST-PROBLEMS.md against independently recomputed
-references (mpmath at 40 digits or sympy, in `oracles.py` or beside each literal).
+references (mpmath at 40 digits or sympy, in `cusp.examples` or beside each literal).
 
 A fold's parameter is compared to 1e-12 relative (the solver promises Newton refinement on an
 augmented system to that accuracy); its state to `STATE_RTOL[strategy]`. Branch and special
-points are also checked against the oracle's own residual, never the solver's.
+points are also checked against the example's own residual, never the solver's.
 """
 
 from __future__ import annotations
@@ -16,8 +16,9 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from tests.continuation import oracles as orc
-from tests.continuation.oracles import STATE_RTOL, STRATEGIES, special
+import cusp.examples as ex
+from tests.continuation import helpers
+from tests.continuation.helpers import STATE_RTOL, STRATEGIES, special
 
 MAX_STEPS = 5000  # generous: these tests are about accuracy, not about the default step budget
 
@@ -30,9 +31,9 @@ def trace(*args, **kwargs):
 
 
 def assert_on_branch(case, br, atol=1e-9):
-    res = orc.branch_residual_norms(case, br)
+    res = helpers.branch_residual_norms(case, br)
     assert res.max() <= atol, f"oracle residual up to {res.max():.3e} at point {res.argmax()}"
-    orc.assert_special_points_consistent(case, br)
+    helpers.assert_special_points_consistent(case, br)
 
 
 def assert_fold(sp, free, ref_param, ref_state, state_rtol, wrt=None):
@@ -53,7 +54,7 @@ def assert_fold(sp, free, ref_param, ref_state, state_rtol, wrt=None):
 
 def test_cusp_references():
     # 2/(3 sqrt 3) at 40 digits: mp.mpf(2)/(3*mp.sqrt(3)) = 0.38490017945975050967276585366797...
-    (x1, b1), (x2, b2) = orc.cusp_folds(1.0)
+    (x1, b1), (x2, b2) = ex.cusp_folds(1.0)
     assert (b1, b2) == (0.3849001794597505, -0.3849001794597505)
     assert (x1, x2) == (-0.5773502691896257, 0.5773502691896257)  # 1/sqrt 3, correctly rounded
     # the fold curve 4a^3 = 27b^2 through these folds
@@ -61,26 +62,26 @@ def test_cusp_references():
     # u0 of the spec is minus the plastic number, root of x^3 - x + 1 = 0
     with mp.workdps(40):
         plastic = mp.findroot(lambda x: x**3 - x - 1, 1.3)
-    assert orc.cusp_start() == -float(plastic) == -1.324717957244746
+    assert ex.cusp_start() == -float(plastic) == -1.324717957244746
 
 
 @pytest.mark.parametrize("strategy", STRATEGIES)
 def test_cusp_both_folds_and_exact_bound(strategy):
-    case = orc.cusp_problem(strategy)
+    case = ex.cusp_normal_form(derivatives=strategy)
     br = trace(case.problem, u0=[-1.3247], free="b", bounds={"b": (-1.0, 1.0)})
     assert br.success, (br.status, br.message)
     # the start is corrected onto the branch at fixed b = -1
     assert br["b"][0] == -1.0
-    assert br["x"][0] == pytest.approx(orc.cusp_start(), rel=1e-12)
+    assert br["x"][0] == pytest.approx(ex.cusp_start(), rel=1e-12)
     assert np.all(br["a"] == 1.0)
     folds = special(br, "fold")
     assert len(folds) == 2, [(sp.kind, sp.values) for sp in br.special_points]
     # path order: first the fold at x = -1/sqrt 3, b = +2/(3 sqrt 3), then its mirror image
-    for sp, (x, b) in zip(folds, orc.cusp_folds(1.0), strict=True):
+    for sp, (x, b) in zip(folds, ex.cusp_folds(1.0), strict=True):
         assert_fold(sp, "b", ("b", b), {"x": x}, STATE_RTOL[strategy])
     # the bound is hit to the last bit, and the branch says so
     assert br["b"][-1] == 1.0
-    assert br["x"][-1] == pytest.approx(-orc.cusp_start(), rel=1e-12)  # b -> -b, x -> -x
+    assert br["x"][-1] == pytest.approx(-ex.cusp_start(), rel=1e-12)  # b -> -b, x -> -x
     ends = special(br, "endpoint")
     assert ends and ends[-1].index == len(br["b"]) - 1
     assert "bound" in f"{br.status} {br.message}".lower()
@@ -88,30 +89,29 @@ def test_cusp_both_folds_and_exact_bound(strategy):
 
 
 def test_cusp_reverse_direction_finds_the_same_folds():
-    case = orc.cusp_problem("analytic", b=1.0)  # start on the upper sheet at b = +1
+    case = ex.cusp_normal_form(b=1.0)  # start on the upper sheet at b = +1
     br = trace(
-        case.problem, u0=[-orc.cusp_start()], free="b", bounds={"b": (-1.0, 1.0)}, direction=-1
+        case.problem, u0=[-ex.cusp_start()], free="b", bounds={"b": (-1.0, 1.0)}, direction=-1
     )
     assert br.success, (br.status, br.message)
     assert br["b"][0] == 1.0 and br["b"][-1] == -1.0
     folds = special(br, "fold")
     assert len(folds) == 2
-    for sp, (x, b) in zip(folds, reversed(orc.cusp_folds(1.0)), strict=True):
+    for sp, (x, b) in zip(folds, reversed(ex.cusp_folds(1.0)), strict=True):
         assert_fold(sp, "b", ("b", b), {"x": x}, 1e-9)
 
 
 def trace_cusp_over_a(a):
     """Trace x³ − a x − b over b ∈ [−B, B], B = 2·2(a/3)^{3/2} + 0.1, from the lone real root
     at b = −B, and check both folds against the closed form b = ∓2 (a/3)^{3/2},
-    x = ±sqrt(a/3) (orc.cusp_folds). Returns the branch, B and the two folds."""
+    x = ±sqrt(a/3) (ex.cusp_folds). Returns the branch, B and the two folds."""
     bmax = 2 * (a / 3) ** 1.5
     B = 2 * bmax + 0.1
-    x0 = float(np.min(np.roots([1.0, 0.0, -a, B]).real))  # the lone real root at b = -B
-    case = orc.cusp_problem("analytic", a=a, b=-B)
-    br = trace(case.problem, u0=[x0], free="b", bounds={"b": (-B, B)})
+    case = ex.cusp_normal_form(a=a, b=-B)  # u0: the lone real root at b = -B (numpy roots)
+    br = trace(case.problem, u0=case.u0, free="b", bounds={"b": (-B, B)})
     folds = special(br, "fold")
     assert len(folds) == 2, a
-    for sp, (x, b) in zip(folds, orc.cusp_folds(a), strict=True):
+    for sp, (x, b) in zip(folds, ex.cusp_folds(a), strict=True):
         assert_fold(sp, "b", ("b", b), {"x": x}, 1e-9)
     return br, B, folds
 
@@ -132,7 +132,7 @@ def test_cusp_fold_parameters_relative_over_a_grid():
     worst = 0.0
     for a in [*np.geomspace(0.02, 5.0, 60), 0.2890625]:
         _, _, folds = trace_cusp_over_a(a)
-        for sp, (_, b) in zip(folds, orc.cusp_folds(a), strict=True):
+        for sp, (_, b) in zip(folds, ex.cusp_folds(a), strict=True):
             worst = max(worst, abs(sp.values["b"] - b) / abs(b))
     print(f"worst relative fold parameter error over the grid: {worst:.2g}")
 
@@ -162,22 +162,22 @@ def test_bratu_small_n_closed_forms_sympy():
     assert abs(num[2] - 9 / sp.E) < 1e-28 and abs(num[0] - 1) < 1e-28
 
     # and the discrete-shooting oracle reproduces both closed forms
-    assert orc.bratu_fd_fold(1)[0] == pytest.approx(8 / math.e, rel=1e-15)
-    assert orc.bratu_fd_fold(2)[0] == pytest.approx(9 / math.e, rel=1e-15)
+    assert ex.bratu_fd_fold(1)[0] == pytest.approx(8 / math.e, rel=1e-15)
+    assert ex.bratu_fd_fold(2)[0] == pytest.approx(9 / math.e, rel=1e-15)
 
 
 def test_bratu_references_converge_like_h2():
     """lam*(N) -> lam* = 8(s^2 - 1) like h^2 (constant ~ -1.828), also at N = 99999."""
-    lam_star, u_half = orc.bratu_continuum_fold()
+    lam_star, u_half = ex.bratu_continuum_fold()
     assert lam_star == 3.513830719125161  # TEST-PROBLEMS.md: ...162 is one ulp high
     assert u_half == pytest.approx(1.186842168634389, rel=1e-15)
     consts = []
     for n in (10, 20, 40, 80):
         h = 1.0 / (n + 1)
-        consts.append((orc.bratu_fd_fold(n)[0] - lam_star) / h**2)
+        consts.append((ex.bratu_fd_fold(n)[0] - lam_star) / h**2)
     assert all(-1.9 < c < -1.8 for c in consts), consts
     assert abs(consts[-1] - consts[-2]) < abs(consts[1] - consts[0])  # converging
-    c_big = (orc.BRATU_FOLD_N99999 - lam_star) / 1e-5**2
+    c_big = (ex.BRATU_FOLD_N99999 - lam_star) / 1e-5**2
     assert c_big == pytest.approx(consts[-1], rel=5e-3)
 
 
@@ -189,7 +189,7 @@ def _trace_bratu(case, n, **kw):
 @pytest.mark.parametrize("strategy", STRATEGIES)
 @pytest.mark.parametrize("n, lam_fold, u_fold", [(1, 8 / math.e, 1.0), (2, 9 / math.e, 1.0)])
 def test_bratu_fd_small_n_fold(n, lam_fold, u_fold, strategy):
-    case = orc.bratu_problem(n, strategy)
+    case = ex.bratu(n, derivatives=strategy)
     br = _trace_bratu(case, n)
     assert br.success, (br.status, br.message)
     assert br[f"u{n // 2}"][-1] == 2.5
@@ -210,8 +210,8 @@ def test_bratu_fd_small_n_fold(n, lam_fold, u_fold, strategy):
     "n, strategy", [(10, s) for s in STRATEGIES] + [(20, "analytic"), (20, "central")]
 )
 def test_bratu_fd_fold_vs_discrete_shooting(n, strategy):
-    lam_ref, u1_ref = orc.bratu_fd_fold(n)  # mpmath shooting, 40 digits
-    case = orc.bratu_problem(n, strategy)
+    lam_ref, u1_ref = ex.bratu_fd_fold(n)  # mpmath shooting, 40 digits
+    case = ex.bratu(n, derivatives=strategy)
     br = _trace_bratu(case, n)
     assert br.success, (br.status, br.message)
     folds = special(br, "fold")
@@ -239,7 +239,7 @@ def test_bratu_fd_sparse_n99999_reaches_and_locates_its_fold():
     import time
 
     n = 99_999
-    case = orc.bratu_problem(n, "analytic", sparse=True)
+    case = ex.bratu(n, sparse=True)
     # What a user would do: the state has 1e5 O(1) components, which in an unweighted 2-norm
     # would put the fold ~ sqrt(N) * 0.7 ~ 250 arclength units away; ContinuationOptions
     # documents that the state enters the arclength as a root-mean-square (state_weight = 1/n)
@@ -255,8 +255,8 @@ def test_bratu_fd_sparse_n99999_reaches_and_locates_its_fold():
     assert len(folds) == 1, [(sp.kind, sp.values["lam"]) for sp in br.special_points]
     sp = folds[0]
     assert sp.status == "converged" and sp.with_respect_to == "lam"
-    lam_star, u_half = orc.bratu_continuum_fold()
-    assert sp.values["lam"] == pytest.approx(orc.BRATU_FOLD_N99999, rel=1e-10, abs=0)
+    lam_star, u_half = ex.bratu_continuum_fold()
+    assert sp.values["lam"] == pytest.approx(ex.BRATU_FOLD_N99999, rel=1e-10, abs=0)
     assert abs(sp.values["lam"] - lam_star) <= 1e-9  # O(h^2): -1.8e-10 + solver error
     assert sp.values["u49999"] == pytest.approx(u_half, abs=1e-7)  # O(h^2) + solver error
     assert sp.values["u0"] == pytest.approx(3.99998243040404708562089e-5, rel=1e-7)  # shooting
@@ -271,13 +271,13 @@ def test_bratu_fd_sparse_n99999_reaches_and_locates_its_fold():
 @pytest.mark.parametrize("strategy", STRATEGIES)
 def test_truss_green_both_limit_points(strategy):
     H = 0.5
-    case = orc.truss_green_problem(strategy, H=H)
+    case = ex.truss_green(H=H, derivatives=strategy)
     br = trace(case.problem, u0=[0.0], free="P", bounds={"v": (-0.5, 1.5)})
     assert br.success, (br.status, br.message)
     assert br["v"][-1] == 1.5
     folds = special(br, "fold")
     assert len(folds) == 2
-    for sp, (v, P) in zip(folds, orc.truss_green_limits(H=H), strict=True):
+    for sp, (v, P) in zip(folds, ex.truss_green_limits(H=H), strict=True):
         assert_fold(sp, "P", ("P", P), {"v": v}, STATE_RTOL[strategy])
     # P_max = (2/(3 sqrt 3)) EA H^3/l0^3 = 0.3849001794597505 * 0.125 / 1.25^1.5
     assert folds[0].values["P"] == pytest.approx(0.3849001794597505 * 0.125 / 1.25**1.5, rel=1e-12)
@@ -286,30 +286,30 @@ def test_truss_green_both_limit_points(strategy):
 
 @pytest.mark.parametrize("strategy", STRATEGIES)
 def test_truss_rotated_strain_limit_points(strategy):
-    case = orc.truss_rotated_problem(strategy)  # EA = L = H = 1
+    case = ex.truss_rotated(derivatives=strategy)  # EA = L = H = 1
     br = trace(case.problem, u0=[0.0], free="P", bounds={"v": (-0.5, 2.5)})
     assert br.success, (br.status, br.message)
     folds = special(br, "fold")
     assert len(folds) == 2
-    for sp, (v, P) in zip(folds, orc.truss_rotated_limits(), strict=True):
+    for sp, (v, P) in zip(folds, ex.truss_rotated_limits(), strict=True):
         assert_fold(sp, "P", ("P", P), {"v": v}, STATE_RTOL[strategy])
         y = 1.0 - sp.values["v"]
         # l^3 = L^2 l0
         assert (1.0 + y**2) ** 1.5 == pytest.approx(2**0.5, rel=STATE_RTOL[strategy])
     # y_c = sqrt(2^(1/3) - 1) = 0.50979558..., i.e. v = 0.49020441...
-    assert orc.truss_rotated_limits()[0][0] == pytest.approx(1 - math.sqrt(2 ** (1 / 3) - 1))
+    assert ex.truss_rotated_limits()[0][0] == pytest.approx(1 - math.sqrt(2 ** (1 / 3) - 1))
     assert_on_branch(case, br, atol=1e-10)
 
 
 @pytest.mark.parametrize("strategy", ["analytic", "central", "complex"])
 def test_truss_2dof_branch_point_before_limit_and_switch(strategy):
     EA, L, H = 1.0, 1.0, 2.0  # H > sqrt(3) L: the branch point comes first
-    ref = orc.truss_2dof_references(EA, L, H)
+    ref = ex.truss_2dof_references(EA, L, H)
     # v_B = 2 - sqrt 2, P_B = 2 sqrt 2 / 5^1.5; v_L = 2 - 2/sqrt 3, P_L = (16/(3 sqrt 3))/5^1.5
     assert ref["bp_v"] == pytest.approx(2 - math.sqrt(2), rel=1e-15)
     assert ref["bp_P"] == pytest.approx(2 * math.sqrt(2) / 5**1.5, rel=1e-15)
     assert ref["lp_P"] == pytest.approx(16 / (3 * math.sqrt(3)) / 5**1.5, rel=1e-15)
-    case = orc.truss_2dof_problem(strategy, EA, L, H)
+    case = ex.truss_2dof(EA, L, H, derivatives=strategy)
     br = trace(case.problem, u0=[0.0, 0.0], free="P", bounds={"v": (-0.5, 1.0)})
     assert br.success, (br.status, br.message)
     bps, folds = special(br, "branch_point"), special(br, "fold")
@@ -346,7 +346,7 @@ def test_truss_2dof_branch_point_before_limit_and_switch(strategy):
 
 
 def test_snapback_references():
-    (v1, d1, _), (v2, d2, _) = orc.snapback_turning_points()
+    (v1, d1, _), (v2, d2, _) = ex.snapback_turning_points()
     assert v1 == 0.05948328406145619  # TEST-PROBLEMS.md
     assert v1 + v2 == pytest.approx(0.2, rel=1e-15)  # symmetric about t = 0
     # snap-back iff k_s < K H^2: 0.005 < 0.0098518...
@@ -364,7 +364,7 @@ def test_snapback_references():
 @pytest.mark.parametrize("strategy", STRATEGIES)
 def test_snapback_turning_points_with_monitor(strategy):
     """Unknowns (v, delta), free P; delta-turning points reported as folds w.r.t. "delta"."""
-    case = orc.snapback_monitor_problem(strategy)
+    case = ex.snapback_monitor(derivatives=strategy)
     br = trace(
         case.problem, u0=[0.0, 0.0], free="P", bounds={"v": (-0.05, 0.25)}, monitor=["delta"]
     )
@@ -373,14 +373,14 @@ def test_snapback_turning_points_with_monitor(strategy):
     wrt = [sp.with_respect_to for sp in special(br, "fold")]
     assert wrt == ["P", "delta", "delta", "P"], wrt
     for sp, (v, d, P) in zip(
-        special(br, "fold", "delta"), orc.snapback_turning_points(), strict=True
+        special(br, "fold", "delta"), ex.snapback_turning_points(), strict=True
     ):
         assert sp.status == "converged"
         assert sp.values["delta"] == pytest.approx(d, rel=1e-12, abs=0)
         assert sp.values["v"] == pytest.approx(v, rel=max(STATE_RTOL[strategy], 1e-9))
         # P is not stationary at a delta-turning point (dP/dv * v/P = -0.9): a state variable
         assert sp.values["P"] == pytest.approx(P, rel=STATE_RTOL[strategy])
-    for sp, (v, P) in zip(special(br, "fold", "P"), orc.truss_green_limits(H=0.1), strict=True):
+    for sp, (v, P) in zip(special(br, "fold", "P"), ex.truss_green_limits(H=0.1), strict=True):
         assert_fold(sp, "P", ("P", P), {"v": v}, STATE_RTOL[strategy])
     assert_on_branch(case, br, atol=1e-10)
 
@@ -388,12 +388,12 @@ def test_snapback_turning_points_with_monitor(strategy):
 @pytest.mark.parametrize("strategy", STRATEGIES)
 def test_snapback_turning_points_as_folds_of_the_control(strategy):
     """Unknown v, free parameter delta: the snap-back points are ordinary folds in delta."""
-    case = orc.snapback_control_problem(strategy)
+    case = ex.snapback_control(derivatives=strategy)
     br = trace(case.problem, u0=[0.0], free="delta", bounds={"v": (-0.05, 0.25)})
     assert br.success, (br.status, br.message)
     folds = special(br, "fold")
     assert len(folds) == 2
-    for sp, (v, d, _) in zip(folds, orc.snapback_turning_points(), strict=True):
+    for sp, (v, d, _) in zip(folds, ex.snapback_turning_points(), strict=True):
         assert_fold(sp, "delta", ("delta", d), {"v": v}, STATE_RTOL[strategy])
     assert folds[0].values["v"] == pytest.approx(0.05948328406145619, rel=STATE_RTOL[strategy])
     assert_on_branch(case, br, atol=1e-10)
@@ -405,7 +405,7 @@ def test_snapback_turning_points_as_folds_of_the_control(strategy):
 
 
 def test_arch_references():
-    r6, r3 = orc.arch_references(6), orc.arch_references(3)
+    r6, r3 = ex.arch_references(6), ex.arch_references(3)
     assert r6["bp"][0][1] == pytest.approx(38.83281573, abs=5e-9)  # TEST-PROBLEMS.md
     assert r6["lp"][0][1] == pytest.approx(46.83718745, abs=5e-9)
     assert r6["bp"][0][1] == pytest.approx(12 + 6 * math.sqrt(20), rel=1e-15)  # 2e + 6 sqrt(e^2-16)
@@ -413,11 +413,33 @@ def test_arch_references():
     assert math.sqrt(22) < 6  # the branch point comes first iff e > sqrt 22
 
 
+@pytest.mark.parametrize("e", [3, 4.5, 5, 6])
+def test_arch_references_against_sympy(e):
+    """The closed forms of ex.arch_references checked by sympy: the limit points are the roots
+    of dp/dx on the symmetric path p = 2x + x(x - 2e)(x - e)/2, e -+ sqrt((e^2 - 4)/3); the
+    branch points the real roots of Q + 16 = x^2 - 2ex + 16; both evaluated at 40 digits give
+    the same floats."""
+    import sympy as sp
+
+    x, ee = sp.symbols("x e", real=True)
+    p = 2 * x + x * (x - 2 * ee) * (x - ee) / 2
+    e_val = sp.nsimplify(e)
+    lps = sorted(sp.solve(sp.diff(p, x).subs(ee, e_val), x), key=lambda r: float(r))
+    closed = [e_val - sp.sqrt((e_val**2 - 4) / 3), e_val + sp.sqrt((e_val**2 - 4) / 3)]
+    assert all(sp.simplify(a - b) == 0 for a, b in zip(lps, closed, strict=True))
+    pe = p.subs(ee, e_val)
+    ref = ex.arch_references(e)
+    assert ref["lp"] == [(float(r.evalf(40)), float(pe.subs(x, r).evalf(40))) for r in lps]
+    Q16 = (x**2 - 2 * ee * x + 16).subs(ee, e_val)
+    bps = sorted((r for r in sp.solve(Q16, x) if r.is_real), key=lambda r: float(r))
+    assert ref["bp"] == [(float(r.evalf(40)), float(pe.subs(x, r).evalf(40))) for r in bps]
+
+
 @pytest.mark.parametrize("strategy", STRATEGIES)
 def test_arch_e6_branch_point_before_limit_point(strategy):
     e = 6.0
-    ref = orc.arch_references(e)
-    case = orc.arch_problem(e, strategy)
+    ref = ex.arch_references(e)
+    case = ex.shallow_arch(e, derivatives=strategy)
     br = trace(case.problem, u0=[0.0, 0.0], free="p", bounds={"xi1": (-1.0, 12.0)})
     assert br.success, (br.status, br.message)
     order = [
@@ -440,7 +462,7 @@ def test_arch_e6_branch_point_before_limit_point(strategy):
 def test_arch_e6_switch_to_asymmetric_branch():
     """Asymmetric path: Q = -16, i.e. (xi1 - e)^2 + 4 xi2^2 = e^2 - 16, and p = 8e - 6 xi1."""
     e = 6.0
-    case = orc.arch_problem(e)
+    case = ex.shallow_arch(e)
     br = trace(case.problem, u0=[0.0, 0.0], free="p", bounds={"xi1": (-1.0, 2.0)})
     bp = special(br, "branch_point")[0]
     br2 = trace(case.problem, u0=bp, free="p", direction=+1, bounds={"xi2": (-1.0, 1.0)})
@@ -455,8 +477,8 @@ def test_arch_e6_switch_to_asymmetric_branch():
 @pytest.mark.parametrize("strategy", STRATEGIES)
 def test_arch_e3_limit_points_only(strategy):
     e = 3.0
-    ref = orc.arch_references(e)
-    case = orc.arch_problem(e, strategy)
+    ref = ex.arch_references(e)
+    case = ex.shallow_arch(e, derivatives=strategy)
     br = trace(case.problem, u0=[0.0, 0.0], free="p", bounds={"xi1": (-1.0, 6.0)})
     assert br.success, (br.status, br.message)
     assert not special(br, "branch_point")
@@ -476,27 +498,28 @@ def test_arch_e3_limit_points_only(strategy):
 @pytest.mark.parametrize("strategy", STRATEGIES)
 def test_cohesive_exponential_smooth_fold(strategy):
     """U = 2 e^{-W} + W from W = 0 (U = 2), U decreasing first: fold at W = ln 2."""
-    case = orc.cohesive_exp_problem(2.0, strategy)
+    case = ex.cohesive_exponential(2.0, derivatives=strategy)
     br = trace(case.problem, u0=[0.0], free="U", direction=-1, bounds={"W": (-1.0, 3.0)})
     assert br.success, (br.status, br.message)
     assert br["W"][-1] == 3.0
     folds = special(br, "fold")
     assert len(folds) == 1
-    with mp.workdps(40):
-        W, U = mp.log(2), 1 + mp.log(2)  # 1.6931471805599453094172321214581765680755
-    assert float(U) == pytest.approx(1.693147180559945, rel=1e-15)  # TEST-PROBLEMS.md, 16 digits
-    assert_fold(folds[0], "U", ("U", float(U)), {"W": float(W)}, STATE_RTOL[strategy])
+    W, U = ex.cohesive_exponential_fold(
+        2.0
+    )  # 1 + ln 2 = 1.6931471805599453094172321214581765680755
+    assert U == pytest.approx(1.693147180559945, rel=1e-15)  # TEST-PROBLEMS.md, 16 digits
+    assert_fold(folds[0], "U", ("U", U), {"W": W}, STATE_RTOL[strategy])
     assert_on_branch(case, br, atol=1e-10)
 
 
 @pytest.mark.parametrize("strategy", ["analytic", "central"])
 def test_cohesive_linear_softening_kinks_traced_through(strategy):
-    """Bilinear law (see oracles.cohesive_linear_problem): U(W) has a kinked maximum
+    """Bilinear law (see cusp.examples.cohesive_bilinear): U(W) has a kinked maximum
     U = l + w0 = 2.01 at W = w0 = 0.01 and a kinked minimum U = 1 at W = 1. Tracing in U must
     pass both without failing; a turning point there has no smooth fold, so if one is reported
     as *converged* it must sit on the kink."""
     ell, w0 = 2.0, 0.01
-    case = orc.cohesive_linear_problem(ell, w0, strategy)
+    case = ex.cohesive_bilinear(ell, w0, derivatives=strategy)
     br = trace(case.problem, u0=[0.0], free="U", bounds={"W": (-0.5, 1.5)})
     assert br.success, (br.status, br.message)
     W, U = np.asarray(br["W"]), np.asarray(br["U"])
@@ -518,15 +541,8 @@ def test_cohesive_linear_softening_under_crack_opening_control():
     """The same bilinear law with W as the free parameter and U the unknown (U - l s(W) - W = 0):
     W never turns, and the kinked maximum of U is a turning point w.r.t. the monitored U.
     The branch must pass it and both kinks; a converged fold w.r.t. U must sit on a kink."""
-    from cusp.continuation import Problem
-
     ell, w0 = 2.0, 0.01
-    lin = orc.cohesive_linear_problem(ell, w0, None)
-
-    def residual(q, p):  # same law, roles swapped
-        return lin.residual(np.array([p["W"]]), {"U": q[0]})
-
-    prob = Problem(residual, unknowns=["U"], params={"W": 0.0})
+    prob = ex.cohesive_bilinear_opening(ell, w0, derivatives="central").problem
     br = trace(prob, u0=[0.0], free="W", bounds={"W": (-0.5, 1.5)}, monitor=["U"])
     assert br.success, (br.status, br.message)
     W, U = np.asarray(br["W"]), np.asarray(br["U"])
@@ -552,8 +568,8 @@ def test_cohesive_linear_softening_under_crack_opening_control():
 def test_truss_2dof_order_of_branch_and_limit_point(H, bp_first):
     """The branch point y^2 = H^2 - 2L^2 precedes the limit point y^2 = H^2/3 iff H > sqrt 3 L
     (here L = 1; H = 1.5 lies between sqrt 2 and sqrt 3: limit point first)."""
-    ref = orc.truss_2dof_references(1.0, 1.0, H)
-    case = orc.truss_2dof_problem("analytic", 1.0, 1.0, H)
+    ref = ex.truss_2dof_references(1.0, 1.0, H)
+    case = ex.truss_2dof(1.0, 1.0, H)
     v_end = max(ref["bp_v"], ref["lp_v"]) + 0.2
     br = trace(case.problem, u0=[0.0, 0.0], free="P", bounds={"v": (-0.5, v_end)})
     assert br.success, (br.status, br.message)
@@ -571,8 +587,8 @@ def test_truss_2dof_order_of_branch_and_limit_point(H, bp_first):
 @pytest.mark.parametrize("e, bp_first", [(4.5, False), (5.0, True), (6.0, True)])
 def test_arch_order_of_branch_and_limit_point(e, bp_first):
     """The first branch point precedes the first limit point iff e > sqrt 22 = 4.690."""
-    ref = orc.arch_references(e)
-    case = orc.arch_problem(e)
+    ref = ex.arch_references(e)
+    case = ex.shallow_arch(e)
     x_end = max(ref["bp"][0][0], ref["lp"][0][0]) + 0.5
     br = trace(case.problem, u0=[0.0, 0.0], free="p", bounds={"xi1": (-1.0, x_end)})
     assert br.success, (br.status, br.message)

@@ -1,6 +1,7 @@
 """Behaviour of `trace` beyond the published problems: events, targets, step budget, failure
 reporting, option validation, import hygiene and the Jacobian checker. Written from the API
-specification only; the references are the cusp x^3 - x - b = 0 (exact) and the oracles."""
+specification only; the references are the cusp x^3 - x - b = 0 (exact) and the examples'
+own residuals."""
 
 from __future__ import annotations
 
@@ -11,8 +12,9 @@ import sys
 import numpy as np
 import pytest
 
-from tests.continuation import oracles as orc
-from tests.continuation.oracles import special
+import cusp.examples as ex
+from tests.continuation import helpers
+from tests.continuation.helpers import special
 
 BOUNDS = {"b": (-1.0, 1.0)}
 
@@ -20,7 +22,7 @@ BOUNDS = {"b": (-1.0, 1.0)}
 def _cusp(**kw):
     from cusp.continuation import trace
 
-    case = orc.cusp_problem("analytic")
+    case = ex.cusp_normal_form()
     kw.setdefault("bounds", BOUNDS)
     kw.setdefault("max_steps", 5000)
     return case, trace(case.problem, u0=[-1.3247], free="b", **kw)
@@ -47,7 +49,7 @@ def test_user_event_located_and_inserted():
     assert br["x"][sp.index] == sp.values["x"]  # inserted as a point of the branch
     # the event does not end the branch (terminal=False)
     assert br["b"][-1] == 1.0
-    orc.assert_special_points_consistent(case, br)
+    helpers.assert_special_points_consistent(case, br)
 
 
 @pytest.mark.parametrize("direction, count", [(0, 3), (+1, 2), (-1, 1)])
@@ -106,7 +108,7 @@ def test_targets_land_exactly():
     # on the three sheets: x1 < -1/sqrt3 < x2 < 1/sqrt3 < x3
     xs = sorted(sp.values["x"] for sp in tg if sp.values["b"] == 0.1)
     assert xs[0] < -0.58 < xs[1] < 0.57 < xs[2]
-    orc.assert_special_points_consistent(case, br)
+    helpers.assert_special_points_consistent(case, br)
 
 
 # ---------------------------------------------------------------------------------------------
@@ -120,7 +122,7 @@ def test_max_steps_ends_normally_with_a_status():
     assert br["b"][-1] < 1.0
     assert isinstance(br.status, str) and br.status
     assert re.search(r"step", f"{br.status} {br.message}", re.IGNORECASE), (br.status, br.message)
-    assert np.all(orc.branch_residual_norms(case, br) <= 1e-10)
+    assert np.all(helpers.branch_residual_norms(case, br) <= 1e-10)
 
 
 def _nan_beyond_half():
@@ -195,7 +197,7 @@ def test_options_are_frozen_and_keywords_override():
     opts = ContinuationOptions(ds=0.01, ds_max=0.05, max_steps=1000)
     with pytest.raises(dataclasses.FrozenInstanceError):
         opts.ds = 0.1
-    case = orc.cusp_problem("analytic")
+    case = ex.cusp_normal_form()
     br = trace(case.problem, u0=[-1.3247], free="b", bounds=BOUNDS, options=opts)
     assert br.success and br["b"][-1] == 1.0
     assert np.all(np.abs(br.stats["ds"]) <= 0.05 * (1 + 1e-12))
@@ -206,7 +208,7 @@ def test_options_are_frozen_and_keywords_override():
 def test_bad_trace_keywords_raise_value_error():
     from cusp.continuation import trace
 
-    case = orc.cusp_problem("analytic")
+    case = ex.cusp_normal_form()
     with pytest.raises(ValueError, match=r"\bds\b"):
         trace(case.problem, u0=[-1.3247], free="b", ds=-1.0)
     with pytest.raises(ValueError, match=r"\bc\b"):
@@ -222,7 +224,10 @@ def test_bad_derivatives_strategy_raises():
 
     with pytest.raises(ValueError, match="derivatives"):
         Problem(
-            orc.cusp_residual, unknowns=["x"], params={"a": 1.0, "b": 0.0}, derivatives="backward"
+            ex.cusp_normal_form().residual,
+            unknowns=["x"],
+            params={"a": 1.0, "b": 0.0},
+            derivatives="backward",
         )
 
 
@@ -270,7 +275,8 @@ def test_import_does_not_pull_sympy_or_matplotlib():
 def test_check_jacobian_accepts_correct_and_flags_wrong():
     from cusp.continuation import Problem, check_jacobian
 
-    res, jac, pjac = orc.truss_2dof_residual_factory()
+    truss = ex.truss_2dof()  # EA = L = 1, H = 2
+    res, jac, pjac = truss.residual, truss.jacobian, truss.param_jacobian
     u, p = np.array([0.2, 0.7]), {"P": 0.1}
     good = Problem(res, unknowns=["u", "v"], params={"P": 0.1}, jacobian=jac, param_jacobian=pjac)
     rep = check_jacobian(good, u, p)
@@ -295,6 +301,6 @@ def test_check_jacobian_accepts_correct_and_flags_wrong():
 def test_check_jacobian_sparse():
     from cusp.continuation import check_jacobian
 
-    case = orc.bratu_problem(7, "analytic", sparse=True)
+    case = ex.bratu(7, sparse=True)
     rep = check_jacobian(case.problem, np.linspace(0.1, 0.7, 7), {"lam": 2.0})
     assert rep.ok, getattr(rep, "message", rep)

@@ -6,8 +6,16 @@ import importlib.util
 import pathlib
 
 import numpy as np
+import pytest
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
+
+
+@pytest.fixture(autouse=True)
+def scripts_on_path(monkeypatch):
+    """Scripts import their siblings (`_report`) from scripts/, on sys.path when run as
+    ``python scripts/<name>.py``."""
+    monkeypatch.syspath_prepend(str(ROOT / "scripts"))
 
 
 def load(name):

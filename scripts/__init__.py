@@ -1,1 +1,0 @@
-"""Figure and benchmark scripts (run from the repository root: ``python scripts/<name>.py``)."""

@@ -1,0 +1,52 @@
+"""Helpers of the continuation tests: the derivative strategies a test is parametrised over,
+the tolerance on a refined fold's state per strategy, and checks of a branch against an
+example's own residual (never the solver's).
+
+The problems and their references are in :mod:`cusp.examples`.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+#: Derivative strategies a test can be parametrised over: the hand-written Jacobian or one of
+#: the solver's finite-difference fallbacks.
+STRATEGIES = ("analytic", "central", "forward", "complex")
+
+#: Tolerance on the *state* of a refined fold (its parameter is always compared to 1e-12
+#: relative: at a fold the parameter is stationary, so a state error δ perturbs it by O(δ²)).
+#: A forward-difference Jacobian is itself only accurate to ~sqrt(eps) ~ 1.5e-8, which moves
+#: the zero of det J, hence the fold's state, by about that much.
+STATE_RTOL = {"analytic": 1e-9, "complex": 1e-9, "central": 1e-8, "forward": 1e-6}
+
+
+def branch_residual_norms(case, br):
+    """max-norm of the example's own residual at every point of a branch (from br's columns)."""
+    u = np.column_stack([np.asarray(br[name], dtype=float) for name in case.unknowns])
+    out = np.empty(u.shape[0])
+    for i in range(u.shape[0]):
+        p = {name: float(br[name][i]) for name in case.params}
+        out[i] = np.max(np.abs(case.residual(u[i].copy(), p)))
+    return out
+
+
+def special(br, kind, with_respect_to=None):
+    """Special points of one kind (optionally a fold w.r.t. one variable), in branch order."""
+    pts = [
+        sp
+        for sp in br.special_points
+        if sp.kind == kind and (with_respect_to is None or sp.with_respect_to == with_respect_to)
+    ]
+    return sorted(pts, key=lambda sp: sp.index)
+
+
+def assert_special_points_consistent(case, br):
+    """Every special point's values are the branch's columns at its index, bit for bit."""
+    n = len(br[case.unknowns[0]])
+    for name in [*case.unknowns, *case.params]:
+        assert len(br[name]) == n, name
+    for sp in br.special_points:
+        assert 0 <= sp.index < n, sp
+        assert sp.status in ("converged", "guess"), sp
+        for name in [*case.unknowns, *case.params]:
+            assert br[name][sp.index] == sp.values[name], (sp.kind, sp.label, name)
