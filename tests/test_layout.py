@@ -1,0 +1,243 @@
+"""The package layout: one import name, layers that import only downwards, no import cycle,
+small modules and functions, light imports.
+
+The layers (repository folder → import name): ``continuation/`` → ``cusp.continuation``
+(the engine: numpy and scipy only), ``examples/`` → ``cusp.examples`` and ``models/`` →
+``cusp.models`` (each on the engine only), ``verification/`` → ``cusp.verification`` (may
+use the physics), ``app/`` → ``cusp.app`` (may use everything), ``scenes/`` →
+``cusp.scenes`` (data).
+"""
+
+from __future__ import annotations
+
+import ast
+import json
+import subprocess
+import sys
+from collections import defaultdict
+from pathlib import Path
+
+import pytest
+
+try:
+    import tomllib
+except ModuleNotFoundError:  # Python 3.10
+    import tomli as tomllib
+
+ROOT = Path(__file__).resolve().parents[1]
+PYPROJECT = tomllib.loads((ROOT / "pyproject.toml").read_text(encoding="utf-8"))
+
+#: package -> the cusp packages it may import (besides itself)
+ALLOWED = {
+    "cusp": set(),
+    "cusp.__main__": {"cusp.app"},  # ``python -m cusp``: the command
+    "cusp.continuation": set(),
+    "cusp.examples": {"cusp.continuation"},
+    "cusp.models": {"cusp.continuation"},
+    "cusp.verification": {"cusp.continuation", "cusp.models"},
+    "cusp.app": {
+        "cusp.continuation",
+        "cusp.examples",
+        "cusp.models",
+        "cusp.verification",
+        "cusp.scenes",
+    },
+    "cusp.scenes": set(),
+}
+MAX_FUNCTION_LINES = 80
+MAX_MODULE_LINES = 600
+
+
+def _package_dirs() -> dict[str, Path]:
+    mapping = PYPROJECT["tool"]["setuptools"]["package-dir"]
+    return {name: ROOT / folder for name, folder in mapping.items()}
+
+
+def _modules() -> dict[str, Path]:
+    """Every module of the installed package: dotted name -> source file."""
+    out = {}
+    for package, folder in _package_dirs().items():
+        for path in sorted(folder.glob("*.py")):
+            name = package if path.stem == "__init__" else f"{package}.{path.stem}"
+            out[name] = path
+    return out
+
+
+def _imports(name: str, path: Path) -> set[str]:
+    """The modules ``name`` imports (at import time or inside functions), absolute."""
+    tree = ast.parse(path.read_text(encoding="utf-8"))
+    package = name if path.stem == "__init__" else name.rpartition(".")[0]
+    found = set()
+    for node in ast.walk(tree):
+        if isinstance(node, ast.Import):
+            found.update(alias.name for alias in node.names)
+        elif isinstance(node, ast.ImportFrom):
+            if node.level:
+                base = package.split(".")
+                base = base[: len(base) - node.level + 1]
+                module = ".".join(base + ([node.module] if node.module else []))
+            else:
+                module = node.module or ""
+            found.add(module)
+            found.update(f"{module}.{alias.name}" for alias in node.names)
+    return found
+
+
+def _layer(module: str) -> str | None:
+    for package in sorted(ALLOWED, key=len, reverse=True):
+        if module == package or module.startswith(package + "."):
+            return package
+    return None
+
+
+def test_one_import_name():
+    """The distribution installs exactly one top-level package, ``cusp``, and the command."""
+    setuptools_cfg = PYPROJECT["tool"]["setuptools"]
+    assert all(p == "cusp" or p.startswith("cusp.") for p in setuptools_cfg["packages"])
+    assert set(setuptools_cfg["packages"]) == set(setuptools_cfg["package-dir"])
+    assert PYPROJECT["project"]["scripts"] == {"cusp": "cusp.app.cli:main"}
+    # every package folder is listed (a forgotten folder would not be installed)
+    for folder in _package_dirs().values():
+        assert (folder / "__init__.py").is_file(), folder
+
+
+def test_build_holds_only_cusp(tmp_path):
+    """What setuptools builds from the project's own files: only ``cusp/`` (the wheel adds its
+    dist-info; ``pip install --target`` adds the ``bin/cusp`` command)."""
+    pytest.importorskip("setuptools")
+    code = (
+        "import sys, setuptools; "
+        f"sys.argv = ['setup.py', '-q', 'build_py', '--build-lib', {str(tmp_path)!r}]; "
+        "setuptools.setup()"
+    )
+    done = subprocess.run(
+        [sys.executable, "-c", code], cwd=ROOT, capture_output=True, text=True, timeout=120
+    )
+    assert done.returncode == 0, done.stderr
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["cusp"]
+    built = {p.relative_to(tmp_path).as_posix() for p in tmp_path.rglob("*.py")}
+    expected = {
+        (f"{name.replace('.', '/')}/__init__.py" if path.stem == "__init__" else None)
+        or f"{name.rpartition('.')[0].replace('.', '/')}/{path.name}"
+        for name, path in _modules().items()
+    }
+    assert built == expected
+    assert (tmp_path / "cusp" / "scenes" / "fig6.toml").is_file()
+
+
+def test_layers_import_only_downwards():
+    bad = []
+    for name, path in _modules().items():
+        own = _layer(name)
+        for target in _imports(name, path):
+            if not (target == "cusp" or target.startswith("cusp.")):
+                continue
+            layer = _layer(target)
+            if layer not in (own, None) and layer not in ALLOWED[own]:
+                bad.append(f"{name} imports {target}")
+    assert not bad, bad
+
+
+def test_no_import_cycle():
+    modules = _modules()
+    graph = defaultdict(set)
+    for name, path in modules.items():
+        for target in _imports(name, path):
+            while target and target not in modules:  # `from pkg import module` or a name
+                target = target.rpartition(".")[0]
+            if target and target != name:
+                graph[name].add(target)
+    # a package importing its own modules is not a cycle (Python resolves it); a module
+    # importing its package's ``__init__`` for a name defined in a sibling would be, so edges
+    # into a package ``__init__`` count too
+    cycles = []
+    state: dict[str, int] = {}
+
+    def visit(node, stack):
+        state[node] = 1
+        stack.append(node)
+        for nxt in sorted(graph[node]):
+            if nxt.startswith(node + "."):  # a package's own submodules
+                continue
+            if state.get(nxt) == 1 and not node.startswith(nxt + "."):
+                cycles.append(stack[stack.index(nxt) :] + [nxt])
+            elif nxt not in state:
+                visit(nxt, stack)
+        stack.pop()
+        state[node] = 2
+
+    for node in sorted(modules):
+        if node not in state:
+            visit(node, [])
+    assert not cycles, cycles
+
+
+def test_first_party_imports_go_through_cusp():
+    """Tests, scripts and the package never import the repository folders by their bare
+    names (they would shadow or duplicate the installed package); scripts never import
+    tests."""
+    bare = {"continuation", "models", "verification", "app", "scenes", "examples"}
+    bad = []
+    files = [*ROOT.joinpath("tests").rglob("*.py"), *ROOT.joinpath("scripts").glob("*.py")]
+    files += list(_modules().values())
+    for path in files:
+        tree = ast.parse(path.read_text(encoding="utf-8"))
+        for node in ast.walk(tree):
+            names = []
+            if isinstance(node, ast.Import):
+                names = [alias.name for alias in node.names]
+            elif isinstance(node, ast.ImportFrom) and not node.level:
+                names = [node.module or ""]
+            for module in names:
+                top = module.split(".")[0]
+                if top in bare or (top == "tests" and path.parent.name == "scripts"):
+                    bad.append(f"{path.relative_to(ROOT)}: import {module}")
+    assert not bad, bad
+
+
+def _body_lines(node) -> int:
+    n = node.end_lineno - node.lineno + 1
+    body = node.body
+    if (
+        body
+        and isinstance(body[0], ast.Expr)
+        and isinstance(body[0].value, ast.Constant)
+        and isinstance(body[0].value.value, str)
+    ):
+        n -= body[0].end_lineno - body[0].lineno + 1
+    return n
+
+
+def test_small_modules_and_functions():
+    long_modules, long_functions = [], []
+    for name, path in _modules().items():
+        text = path.read_text(encoding="utf-8")
+        if text.count("\n") > MAX_MODULE_LINES:
+            long_modules.append(f"{name}: {text.count(chr(10))} lines")
+        for node in ast.walk(ast.parse(text)):
+            if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef)):
+                n = _body_lines(node)
+                if n > MAX_FUNCTION_LINES:
+                    long_functions.append(f"{name}.{node.name}: {n} lines")
+    assert not long_modules, long_modules
+    assert not long_functions, long_functions
+
+
+@pytest.mark.parametrize(
+    ("package", "forbidden"),
+    [
+        ("cusp", ("cusp.continuation", "cusp.models", "numpy", "sympy", "matplotlib")),
+        ("cusp.continuation", ("cusp.models", "cusp.app", "cusp.examples", "sympy", "matplotlib")),
+        (
+            "cusp.models",
+            ("cusp.app", "cusp.verification", "sympy", "matplotlib", "scipy.integrate"),
+        ),
+    ],
+)
+def test_imports_are_light(package, forbidden):
+    code = f"import sys, json, {package}; print(json.dumps(sorted(sys.modules)))"
+    done = subprocess.run(
+        [sys.executable, "-c", code], capture_output=True, text=True, check=True, cwd=ROOT
+    )
+    loaded = set(json.loads(done.stdout))
+    assert not [m for m in forbidden if m in loaded]
