@@ -1,6 +1,6 @@
 """The contact-loss path O→A→B→C (Sec. 4, Figs 6–8), traced by the continuation solver.
 
-Loading protocol (PHYSICS.md §7):
+Loading protocol (docs/physics.md §7):
 
 * O→A: normal load held at F_N0, tangential slip g_T raised from 0 to g_A;
 * A→B: normal load reduced to F'_N with the Mindlin–Deresiewicz rule F'_T = F_A − μΔF_N;
@@ -49,7 +49,7 @@ The released energies are integrals along the traced branches, ∫ (F_AB − F_B
 quadrature in g with the nodes placed on the branches by :func:`cusp.continuation.points_at`
 (each a corrected point, not an interpolated one), doubling the nodes until two rules agree
 to 1e-13 relative. No closed form is evaluated to trace the path; the closed forms of the
-exponential surface (PHYSICS.md §7) are test oracles only.
+exponential surface (docs/physics.md §7) are test oracles only.
 
 Â_SL (Eq 32): ``"printed"`` (default) normalises Â_ST by the current real contact area, as
 printed, so Â_SL = (1 − A_ST/A'_r) + (A_r − A'_r)/A_r; ``"consistent"`` measures the stick

@@ -2,7 +2,7 @@
 
     python scripts/bench_sparse.py [--sizes 999 3999 ...] [--out docs/benchmarks/sparse.md]
 
-The problem is TEST-PROBLEMS.md §2, the finite-difference Bratu problem
+The problem is docs/test-problems.md §2, the finite-difference Bratu problem
 u'' + λ e^u = 0 on (0, 1), u(0) = u(1) = 0, with N interior nodes. Its Jacobian is
 tridiagonal and is given as scipy.sparse (CSC), with ∂R/∂λ = e^u. The branch is traced
 from u = 0, λ = 0 to u at the midpoint = 2, past the fold, with the default options

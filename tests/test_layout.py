@@ -241,3 +241,25 @@ def test_imports_are_light(package, forbidden):
     )
     loaded = set(json.loads(done.stdout))
     assert not [m for m in forbidden if m in loaded]
+
+
+def test_nothing_refers_to_files_a_user_does_not_have():
+    """The physics and the test problems are the project's own pages (docs/physics.md,
+    docs/test-problems.md); no file names a page outside the repository or a machine path."""
+    forbidden = ("PHYSICS.md", "TEST-PROBLEMS.md", "../shared", "/work/", "/root/", "/home/")
+    tracked = subprocess.run(
+        ["git", "ls-files"], cwd=ROOT, capture_output=True, text=True, check=False
+    ).stdout.split()
+    if not tracked:  # not a git checkout: every text file under the root
+        tracked = [str(p.relative_to(ROOT)) for p in ROOT.rglob("*") if p.is_file()]
+    suffixes = {".py", ".md", ".toml", ".txt", ".cfg", ".json", ".csv", ""}
+    bad = []
+    for name in tracked:
+        path = ROOT / name
+        if path.suffix not in suffixes or not path.is_file() or ".git" in path.parts:
+            continue
+        if path == Path(__file__).resolve():  # the list above
+            continue
+        text = path.read_text(encoding="utf-8", errors="replace")
+        bad += [f"{name}: {word}" for word in forbidden if word in text]
+    assert not bad, bad

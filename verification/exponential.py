@@ -196,8 +196,9 @@ def _eq12_derivations(x_of_F: sp.Expr) -> list[Derivation]:
             _in_x(R["slip"] / R["J_d"]),
             _X_DOM,
             (
-                "Slip integral over d < z < d0 (Eq 10) over Eq 11, in x; printed as PHYSICS.md",
-                "reads P(5/2, x). This is the part that cancels catastrophically for small x.",
+                "Slip integral over d < z < d0 (Eq 10) over Eq 11, in x; printed as",
+                "docs/physics.md §4 reads P(5/2, x). This is the part that cancels",
+                "catastrophically for small x.",
             ),
         ),
     ]

@@ -1,7 +1,7 @@
 """Unit tests of the continuation core: options, problems, derivatives, events, targets,
 bounds, failures, the step-level API and branch switching.
 
-The published benchmark problems (TEST-PROBLEMS.md) are in test_published.py.
+The published benchmark problems (docs/test-problems.md) are in test_published.py.
 """
 
 import math

@@ -76,7 +76,7 @@ def test_one_direction_and_events_on_fold_curve():
 
 
 def arch(e):
-    """Shallow pinned sinusoidal arch, two-mode Ritz model (TEST-PROBLEMS.md §5): the
+    """Shallow pinned sinusoidal arch, two-mode Ritz model (docs/test-problems.md §5): the
     gradient of Π = (1/8)(ξ1² − 2eξ1 + 4ξ2²)² + ξ1² + 16ξ2² − pξ1, without its Jacobian
     (central differences)."""
     return ex.shallow_arch(e, derivatives="central").problem
@@ -120,7 +120,7 @@ def test_fold_curve_starts_from_a_slightly_inexact_fold_with_differenced_jacobia
 def test_snap_back_fold_curve_closes_in_a_cusp():
     # truss (Green strain, EA = L = 1, H = 0.1) in series with a spring k_s under load control
     # P: unknowns (v, δ); the snap-back is a turning point of δ (a monitored unknown). The
-    # snap-back disappears when k_s ≥ K H² (TEST-PROBLEMS.md §4): the two δ-turning points
+    # snap-back disappears when k_s ≥ K H² (docs/test-problems.md §4): the two δ-turning points
     # meet in a cusp at k_s = K H², K = EA/l0³.
     H = 0.1
     K = 1 / math.hypot(1.0, H) ** 3

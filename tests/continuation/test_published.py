@@ -1,4 +1,4 @@
-"""Oracle tests: the published problems of TEST-PROBLEMS.md against independently recomputed
+"""Oracle tests: the published problems of docs/test-problems.md against independently recomputed
 references (mpmath at 40 digits or sympy, in `cusp.examples` or beside each literal).
 
 A fold's parameter is compared to 1e-12 relative (the solver promises Newton refinement on an
@@ -169,7 +169,9 @@ def test_bratu_small_n_closed_forms_sympy():
 def test_bratu_references_converge_like_h2():
     """lam*(N) -> lam* = 8(s^2 - 1) like h^2 (constant ~ -1.828), also at N = 99999."""
     lam_star, u_half = ex.bratu_continuum_fold()
-    assert lam_star == 3.513830719125161  # TEST-PROBLEMS.md: ...162 is one ulp high
+    assert (
+        lam_star == 3.513830719125161
+    )  # docs/test-problems.md §2: the often-quoted ...162 is 2 ulp high
     assert u_half == pytest.approx(1.186842168634389, rel=1e-15)
     consts = []
     for n in (10, 20, 40, 80):
@@ -347,7 +349,7 @@ def test_truss_2dof_branch_point_before_limit_and_switch(strategy):
 
 def test_snapback_references():
     (v1, d1, _), (v2, d2, _) = ex.snapback_turning_points()
-    assert v1 == 0.05948328406145619  # TEST-PROBLEMS.md
+    assert v1 == 0.05948328406145619  # docs/test-problems.md §4
     assert v1 + v2 == pytest.approx(0.2, rel=1e-15)  # symmetric about t = 0
     # snap-back iff k_s < K H^2: 0.005 < 0.0098518...
     K = 1 / 1.01**1.5
@@ -406,7 +408,7 @@ def test_snapback_turning_points_as_folds_of_the_control(strategy):
 
 def test_arch_references():
     r6, r3 = ex.arch_references(6), ex.arch_references(3)
-    assert r6["bp"][0][1] == pytest.approx(38.83281573, abs=5e-9)  # TEST-PROBLEMS.md
+    assert r6["bp"][0][1] == pytest.approx(38.83281573, abs=5e-9)  # docs/test-problems.md §5
     assert r6["lp"][0][1] == pytest.approx(46.83718745, abs=5e-9)
     assert r6["bp"][0][1] == pytest.approx(12 + 6 * math.sqrt(20), rel=1e-15)  # 2e + 6 sqrt(e^2-16)
     assert r3["bp"] == []
@@ -507,7 +509,7 @@ def test_cohesive_exponential_smooth_fold(strategy):
     W, U = ex.cohesive_exponential_fold(
         2.0
     )  # 1 + ln 2 = 1.6931471805599453094172321214581765680755
-    assert U == pytest.approx(1.693147180559945, rel=1e-15)  # TEST-PROBLEMS.md, 16 digits
+    assert U == pytest.approx(1.693147180559945, rel=1e-15)  # docs/test-problems.md §6, 16 digits
     assert_fold(folds[0], "U", ("U", U), {"W": W}, STATE_RTOL[strategy])
     assert_on_branch(case, br, atol=1e-10)
 

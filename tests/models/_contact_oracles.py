@@ -1,4 +1,4 @@
-"""Independent high-precision references for the contact-loss path (PHYSICS.md §7).
+"""Independent high-precision references for the contact-loss path (docs/physics.md §7).
 
 Written from the physics, not from ``models``: mpmath at 40 digits, with the stick-threshold
 level d0 = d + g_N0 invariant along AB (the Mindlin–Deresiewicz rule keeps μF_N − F_T, hence

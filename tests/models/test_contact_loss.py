@@ -113,7 +113,7 @@ def test_fig6_points_and_energies_match_the_symbolic_closed_forms():
 
 
 def test_fig6_traced_rows_satisfy_the_physics_oracle_along_AB():
-    # PHYSICS.md §7: along AB, g'_T = g_A + μλ ln(F'_N/F_N0) (every traced row, not just B)
+    # docs/physics.md §7: along AB, g'_T = g_A + μλ ln(F'_N/F_N0) (every traced row, not just B)
     sigma, nu, mu, F_N0, g_A, F_Np = FIG6
     surf = ExponentialRoughSurface(sigma, nu, mu)
     res = ContactLoss(surf, F_N0, g_A, F_Np).run()

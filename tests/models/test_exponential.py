@@ -146,7 +146,7 @@ def test_bad_loads():
 
 
 def test_loading_curve_oracle_of_fig6():
-    # PHYSICS.md §7: along A→B, g'_T = g_A + μλ ln(F'_N/F_N0) keeps J(d0) fixed
+    # docs/physics.md §7: along A→B, g'_T = g_A + μλ ln(F'_N/F_N0) keeps J(d0) fixed
     s = surface()
     F_N0, g_A, F_N1 = 1000.0, 0.34, 850.0
     F_A = s.tangential_force(g_A, F_N0)

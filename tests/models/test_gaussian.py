@@ -68,7 +68,7 @@ def test_separation_round_trip_over_the_load_range():
     F_N = s.normal_load(d)
     np.testing.assert_allclose(s.separation(F_N), d, rtol=1e-14, atol=1e-14)
     assert np.all(np.diff(F_N) > 0)
-    # ΔA_r/A_r differs from ΔF_N/F_N for this density (PHYSICS.md §5)
+    # ΔA_r/A_r differs from ΔF_N/F_N for this density (docs/physics.md §5)
     A = s.real_contact_area(d)
     assert not math.isclose(A[1] / A[0], F_N[1] / F_N[0], rel_tol=1e-3)
 

@@ -1,6 +1,6 @@
 """Regenerate ``reference_values.json`` (run from the repository root; ~2 min, one core).
 
-    /work/venv/bin/python tests/models/reference/make_reference.py
+    python tests/models/reference/make_reference.py
 
 Each value comes from :mod:`mp_reference` (mpmath, dps 50 for the four bodies, 40 for the
 Gaussian), evaluated at the exact binary float stored beside it (as float.hex).
