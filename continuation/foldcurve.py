@@ -169,6 +169,8 @@ class FoldSystem(CurveSystem):
             system = system.refreshed(z)
         return system
 
+    refreshes = True
+
     def refreshed(self, z: np.ndarray) -> FoldSystem:
         """The system with the borders replaced by the left and right null vectors at ``z``."""
         _, v, w, _, _ = self.bordered_solve(z)

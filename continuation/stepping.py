@@ -73,26 +73,47 @@ class StepRules:
         return math.sqrt(x.dot(self.weights * x))
 
 
-class Trial(NamedTuple):
+class Trial:
     """An accepted step: the corrector's result ``res`` (its ``z`` is the new point), the
     unit tangent ``t`` there, the border ``row`` of the corrector, the tangent's turn
     ``angle`` (degrees), the step size ``ds`` used and the new point's pseudo-arclength
     ``h`` from the last one, ``rt`` (det [∂G/∂z; (W t)ᵀ] has the sign of the corrector's
     determinant times the sign of ``rt``), the number of rejected tries, whether it was a
     corner step, the bound test it was aimed at (or None), and whether the damped
-    fallback corrector was used."""
+    fallback corrector was used.
 
-    res: NewtonResult
-    t: np.ndarray
-    row: np.ndarray
-    angle: float
-    ds: float
-    h: float
-    rt: float
-    rejected: int = 0
-    corner: bool = False
-    aimed: BoundTest | None = None
-    used_fallback: bool = False
+    Never changed after it is made (see :class:`~.corrector.NewtonResult` for why it is a
+    slotted class)."""
+
+    __slots__ = (
+        "res", "t", "row", "angle", "ds", "h", "rt", "rejected", "corner", "aimed",
+        "used_fallback",
+    )  # fmt: skip
+
+    def __init__(
+        self,
+        res: NewtonResult,
+        t: np.ndarray,
+        row: np.ndarray,
+        angle: float,
+        ds: float,
+        h: float,
+        rt: float,
+        rejected: int = 0,
+        corner: bool = False,
+        aimed: BoundTest | None = None,
+        used_fallback: bool = False,
+    ) -> None:
+        self.res, self.t, self.row, self.angle = res, t, row, angle
+        self.ds, self.h, self.rt, self.rejected = ds, h, rt, rejected
+        self.corner, self.aimed, self.used_fallback = corner, aimed, used_fallback
+
+    def with_rejected(self, rejected: int) -> Trial:
+        """The same step, after ``rejected`` rejected tries."""
+        return Trial(
+            self.res, self.t, self.row, self.angle, self.ds, self.h, self.rt, rejected,
+            self.corner, self.aimed, self.used_fallback,
+        )  # fmt: skip
 
 
 class Failure(NamedTuple):
@@ -105,12 +126,17 @@ class Failure(NamedTuple):
 
 
 def advance(rules: StepRules, state: TracerState) -> Trial | Failure:
-    """Predict and correct one step from the last point of ``state``."""
+    """Predict and correct one step from the last point of ``state``: the corner step after
+    many steps creeping at ``ds_min``, else the step aimed at a bound within reach, else the
+    pseudo-arclength step, halved until it is accepted; at ``ds_min`` the corner step and
+    then failure."""
+    o = rules.options
+    system = state.system
     last = state.last
     z, t = last.z, last.t
     z_prev = None if last.prev is None else last.prev.z
     secant = None
-    if rules.options.predictor == "secant" and z_prev is not None:
+    if o.predictor == "secant" and z_prev is not None:
         d = z - z_prev
         nd = rules.wnorm(d)
         if nd > 0:
@@ -118,36 +144,26 @@ def advance(rules: StepRules, state: TracerState) -> Trial | Failure:
     if state.stalled >= _STALL_STEPS:
         # creeping at ds near ds_min (say, Newton with a Jacobian differenced across a
         # kink): try to pass the corner directly
-        corner = corner_step(rules, state.system, z, t, state.ds, z_prev)
+        corner = corner_step(rules, system, z, t, state.ds, z_prev)
         if corner is not None:
             return corner
     elif secant is None and rules.bound_tests:
         aimed = aim_at_bound(rules, state, z, t, state.ds)
         if aimed is not None:
             return aimed
-    return _arclength_step(rules, state, secant, z_prev)
-
-
-def _arclength_step(
-    rules: StepRules, state: TracerState, secant: np.ndarray | None, z_prev: np.ndarray | None
-) -> Trial | Failure:
-    """The pseudo-arclength step, halved until it is accepted; at ``ds_min``, the corner
-    step and then failure."""
-    o = rules.options
-    z, t = state.last.z, state.last.t
     direction = t if secant is None else secant
     row = direction if rules.unit_weights else rules.weights * direction
     ds = state.ds
     rejected = 0
     while True:
-        res, tried, reason = _try(rules, state.system, z, t, ds, direction, row, secant)
+        res, tried, reason = _try(rules, system, z, t, ds, direction, row, secant)
         if tried is not None:
-            return tried._replace(rejected=rejected) if rejected else tried
+            return tried.with_rejected(rejected) if rejected else tried
         if ds <= o.ds_min:
-            corner = corner_step(rules, state.system, z, t, state.ds, z_prev)
+            corner = corner_step(rules, system, z, t, state.ds, z_prev)
             if corner is not None:
                 return corner
-            return _failure(state.system, z, ds, res, reason, o)
+            return _failure(system, z, ds, res, reason, o)
         ds = max(0.5 * ds, o.ds_min)
         rejected += 1
 
@@ -209,7 +225,7 @@ def _try(
         logger.info("step accepted by the damped fallback corrector at ds=%g", ds)
     # the pseudo-arclength of the step: row·(z1 − z) = ds·(row·direction) = ds, as the
     # corrector satisfies the (linear) hyperplane equation to rounding
-    return res, Trial(res, t_new, row, angle, ds, ds, rt, used_fallback=used_fallback), ""
+    return res, Trial(res, t_new, row, angle, ds, ds, rt, 0, False, None, used_fallback), ""
 
 
 def _failure(
@@ -386,7 +402,7 @@ def _aimed(
         return None
     z1 = res.z.copy()
     z1[k] = tt.value_at  # the constraint is linear: snap away the last rounding
-    res = res._replace(z=z1)
+    res = NewtonResult(z1, True, res.iterations, res.residual_norm, res.lu)
     # [∂G/∂z; e_kᵀ] tan = e_last gives a tangent (with tan_k = 1), oriented like t
     tan = res.lu.solve(rules.e_last)
     wt = W * t

@@ -45,6 +45,9 @@ class CurveSystem:
     exact_jacobian: bool = False
     """True if ``jacobian`` is exact to rounding (not differenced): its own differences are
     then accurate enough for forward differencing."""
+    refreshes: bool = False
+    """True if the equations change along the curve, so that :meth:`refreshed` must be
+    called after every accepted point (the tracer skips the call otherwise)."""
 
     def residual(self, z: np.ndarray) -> np.ndarray:  # pragma: no cover - interface
         raise NotImplementedError

@@ -50,6 +50,8 @@ logger = logging.getLogger(__name__)
 
 _DEFAULT_OPTIONS = ContinuationOptions()  # frozen: shared (validation costs 20 µs a call)
 
+_NONE: tuple[tuple, None] = ((), None)  # nothing located, no bracket
+
 #: a test that changed sign in a step: (test, value at the start, value at the end)
 _Crossing = tuple[TestFunction, float, float]
 
@@ -310,22 +312,16 @@ class Tracer:
         """One accepted continuation step (with its special points), or the end."""
         if state.status is not None:
             return state
+        # 1. predict and correct
         trial = advance(self._rules, state)
         if isinstance(trial, Failure):
             return self._fail(state, trial)
-        system = state.system.refreshed(trial.res.z)
-        values, crossings = self._evaluate(state, system, trial)
-        special = None
-        if trial.corner:
-            special, crossings = _corner_folds(crossings, state.last.s, trial.h)
-        located, br = self._locate(state, system, trial, crossings) if crossings else ([], None)
-        return self._finish(state, system, trial, values, special, located, br)
-
-    def _evaluate(
-        self, state: TracerState, system: CurveSystem, trial: Trial
-    ) -> tuple[tuple, list[_Crossing]]:
-        """The test functions at the new point, and those whose change counts."""
+        # 2. accept: the system valid beyond the new point (the step size is set in 5.)
         z1, t1 = trial.res.z, trial.t
+        system = state.system
+        if system.refreshes:
+            system = system.refreshed(z1)
+        # 3. evaluate the test functions; those whose change counts are crossings
         sdet = None
         if self._has_bp:
             # the sign of det [∂G/∂z; (W t_new)ᵀ] from the corrector's LU with border `row`
@@ -343,7 +339,13 @@ class Tracer:
                 and tt.crossed(old, new)
             ):
                 crossings.append((tt, old, new))
-        return tuple(values), crossings
+        # 4. locate the crossings inside the step (a corner's folds are only bracketed)
+        special = None
+        if trial.corner:
+            special, crossings = _corner_folds(crossings, state.last.s, trial.h)
+        located, br = self._locate(state, system, trial, crossings) if crossings else _NONE
+        # 5. insert the located points, adapt the step size, terminate
+        return self._finish(state, system, trial, tuple(values), special, located, br)
 
     def _locate(
         self, state: TracerState, system: CurveSystem, trial: Trial, crossings: list[_Crossing]
@@ -391,8 +393,8 @@ class Tracer:
         prev, n_points = last, state.n_points
         status, message = None, ""
         end_special = special
-        interval = (last.s, last.s + trial.h)
         for tt, loc in located:
+            interval = (last.s, last.s + trial.h)
             records: tuple[Record, ...] = (tt.record(system, loc, br, self.weights, interval),)
             if tt.terminal:
                 status, message, extra = tt.ending(loc)
