@@ -50,7 +50,7 @@ logger = logging.getLogger(__name__)
 
 _DEFAULT_OPTIONS = ContinuationOptions()  # frozen: shared (validation costs 20 µs a call)
 
-_NONE: tuple[tuple, None] = ((), None)  # nothing located, no bracket
+_NONE: tuple[tuple[tuple[TestFunction, Located], ...], None] = ((), None)  # nothing located
 
 #: a test that changed sign in a step: (test, value at the start, value at the end)
 _Crossing = tuple[TestFunction, float, float]
@@ -383,7 +383,7 @@ class Tracer:
         trial: Trial,
         values: tuple,
         special: tuple[Record, ...] | None,
-        located: list[tuple[TestFunction, Located]],
+        located: Sequence[tuple[TestFunction, Located]],
         br: Bracket | None,
     ) -> TracerState:
         """Link the located points between the last point and the step's end, and end the
