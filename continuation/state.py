@@ -74,9 +74,7 @@ def assemble_branch(state: TracerState, info: dict[str, Any]) -> Branch:
     points = _rows(state)
     system = state.system
     n_pts = len(points)
-    zs, ts, ss, newton, rejected, residual, dss = zip(
-        *[(pt.z, pt.t, pt.s, pt.newton, pt.rejected, pt.residual, pt.ds) for pt in points]
-    )
+    zs, ts, ss, newton, rejected, residual, dss = list(zip(*points))[:7]  # the fields
     Z = np.concatenate(zs).reshape(n_pts, -1)
     T = np.concatenate(ts).reshape(n_pts, -1)
     names = system.names

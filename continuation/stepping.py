@@ -37,6 +37,8 @@ if TYPE_CHECKING:
 
 logger = logging.getLogger("cusp.continuation.tracer")
 
+_new_tuple = tuple.__new__  # builds a NamedTuple without its Python-level constructor
+
 _STALL_STEPS = 10  # steps at ds < STALL_FACTOR·ds_min before a corner step is tried
 STALL_FACTOR = 1e3
 
@@ -73,47 +75,26 @@ class StepRules:
         return math.sqrt(x.dot(self.weights * x))
 
 
-class Trial:
+class Trial(NamedTuple):
     """An accepted step: the corrector's result ``res`` (its ``z`` is the new point), the
-    unit tangent ``t`` there, the border ``row`` of the corrector, the tangent's turn
-    ``angle`` (degrees), the step size ``ds`` used and the new point's pseudo-arclength
-    ``h`` from the last one, ``rt`` (det [∂G/∂z; (W t)ᵀ] has the sign of the corrector's
-    determinant times the sign of ``rt``), the number of rejected tries, whether it was a
-    corner step, the bound test it was aimed at (or None), and whether the damped
-    fallback corrector was used.
+    unit tangent ``t`` there, the tangent's turn ``angle`` (degrees), the step size ``ds``
+    used and the new point's pseudo-arclength ``h`` from the last one, ``rt`` (det
+    [∂G/∂z; (W t)ᵀ] has the sign of the corrector's determinant times the sign of ``rt``),
+    the number of rejected tries, whether it was a corner step, and the bound test it was
+    aimed at (or None).
 
-    Never changed after it is made (see :class:`~.corrector.NewtonResult` for why it is a
-    slotted class)."""
+    Built once per step with ``tuple.__new__`` (all nine fields, in order): half the cost
+    of the NamedTuple constructor, which shows in the step's time on small problems."""
 
-    __slots__ = (
-        "res", "t", "row", "angle", "ds", "h", "rt", "rejected", "corner", "aimed",
-        "used_fallback",
-    )  # fmt: skip
-
-    def __init__(
-        self,
-        res: NewtonResult,
-        t: np.ndarray,
-        row: np.ndarray,
-        angle: float,
-        ds: float,
-        h: float,
-        rt: float,
-        rejected: int = 0,
-        corner: bool = False,
-        aimed: BoundTest | None = None,
-        used_fallback: bool = False,
-    ) -> None:
-        self.res, self.t, self.row, self.angle = res, t, row, angle
-        self.ds, self.h, self.rt, self.rejected = ds, h, rt, rejected
-        self.corner, self.aimed, self.used_fallback = corner, aimed, used_fallback
-
-    def with_rejected(self, rejected: int) -> Trial:
-        """The same step, after ``rejected`` rejected tries."""
-        return Trial(
-            self.res, self.t, self.row, self.angle, self.ds, self.h, self.rt, rejected,
-            self.corner, self.aimed, self.used_fallback,
-        )  # fmt: skip
+    res: NewtonResult
+    t: np.ndarray
+    angle: float
+    ds: float
+    h: float
+    rt: float
+    rejected: int
+    corner: bool
+    aimed: BoundTest | None
 
 
 class Failure(NamedTuple):
@@ -133,8 +114,8 @@ def advance(rules: StepRules, state: TracerState) -> Trial | Failure:
     o = rules.options
     system = state.system
     last = state.last
-    z, t = last.z, last.t
-    z_prev = None if last.prev is None else last.prev.z
+    z, t, prev = last.z, last.t, last.prev
+    z_prev = None if prev is None else prev.z
     secant = None
     if o.predictor == "secant" and z_prev is not None:
         d = z - z_prev
@@ -156,9 +137,10 @@ def advance(rules: StepRules, state: TracerState) -> Trial | Failure:
     ds = state.ds
     rejected = 0
     while True:
-        res, tried, reason = _try(rules, system, z, t, ds, direction, row, secant)
-        if tried is not None:
-            return tried.with_rejected(rejected) if rejected else tried
+        tried = _try(rules, system, z, t, ds, direction, row, secant)
+        if isinstance(tried, Trial):
+            return tried._replace(rejected=rejected) if rejected else tried
+        res, reason = tried
         if ds <= o.ds_min:
             corner = corner_step(rules, system, z, t, state.ds, z_prev)
             if corner is not None:
@@ -177,9 +159,9 @@ def _try(
     direction: np.ndarray,
     row: np.ndarray,
     secant: np.ndarray | None,
-) -> tuple[NewtonResult, Trial | None, str]:
-    """One corrector solve at ``ds``: the result, the trial if it is accepted (else None)
-    and the reason it is not."""
+) -> Trial | tuple[NewtonResult, str]:
+    """One corrector solve at ``ds``: the trial if it is accepted, else the corrector's
+    result and the reason it is not."""
     o = rules.options
     W = rules.weights
     unit_w = rules.unit_weights
@@ -209,23 +191,23 @@ def _try(
         )
         used_fallback = True
     if not res.converged:
-        return res, None, res.reason
+        return res, res.reason
     t_new = res.lu.solve(rules.e_last)
     t_new /= math.sqrt(t_new.dot(t_new if unit_w else W * t_new))
-    rt = row.dot(t_new)
-    cosang = rt if secant is None else t_new.dot(W * t)
+    rt = float(row.dot(t_new))  # (a float: the comparisons below cost less)
+    cosang = rt if secant is None else float(t_new.dot(W * t))
     angle = math.degrees(math.acos(max(-1.0, min(1.0, cosang))))
     dc = res.z - z_pred
     correction = math.sqrt(dc.dot(dc if unit_w else W * dc))
     if angle > o.max_angle:
-        return res, None, f"tangent turned {angle:.1f} degrees"
+        return res, f"tangent turned {angle:.1f} degrees"
     if correction > ds:
-        return res, None, "correction larger than the step"
+        return res, "correction larger than the step"
     if used_fallback:
         logger.info("step accepted by the damped fallback corrector at ds=%g", ds)
     # the pseudo-arclength of the step: row·(z1 − z) = ds·(row·direction) = ds, as the
     # corrector satisfies the (linear) hyperplane equation to rounding
-    return res, Trial(res, t_new, row, angle, ds, ds, rt, 0, False, None, used_fallback), ""
+    return _new_tuple(Trial, (res, t_new, angle, ds, ds, rt, 0, False, None))
 
 
 def _failure(
@@ -337,7 +319,8 @@ def _natural_step(
     angle = math.degrees(math.acos(max(-1.0, min(1.0, cos))))
     row = W * t_new
     ds = rules.wnorm(res.z - z)
-    return Trial(res, t_new, row, angle, ds, float(row.dot(res.z - z)), row.dot(t_new), corner=True)
+    h = float(row.dot(res.z - z))
+    return _new_tuple(Trial, (res, t_new, angle, ds, h, row.dot(t_new), 0, True, None))
 
 
 def aim_at_bound(
@@ -415,21 +398,24 @@ def _aimed(
     dc = z1 - z_pred
     if angle > o.max_angle or t_new[k] * tk <= 0.0 or h <= 0.0 or rules.wnorm(dc) > ds:
         return None
-    return Trial(res, t_new, row, angle, h, h, rt, aimed=tt)
+    return _new_tuple(Trial, (res, t_new, angle, h, h, rt, 0, False, tt))
 
 
-def next_step_size(options: ContinuationOptions, trial: Trial) -> float:
-    """The next ``ds``: scaled by ``target_newton_iterations / iterations`` and by
-    ``target_angle / angle``, whichever is smaller, within ``[0.5, growth]`` (not above 1
-    after a rejected try) and ``[ds_min, ds_max]``."""
+def next_step_size(
+    options: ContinuationOptions, iterations: int, angle: float, rejected: int, ds: float
+) -> float:
+    """The ``ds`` after a step of size ``ds`` whose corrector took ``iterations`` and whose
+    tangent turned by ``angle`` degrees: scaled by ``target_newton_iterations /
+    iterations`` and by ``target_angle / angle``, whichever is smaller, within
+    ``[0.5, growth]`` (not above 1 after ``rejected`` tries) and ``[ds_min, ds_max]``."""
     o = options
-    k = max(trial.res.iterations, 1)
+    k = max(iterations, 1)
     f_newton = o.target_newton_iterations / k
-    f_angle = o.target_angle / max(trial.angle, 1e-12)
+    f_angle = o.target_angle / max(angle, 1e-12)
     factor = min(o.growth, max(0.5, min(f_newton, f_angle)))
-    if trial.rejected:
+    if rejected:
         factor = min(factor, 1.0)
-    return min(o.ds_max, max(o.ds_min, trial.ds * factor))
+    return min(o.ds_max, max(o.ds_min, ds * factor))
 
 
 __all__ = ["Failure", "StepRules", "Trial", "advance", "next_step_size"]

@@ -48,6 +48,8 @@ from .testfunctions import BoundTest, Record, TestFunction
 
 logger = logging.getLogger(__name__)
 
+_new_tuple = tuple.__new__  # builds a NamedTuple without its Python-level constructor
+
 _DEFAULT_OPTIONS = ContinuationOptions()  # frozen: shared (validation costs 20 µs a call)
 
 _NONE: tuple[tuple[tuple[TestFunction, Located], ...], None] = ((), None)  # nothing located
@@ -317,7 +319,8 @@ class Tracer:
         if isinstance(trial, Failure):
             return self._fail(state, trial)
         # 2. accept: the system valid beyond the new point (the step size is set in 5.)
-        z1, t1 = trial.res.z, trial.t
+        res, t1, _, _, h, rt, _, corner, _ = trial
+        z1 = res.z
         system = state.system
         if system.refreshes:
             system = system.refreshed(z1)
@@ -326,7 +329,7 @@ class Tracer:
         if self._has_bp:
             # the sign of det [∂G/∂z; (W t_new)ᵀ] from the corrector's LU with border `row`
             # (Cramer: the two determinants differ by the factor row·t_new)
-            sdet = trial.res.lu.sign_det() * (1.0 if trial.rt > 0 else -1.0)
+            sdet = res.lu.sign_det() * (1.0 if rt > 0 else -1.0)
         values = []
         crossings = []
         for tt, old in zip(self.tests, state.tests):
@@ -341,8 +344,8 @@ class Tracer:
                 crossings.append((tt, old, new))
         # 4. locate the crossings inside the step (a corner's folds are only bracketed)
         special = None
-        if trial.corner:
-            special, crossings = _corner_folds(crossings, state.last.s, trial.h)
+        if corner:
+            special, crossings = _corner_folds(crossings, state.last.s, h)
         located, br = self._locate(state, system, trial, crossings) if crossings else _NONE
         # 5. insert the located points, adapt the step size, terminate
         return self._finish(state, system, trial, tuple(values), special, located, br)
@@ -389,17 +392,18 @@ class Tracer:
         """Link the located points between the last point and the step's end, and end the
         branch on a terminal test or ``max_steps``."""
         o = self.options
+        res, t1, angle, ds, h, _, rejected, _, aimed = trial
         last = state.last
         prev, n_points = last, state.n_points
         status, message = None, ""
         end_special = special
         for tt, loc in located:
-            interval = (last.s, last.s + trial.h)
+            interval = (last.s, last.s + h)
             records: tuple[Record, ...] = (tt.record(system, loc, br, self.weights, interval),)
             if tt.terminal:
                 status, message, extra = tt.ending(loc)
                 records += extra
-            if tt is trial.aimed:  # the step's own end point
+            if tt is aimed:  # the step's own end point
                 end_special = records
                 break
             prev = self._located_point(system, last, loc, records, br, prev)
@@ -409,7 +413,7 @@ class Tracer:
         steps = state.steps + 1
         if status is not None:
             values = state.tests  # irrelevant once finished
-        if status is not None and trial.aimed is None:  # the branch ends at a located point
+        if status is not None and aimed is None:  # the branch ends at a located point
             end = prev
         else:
             if status is None and steps >= o.max_steps:
@@ -419,22 +423,20 @@ class Tracer:
                     *(end_special or ()),
                     ("endpoint", "max_steps", None, "converged", None, {}),
                 )
-            res = trial.res
-            end = Point(
-                res.z,
-                trial.t,
-                last.s + trial.h,
-                res.iterations,
-                trial.rejected,
-                res.residual_norm,
-                trial.ds,
-                end_special,
-                prev,
-            )
+            end = _new_tuple(  # a Point (see stepping.Trial on tuple.__new__)
+                Point,
+                (
+                    res.z, t1, last.s + h, res.iterations, rejected, res.residual_norm, ds,
+                    end_special, prev,
+                ),
+            )  # fmt: skip
             n_points += 1
-        stalled = state.stalled + 1 if trial.ds < STALL_FACTOR * o.ds_min else 0
-        ds_next = next_step_size(o, trial)
-        return TracerState(end, system, ds_next, values, steps, status, message, n_points, stalled)
+        stalled = state.stalled + 1 if ds < STALL_FACTOR * o.ds_min else 0
+        ds_next = next_step_size(o, res.iterations, angle, rejected, ds)
+        return _new_tuple(
+            TracerState,
+            (end, system, ds_next, values, steps, status, message, n_points, stalled),
+        )
 
     def _located_point(
         self,
