@@ -150,6 +150,25 @@ def newton(
     return NewtonResult(z, converged, k, rn, lu, "" if converged else reason)
 
 
+def correct(
+    system: Any,
+    z0: np.ndarray,
+    row: np.ndarray,
+    c: float,
+    options: Any,
+    *,
+    budget: int = 1,
+    **kwargs: Any,
+) -> NewtonResult:
+    """:func:`newton` with the tolerances of ``options`` (a
+    :class:`~.options.ContinuationOptions`) and ``budget`` times its
+    ``max_newton_iterations``; other keywords are passed on."""
+    return newton(
+        system, z0, row, c, tol=options.tol, step_tol=options.step_tol,
+        max_iter=budget * options.max_newton_iterations, **kwargs,
+    )  # fmt: skip
+
+
 def damped_newton(
     system, z0: np.ndarray, row: np.ndarray, c: float, *, tol: float, step_tol: float, max_iter: int
 ) -> NewtonResult:

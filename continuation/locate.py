@@ -19,7 +19,7 @@ from typing import TYPE_CHECKING, Any, NamedTuple
 
 import numpy as np
 
-from .corrector import newton
+from .corrector import correct
 from .errors import SingularMatrixError
 from .linalg import (
     bordered,
@@ -141,16 +141,8 @@ class Bracket:
         o = self.options
         theta = sigma / self.h if self.h != 0 else 0.0
         z0 = self.guess(theta) if start is None else start
-        return newton(
-            self.system,
-            z0,
-            self.row,
-            self.row @ self.z_a + sigma,
-            tol=o.tol,
-            step_tol=o.step_tol,
-            max_iter=2 * o.max_newton_iterations,
-            strict=strict,
-        )
+        c = self.row @ self.z_a + sigma
+        return correct(self.system, z0, self.row, c, o, budget=2, strict=strict)
 
     def polish(self, z: np.ndarray, sigma: float) -> np.ndarray:
         """Newton to the update tolerance (not just the residual tolerance) at ``sigma``."""
@@ -368,15 +360,7 @@ def locate_component(br: Bracket, k: int, value: float) -> Located | None:
     theta = min(1.0, max(0.0, float((value - za) / (zb - za)))) if zb != za else 0.5
     row = np.zeros(br.z_a.size)
     row[k] = 1.0
-    res = newton(
-        br.system,
-        br.guess(theta),
-        row,
-        value,
-        tol=o.tol,
-        step_tol=o.step_tol,
-        max_iter=2 * o.max_newton_iterations,
-    )
+    res = correct(br.system, br.guess(theta), row, value, o, budget=2)
     if not res.converged:
         return None
     z = res.z.copy()

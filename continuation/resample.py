@@ -16,7 +16,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from .branch import Branch
-from .corrector import newton
+from .corrector import correct
 from .errors import ConvergenceError, ProblemDefinitionError
 from .options import ContinuationOptions
 from .problem import as_problem
@@ -97,16 +97,7 @@ def points_at(
         frac = d[j] / span if span != 0.0 else 0.0
         z0 = Z[j] + frac * (Z[j + 1] - Z[j])
         z0[k] = v
-        res = newton(
-            system,
-            z0,
-            e_k,
-            v,
-            tol=o.tol,
-            step_tol=o.step_tol,
-            max_iter=2 * o.max_newton_iterations,
-            strict=True,
-        )
+        res = correct(system, z0, e_k, v, o, budget=2, strict=True)
         if not res.converged:
             raise ConvergenceError(
                 f"Newton failed ({res.reason}) placing the point {name} = {v!r}",

@@ -25,7 +25,7 @@ from typing import TYPE_CHECKING, Any, NamedTuple
 
 import numpy as np
 
-from .corrector import NewtonResult, damped_newton, newton
+from .corrector import NewtonResult, correct, damped_newton, newton
 from .errors import ContinuationError, ConvergenceError, NonFiniteResidualError
 from .locate import oriented_tangent
 
@@ -290,15 +290,7 @@ def _natural_step(
     target = z[j] + sign * h / math.sqrt(W[j])
     z0 = z.copy()
     z0[j] = target
-    res = newton(
-        system,
-        z0,
-        row,
-        target,
-        tol=o.tol,
-        step_tol=o.step_tol,
-        max_iter=2 * o.max_newton_iterations,
-    )
+    res = correct(system, z0, row, target, o, budget=2)
     # the other components move by (slope)·h: a looser guard than for arclength steps,
     # still against jumping to a distant branch
     if not res.converged or rules.wnorm(res.z - z) > 20.0 * h:
@@ -371,16 +363,7 @@ def _aimed(
     z_pred[k] = tt.value_at
     row = np.zeros(z.size)
     row[k] = 1.0
-    res = newton(
-        system,
-        z_pred,
-        row,
-        tt.value_at,
-        tol=o.tol,
-        step_tol=o.step_tol,
-        max_iter=o.max_newton_iterations,
-        contract=True,
-    )
+    res = correct(system, z_pred, row, tt.value_at, o, contract=True)
     if not res.converged:
         return None
     z1 = res.z.copy()

@@ -29,7 +29,7 @@ from typing import Any
 import numpy as np
 
 from .branch import Branch, SpecialPoint
-from .corrector import newton
+from .corrector import correct
 from .errors import (
     ConvergenceError,
     NonFiniteResidualError,
@@ -247,16 +247,7 @@ class Tracer:
         point, its tangent, the sign of det [∂G/∂z; (W t)ᵀ], the residual and iterations."""
         o = self.options
         k_free = system.dim - 1
-        res = newton(
-            system,
-            z0,
-            self._rules.e_last,
-            z0[k_free],
-            tol=o.tol,
-            step_tol=o.step_tol,
-            max_iter=4 * o.max_newton_iterations,
-            g0=g0,
-        )
+        res = correct(system, z0, self._rules.e_last, z0[k_free], o, budget=4, g0=g0)
         if not res.converged:
             raise ConvergenceError(
                 "the starting point did not converge",

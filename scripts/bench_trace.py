@@ -385,7 +385,8 @@ def _phases_once(pb, rounds):
         setattr(owner, name, timed)
 
     wrap(st, "newton", "corrector (steps and start)")
-    wrap(tr, "newton", "corrector (steps and start)")
+    wrap(st, "correct", "corrector (steps and start)")
+    wrap(tr, "correct", "corrector (steps and start)")
     wrap(tr.Tracer, "_locate", "special-point location")
     wrap(tr, "tangent_at", "special-point location")
     wrap(tr.Tracer, "__init__", "setup and result")
