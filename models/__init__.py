@@ -4,8 +4,8 @@ Units throughout: lengths in µm, forces in N, energies in N·µm (= µJ), elast
 Each body is a short module; heavy machinery (quadrature, sympy, matplotlib) is imported only
 by the modules that need it.
 
-Public names are imported lazily (module-level ``__getattr__``): ``import models`` loads
-nothing heavy, an exponential surface never loads quadrature or the Gaussian machinery.
+Public names are imported lazily (module-level ``__getattr__``): ``import cusp.models``
+loads nothing heavy, an exponential surface never loads quadrature or the Gaussian machinery.
 """
 
 from __future__ import annotations
@@ -47,7 +47,7 @@ def __getattr__(name: str):
     try:
         module = _EXPORTS[name]
     except KeyError:
-        raise AttributeError(f"module 'models' has no attribute {name!r}") from None
+        raise AttributeError(f"module {__name__!r} has no attribute {name!r}") from None
     value = getattr(importlib.import_module(f".{module}", __name__), name)
     globals()[name] = value
     return value

@@ -255,7 +255,8 @@ def _contact_loss_checks(surf: Any) -> list[_Check]:
 
 
 def _model_checks(models: Any) -> list[_Check]:
-    """The comparisons, against ``models.ExponentialRoughSurface``, ``Sphere``, ``Cylinder``."""
+    """The comparisons, against ``ExponentialRoughSurface``, ``Sphere``, ``Cylinder`` and
+    ``FlatPlane`` of ``models`` (the package :mod:`cusp.models`, or a stand-in)."""
     surf = models.ExponentialRoughSurface(sigma=_SIGMA, nu=_NU, mu=_MU)
     sphere, cylinder, flat = models.Sphere(), models.Cylinder(), models.FlatPlane()
     return [
