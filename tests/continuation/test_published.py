@@ -298,7 +298,8 @@ def test_truss_rotated_strain_limit_points(strategy):
         y = 1.0 - sp.values["v"]
         # l^3 = L^2 l0
         assert (1.0 + y**2) ** 1.5 == pytest.approx(2**0.5, rel=STATE_RTOL[strategy])
-    # y_c = sqrt(2^(1/3) - 1) = 0.50979558..., i.e. v = 0.49020441...
+    # y_c = sqrt(2^(1/3) - 1) = 0.5098245285..., i.e. v = 0.4901754714...
+    # (mpmath: mp.sqrt(mp.cbrt(2) - 1) at 30 digits = 0.509824528533958598086613462042)
     assert ex.truss_rotated_limits()[0][0] == pytest.approx(1 - math.sqrt(2 ** (1 / 3) - 1))
     assert_on_branch(case, br, atol=1e-10)
 
