@@ -24,7 +24,8 @@ def main(args) -> int:
     # analytic derivatives; u0 the leftmost real root at b = -bmax; bounds b in [-bmax, bmax]
     example = cusp_normal_form(a=a, b=-bmax)
     start = time.perf_counter()
-    br = trace(example.problem, example.u0, free="b", bounds=example.bounds)
+    # the folds are printed to 15 decimals: located to that (the default is 1e-12 relative)
+    br = trace(example.problem, example.u0, free="b", bounds=example.bounds, locate_tol=1e-15)
     elapsed = time.perf_counter() - start
     print(f"cusp normal form x^3 - a x - b = 0, a = {a:g}: traced b in [{-bmax:g}, {bmax:g}]")
     print(f"  {len(br)} points, status {br.status!r}: {br.message} ({elapsed * 1e3:.2f} ms)")

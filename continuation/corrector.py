@@ -8,7 +8,7 @@ from typing import Any
 import numpy as np
 
 from .errors import SingularMatrixError
-from .linalg import DenseLU, dense_solve, factor, getrs
+from .linalg import DenseLU, dense_solve, factor, getrs, inverse_magnitudes, scaled_max
 from .linalg import max_abs as _norm
 
 
@@ -17,13 +17,18 @@ class NewtonResult:
     ``iterations``, the max-norm of the residual, ``lu`` (the factorization of the last
     bordered matrix factored, at ``z`` minus the last update, or the last two when the last
     step was a simplified (chord) one; None if none was completed) and, on failure, the
-    ``reason``.
+    ``reason``; ``contraction`` is Deuflhard's first contraction ‖Δz₂‖/‖Δz₁‖ (0 if it
+    converged in one iteration) and ``first_update`` the relative size of the first update
+    (both relative to the components' magnitudes).
 
     A record that is never changed after it is made (a new one replaces it where a value
     changes); a slotted class rather than a NamedTuple because the step reads its fields
     often (a NamedTuple field costs twice a slot to read in CPython 3.11)."""
 
-    __slots__ = ("z", "converged", "iterations", "residual_norm", "lu", "reason")
+    __slots__ = (
+        "z", "converged", "iterations", "residual_norm", "lu", "reason", "contraction",
+        "first_update",
+    )  # fmt: skip
 
     def __init__(
         self,
@@ -33,9 +38,44 @@ class NewtonResult:
         residual_norm: float,
         lu: Any,
         reason: str = "",
+        contraction: float = 0.0,
+        first_update: float = math.inf,
     ) -> None:
         self.z, self.converged, self.iterations = z, converged, iterations
         self.residual_norm, self.lu, self.reason = residual_norm, lu, reason
+        self.contraction, self.first_update = contraction, first_update
+
+
+_FD_STEP_TOL = 1e-10
+
+
+def _update_tolerances(system: Any, z: np.ndarray, step_tol: float) -> tuple[Any, float, float]:
+    """The multipliers that make updates relative to the components' magnitudes, and the
+    two update tolerances: √step_tol (then the error left is about step_tol) and step_tol
+    itself (at least 1e-10 with differenced derivatives, which keep the updates from
+    getting much smaller)."""
+    rel = step_tol if system.derivatives_exact else max(step_tol, _FD_STEP_TOL)
+    return inverse_magnitudes(system.scales, z), math.sqrt(step_tol), rel
+
+
+def _full_step(bordered_jacobian: Any, z: np.ndarray, row: np.ndarray, rhs: np.ndarray):
+    """The Newton matrix at ``z``, factored and solved for ``rhs`` (dense: one LAPACK gesv):
+    ``(matrix, sparse LU or None, dense factors, pivots, solution, "")``, or the reason it
+    failed in the last place (an augmented system may find its own matrix singular)."""
+    a = None
+    try:
+        a = bordered_jacobian(z, row)
+        if type(a) is np.ndarray:
+            f, piv, dz = dense_solve(a, rhs)
+            return a, None, f, piv, dz, ""
+        lu = factor(a)
+        return a, lu, None, None, lu.solve(rhs), ""
+    except SingularMatrixError:
+        return a, None, None, None, None, "singular" if a is None else _singular_reason(a)
+
+
+def _wnorm(x: np.ndarray, weights: np.ndarray) -> float:
+    return math.sqrt(x.dot(weights * x))
 
 
 def _singular_reason(a) -> str:
@@ -55,6 +95,7 @@ def newton(
     g0: np.ndarray | None = None,
     strict: bool = False,
     contract: bool = False,
+    max_first: float | None = None,
 ) -> NewtonResult:
     """Solve ``G(z) = 0``, ``row·z = c`` by Newton's method from ``z0``.
 
@@ -82,6 +123,12 @@ def newton(
     hyperplane misses the curve, where θ reaches 0.9–1.3); the continuation step uses this to
     halve the step at once instead of spending the whole iteration budget first.
 
+    ``max_first``: give up (reason ``"too_far"``) when the first update is longer than this
+    in the system's weighted (arclength) norm, before the residual is evaluated there: a
+    continuation step rejects corrections longer than its step anyway, and a first update
+    of more than twice that (with a contraction below 1/2 the correction is at least half
+    the first update) lands where the residual may not even be defined.
+
     Implementation notes: dense matrices are factored and solved by one LAPACK gesv (the
     factors are wrapped in a DenseLU only for the result), sparse ones through ``factor``;
     the system is solved for minus the update (saves negating the residual; bitwise the
@@ -95,17 +142,15 @@ def newton(
         return NewtonResult(z, False, 0, rn, None, "nonfinite")
     m = g.size
     rhs = np.empty(m + 1)
-    scale = 1.0 + _norm(z)
-    sq_step_tol = math.sqrt(step_tol) * scale
-    rel_step_tol = step_tol * scale
+    inv, sq_step_tol, rel_step_tol = _update_tolerances(system, z, step_tol)
     bordered_jacobian = system.bordered_jacobian
     residual = system.residual
     row_dot = row.dot
-    sn_prev = math.inf
+    sn_prev = sn_first = math.inf
     lu: Any = None
     f: Any = None
     piv: Any = None
-    reason, converged, chord, k = "max_iterations", False, False, 0
+    reason, converged, chord, k, theta = "max_iterations", False, False, 0, 0.0
     rhs[m] = row_dot(z) - c
     for k in range(1, max_iter + 1):
         rhs[:m] = g
@@ -114,19 +159,24 @@ def newton(
         if chord:  # a simplified step with the last factorization (see above)
             dz = getrs(f, piv, rhs) if f is not None else lu.solve(rhs)
         else:
-            a = bordered_jacobian(z, row)
-            try:
-                if type(a) is np.ndarray:
-                    f, piv, dz = dense_solve(a, rhs)
-                else:
-                    lu, f = factor(a), None
-                    dz = lu.solve(rhs)
-            except SingularMatrixError:
-                return NewtonResult(z, False, k, rn, None, _singular_reason(a))
+            a, lu, f, piv, dz, why = _full_step(bordered_jacobian, z, row, rhs)
+            if why:
+                return NewtonResult(z, False, k, rn, None, why)
+        if k == 1 and max_first is not None and _wnorm(dz, system.weights) > max_first:
+            rn, reason = math.inf, "too_far"
+            break
         z = z - dz
-        g = residual(z)
+        try:
+            g = residual(z)
+        except SingularMatrixError:  # an augmented system's matrix, singular at the new z
+            rn, reason = math.inf, "singular"
+            break
         rn_new = _norm(g)
-        sn = _norm(dz)
+        sn = scaled_max(dz, inv)
+        if k == 1:
+            sn_first = sn
+        elif k == 2:
+            theta = sn / sn_first if sn_first > 0.0 else 0.0
         if rn_new != rn_new or sn != sn:
             rn, reason = rn_new, "nonfinite"
             break
@@ -147,7 +197,7 @@ def newton(
         chord = not chord and sn <= sq_step_tol
         sn_prev = sn
     lu = lu if f is None else DenseLU.from_factors(f, piv)
-    return NewtonResult(z, converged, k, rn, lu, "" if converged else reason)
+    return NewtonResult(z, converged, k, rn, lu, "" if converged else reason, theta, sn_first)
 
 
 def correct(
@@ -194,14 +244,19 @@ def damped_newton(
         rhs[:m] = -g
         rhs[m] = c - row @ z
         dz = lu.solve(rhs)
-        if _norm(dz) <= step_tol * (1.0 + _norm(z)) and _norm(g) <= max(
+        inv = inverse_magnitudes(system.scales, z)
+        floor_tol = step_tol if system.derivatives_exact else max(step_tol, _FD_STEP_TOL)
+        if scaled_max(dz, inv) <= floor_tol and _norm(g) <= max(
             tol, system.residual_floor(a[:-1], z)
         ):
             return NewtonResult(z + dz, True, k, _norm(g), lu)
         lam = 1.0
         while lam > 1e-6:
             zt = z + lam * dz
-            gt = system.residual(zt)
+            try:
+                gt = system.residual(zt)
+            except SingularMatrixError:
+                gt = np.full(m, math.inf)
             if np.all(np.isfinite(gt)):
                 phit = merit(zt, gt)
                 if phit <= (1.0 - 1e-4 * lam) * phi or phit == 0.0:
@@ -211,6 +266,6 @@ def damped_newton(
             return NewtonResult(z, False, k, _norm(g), lu, "line_search")
         z, g, phi = zt, gt, phit
         rn = _norm(g)
-        if rn <= tol and _norm(lam * dz) <= step_tol * (1.0 + _norm(z)):
+        if rn <= tol and scaled_max(lam * dz, inverse_magnitudes(system.scales, z)) <= step_tol:
             return NewtonResult(z, True, k, rn, lu)
     return NewtonResult(z, False, max_iter, _norm(g), lu, "max_iterations")

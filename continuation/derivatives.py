@@ -18,8 +18,11 @@ _H_CENTRAL = _EPS ** (1.0 / 3.0)
 _H_COMPLEX = 1e-30
 
 
-def _steps(x: np.ndarray, rel: float) -> np.ndarray:
-    h = rel * np.maximum(1.0, np.abs(x))
+def _steps(x: np.ndarray, rel: float, typical: Any = 1.0) -> np.ndarray:
+    """Steps ``rel·max(typical, |x|)``: relative to the component's typical size (1 unless
+    the caller knows better), so that a variable of size 1e-8 or 1e8 is differenced as
+    accurately as one of size 1."""
+    h = rel * np.maximum(typical, np.abs(x))
     # make x + h exactly representable so the divided difference uses the true step
     return (x + h) - x
 
@@ -55,21 +58,23 @@ def fd_jacobian(
     f0: np.ndarray | None = None,
     sparsity=None,
     groups: list[np.ndarray] | None = None,
+    typical: Any = 1.0,
 ):
     """Jacobian of ``f`` at ``x`` by finite differences or complex step.
 
     With ``sparsity`` (a matrix whose nonzeros mark possible nonzeros of the Jacobian) the
     columns are grouped so the cost is one (forward, complex) or two (central) evaluations
-    per group, and a CSR matrix is returned.
+    per group, and a CSR matrix is returned. ``typical``: the typical sizes of the components
+    of ``x`` (a scalar or an array): the steps are ``h_j = rel·max(typical_j, |x_j|)``.
     """
     x = np.asarray(x, dtype=float)
     n = x.size
     if method == "forward":
         if f0 is None:
             f0 = np.asarray(f(x), dtype=float)
-        h = _steps(x, _H_FORWARD)
+        h = _steps(x, _H_FORWARD, typical)
     elif method == "central":
-        h = _steps(x, _H_CENTRAL)
+        h = _steps(x, _H_CENTRAL, typical)
     elif method == "complex":
         h = np.full(n, _H_COMPLEX)
     else:
@@ -112,15 +117,18 @@ def fd_jacobian(
     )
 
 
-def fd_derivative(f: Callable[[Any], Any], x: float, *, method: str = "central") -> np.ndarray:
-    """Derivative of a vector function of one real variable."""
+def fd_derivative(
+    f: Callable[[Any], Any], x: float, *, method: str = "central", typical: float = 1.0
+) -> np.ndarray:
+    """Derivative of a vector function of one real variable (steps relative to
+    ``max(typical, |x|)``)."""
     if method == "complex":
         value = np.asarray(f(x + 1j * _H_COMPLEX), dtype=complex)
         return np.imag(value) / _H_COMPLEX
     if method == "forward":
-        h = (x + _H_FORWARD * max(1.0, abs(x))) - x
+        h = (x + _H_FORWARD * max(typical, abs(x))) - x
         return (np.asarray(f(x + h), dtype=float) - np.asarray(f(x), dtype=float)) / h
-    h = (x + _H_CENTRAL * max(1.0, abs(x))) - x
+    h = (x + _H_CENTRAL * max(typical, abs(x))) - x
     return (np.asarray(f(x + h), dtype=float) - np.asarray(f(x - h), dtype=float)) / (2 * h)
 
 

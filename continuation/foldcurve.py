@@ -36,7 +36,14 @@ import scipy.sparse as sp
 
 from .branch import Branch, SpecialPoint
 from .errors import ProblemDefinitionError, SingularMatrixError
-from .linalg import bordered, bordered_square, factor, max_abs, unit_last
+from .linalg import (
+    bordered,
+    bordered_square,
+    factor,
+    inverse_magnitudes,
+    scaled_max,
+    unit_last,
+)
 from .locate import (
     Bracket,
     Located,
@@ -79,7 +86,10 @@ class FoldSystem(CurveSystem):
         self.k = k
         self.names = tuple(problem.unknowns) + (p1, p2)
         self.dim = self.n + 2
-        self.weights = state_weights(self.n, 2, state_weight)
+        self.scales = np.ones(self.dim)
+        self.base_weights = state_weights(self.n, 2, state_weight)
+        self.weights = self.base_weights.copy()
+        self.unit_weights = False
         keep = np.ones(self.n + 1, dtype=bool)
         keep[k] = False
         self._keep = keep  # columns of ∂F/∂(u, p1) forming M
@@ -87,7 +97,7 @@ class FoldSystem(CurveSystem):
         self.c = c
         self._cache: tuple | None = None  # the last bordered solve (a memo, see below)
         # differences of the Jacobian are reliable only if the Jacobian itself is exact
-        self._exact_jacobian = has_exact_jacobian(problem)
+        self._exact_jacobian = self.derivatives_exact = has_exact_jacobian(problem)
 
     # -- pieces
     def _p(self, z):
@@ -194,7 +204,7 @@ class FoldSystem(CurveSystem):
     def jacobian(self, z):
         g, v, w, _, df = self.bordered_solve(z)
         vt = self.lift(v)
-        grad = -second_derivative_row(self.df, z, vt, w)
+        grad = -second_derivative_row(self.df, z, vt, w, None, self.scales)
         if sp.issparse(df):
             return sp.vstack([df, sp.csr_matrix(grad[None, :])], format="csr")
         out = np.empty((self.n + 1, self.dim))
@@ -211,11 +221,23 @@ class FoldSystem(CurveSystem):
         floor = super().residual_floor(dg, z)
         if self._exact_jacobian:
             return floor
+        # an entry of ∂F/∂z_j differenced with a step rel·m_j (m_j = max(s_j, |z_j|)) is off
+        # by about rel·T_i/m_j, T_i = Σ_k |∂F_i/∂z_k|·m_k the size of the terms of F_i; so
+        # g = w·M·v is off by rel·(Σ_i |w_i| T_i)·(Σ_j |v_j|/m_j)
         _, v, w, _, df = self.bordered_solve(z)
-        size = abs(df).sum(axis=1).max() if sp.issparse(df) else np.abs(df).sum(axis=1).max()
+        mags = np.maximum(self.scales, np.abs(z))
+        terms = abs(df) @ mags
+        noise = float(np.abs(w) @ terms) * float(np.abs(self.lift(v)) @ (1.0 / mags))
         rel = _EPS ** (0.5 if getattr(self.problem, "derivatives", "") == "forward" else 2.0 / 3.0)
-        noise = 10.0 * rel * float(size) * (1.0 + max_abs(z))
-        return max(floor, noise * max_abs(v) * max_abs(w))
+        return max(floor, 10.0 * rel * noise)
+
+    def _scaled_problem(self) -> None:
+        with_typical = getattr(self.problem, "with_typical_sizes", None)
+        if with_typical is not None:
+            n, s = self.n, self.scales
+            typical_p = {self.p1: float(s[n]), self.p2: float(s[n + 1])}
+            self.problem = with_typical(s[:n], typical_p)
+        self._cache = None
 
     def fixed_values(self):
         return {k: v for k, v in self.params.items() if k not in (self.p1, self.p2)}
@@ -239,9 +261,9 @@ class FoldSystem(CurveSystem):
         _, v, w, _, _ = self.bordered_solve(z)
         vt = self.lift(v)
         if self._exact_jacobian:
-            return 0.5 * float(second_derivative_row(self.df, z, vt, w) @ vt)
-        vmax = float(np.max(np.abs(vt)))
-        h = _EPS**0.25 * max(1.0, float(np.max(np.abs(z)))) / vmax
+            return 0.5 * float(second_derivative_row(self.df, z, vt, w, None, self.scales) @ vt)
+        # a step of ε^{1/4} relative to the components' magnitudes
+        h = _EPS**0.25 / scaled_max(vt, inverse_magnitudes(self.scales, z))
         second = w @ (self.f(z + h * vt) - 2.0 * self.f(z) + self.f(z - h * vt)) / (h * h)
         return 0.5 * float(second)
 
@@ -306,7 +328,7 @@ def _locate_cusp(system: FoldSystem, br: Bracket, f_a: float, f_b: float) -> Loc
         jac = jac.toarray() if sp.issparse(jac) else jac
         grad = np.empty(dim)
         for i in range(dim):
-            h = _EPS ** (1.0 / 3.0) * max(1.0, abs(z[i]))
+            h = _EPS ** (1.0 / 3.0) * max(system.scales[i], abs(z[i]))
             e = np.zeros(dim)
             e[i] = h
             grad[i] = (system.cusp_coefficient(z + e) - system.cusp_coefficient(z - e)) / (2 * h)
@@ -319,10 +341,10 @@ def _locate_cusp(system: FoldSystem, br: Bracket, f_a: float, f_b: float) -> Loc
         z = z + dz
         if not np.all(np.isfinite(z)):
             break
-        size = float(np.max(np.abs(dz)))
+        size = scaled_max(dz, inverse_magnitudes(system.scales, z))
         # the gradient of the coefficient is a finite difference: Newton converges linearly
         # and, with finite-difference Jacobians, stalls at the noise floor of the coefficient
-        if newton_done(it, size, previous, z, o.locate_tol, stall=1e-9):
+        if newton_done(it, size, previous, o.locate_tol, stall=1e-9):
             converged = True
             break
         previous = size

@@ -7,6 +7,7 @@ wrappers of numpy/scipy cost several times the factorization itself.
 from __future__ import annotations
 
 import math
+from typing import Any
 
 import numpy as np
 import scipy.sparse as sp
@@ -192,18 +193,49 @@ def max_abs(x: np.ndarray) -> float:
     return m if math.isfinite(m) else math.nan
 
 
-def rounding_floor(block, z: np.ndarray) -> float:
-    """Residual size attributable to rounding: 100·eps·‖block‖∞·(1 + ‖z‖∞), with ``block``
-    the state part of the Jacobian (the large terms of a fine discretisation live there; a
-    parameter derivative differenced across a jump of the residual would inflate it)."""
+def inverse_magnitudes(scales: np.ndarray, z: np.ndarray) -> Any:
+    """``1/max(scales_i, |z_i|)`` per component: multiplies an update into relative terms
+    (a Python list for the few components of most problems, an array otherwise)."""
+    if z.size <= 32:
+        return [1.0 / (s if s >= a else a) for s, a in zip(scales.tolist(), map(abs, z.tolist()))]
+    return 1.0 / np.maximum(scales, np.abs(z))
+
+
+def scaled_max(x: np.ndarray, inverse: Any) -> float:
+    """``max_i |x_i|·inverse_i`` (NaN if any entry of ``x`` is NaN or infinite): the size of
+    an update relative to the components' magnitudes (see :func:`inverse_magnitudes`)."""
+    if type(inverse) is list:
+        vals = x.tolist()
+        m = 0.0
+        for v, w in zip(vals, inverse):
+            a = abs(v) * w
+            if not a <= m:  # larger, or NaN
+                if a != a:
+                    return math.nan
+                m = a
+        return m if m < math.inf else math.nan
+    return max_abs(x * inverse)
+
+
+def rounding_floor(block, z: np.ndarray, scales: np.ndarray | None = None) -> float:
+    """Residual size attributable to rounding: ``100·eps·max_i Σ_j |block_ij|·m_j`` with
+    ``m_j = max(scales_j, |z_j|)`` the magnitude of component j (``block``: the state part
+    of the Jacobian, where the large terms of a fine discretisation live; a parameter
+    derivative differenced across a jump of the residual would inflate it). Each residual
+    is a sum of terms of about ``block_ij·z_j``; rounding them leaves this much."""
+    k = block.shape[1]
+    if scales is None:
+        scales = np.ones(k)
+    mags = np.maximum(scales[:k], np.abs(z[:k]))
     if sp.issparse(block):
-        norm = abs(block).sum(axis=1).max()
+        level = float(np.max(abs(block) @ mags)) if block.shape[0] else 0.0
     else:
-        norm = math.nan
+        level = math.nan
         if block.size <= 64:  # plain Python for tiny blocks; NaN/inf left to numpy
-            sums = [sum(map(abs, r)) for r in block.tolist()]
+            m = mags.tolist()
+            sums = [sum(abs(a) * b for a, b in zip(r, m)) for r in block.tolist()]
             if math.isfinite(sum(sums)):
-                norm = max(sums, default=0.0)
-        if norm != norm:
-            norm = np.abs(block).sum(axis=1).max()
-    return 100 * _EPS * float(norm) * (1.0 + max_abs(z))
+                level = max(sums, default=0.0)
+        if level != level:
+            level = float(np.max(np.abs(block) @ mags)) if block.shape[0] else 0.0
+    return 100 * _EPS * level

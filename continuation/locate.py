@@ -28,7 +28,9 @@ from .linalg import (
     dense_solve,
     factor,
     getrs,
+    inverse_magnitudes,
     max_abs,
+    scaled_max,
     unit_last,
 )
 
@@ -197,16 +199,19 @@ def tangent_at(
 
 
 def second_derivative_row(
-    jacobian, z: np.ndarray, v: np.ndarray, w: np.ndarray, j0=None
+    jacobian, z: np.ndarray, v: np.ndarray, w: np.ndarray, j0=None, scales=None
 ) -> np.ndarray:
     """``∇_z (w·J(z) v) = w·D²G(z)[v, ·]`` by central differences of ``jacobian(z)`` along
     ``v`` (exact in exact arithmetic for quadratic G; error O(h²) otherwise), or, given
     ``j0 = jacobian(z)``, by a forward difference (one evaluation fewer; relative error
-    ~1e-8, enough for a Newton matrix, not for a differenced Jacobian)."""
+    ~1e-8, enough for a Newton matrix, not for a differenced Jacobian). The step moves each
+    component by at most ε^{1/3} (ε^{1/2}) of its magnitude ``max(scales_i, |z_i|)``."""
     vmax = max_abs(v)
     if vmax == 0.0:
         return np.zeros(z.size)
-    scale = max(1.0, max_abs(z)) / vmax
+    if scales is None:
+        scales = np.ones(z.size)
+    scale = 1.0 / scaled_max(v, inverse_magnitudes(scales, z))
     if j0 is not None:
         z1 = z + (_SQRT_EPS * scale) * v
         h = max_abs(z1 - z) / vmax  # the step actually taken
@@ -239,35 +244,35 @@ def newton_done(
     it: int,
     size: float,
     previous: float,
-    z: np.ndarray,
     tol: float,
     stall: float,
     perturbation: float | None = None,
-    k: int | None = None,
+    k_ratio: float | None = None,
 ) -> bool:
-    """Stopping test of the locating Newton iterations, with update ``size`` (max-norm).
+    """Stopping test of the locating Newton iterations, with update ``size`` (max-norm of the
+    update relative to the components' magnitudes ``max(scale_i, |z_i|)``).
 
     Once quadratic convergence is under way (the update shrank by 100 or more), the next
     update is estimated and the iteration stops if it would be below the tolerance. With
     ``perturbation`` None the estimate is the linear one, ``size²/previous`` (safe whatever
     the Newton matrix's error). Given the relative error δ of the Newton matrix, it is
     ``C·size² + δ·size`` with ``C = size/previous²`` from the last contraction: Newton's
-    quadratic term plus the linear one that the matrix error adds. Given ``k`` (the component
-    the point is located in, such as a fold's parameter), an early stop also needs the
-    estimate below ``tol·|z_k|``: that component is then exact to ``tol`` relative even when
-    it is small (the mixed tolerance ``tol·(1 + |z|)`` alone is not relative there)."""
-    scale = 1.0 + max_abs(z)
-    if size <= tol * scale:
+    quadratic term plus the linear one that the matrix error adds. Given ``k_ratio`` =
+    ``|z_k|/max(scale_k, |z_k|)`` for the component the point is located in (such as a
+    fold's parameter), an early stop also needs the estimate below ``tol·k_ratio``: that
+    component is then exact to ``tol`` relative to itself even when it is much smaller than
+    its typical size."""
+    if size <= tol:
         return True
     if math.isfinite(previous) and size <= 1e-2 * previous:
         if perturbation is None:
             estimate = size * size / previous
         else:
             estimate = size * (size * size / (previous * previous) + perturbation)
-        if estimate <= tol * scale and (k is None or estimate <= tol * abs(float(z[k]))):
+        if estimate <= tol and (k_ratio is None or estimate <= tol * k_ratio):
             return True
     # stagnation: the updates stopped shrinking, at a level below ``stall``
-    return it >= 4 and size > 0.5 * previous and size <= stall * scale
+    return it >= 4 and size > 0.5 * previous and size <= stall
 
 
 def locate_fold(
@@ -291,9 +296,7 @@ def locate_fold(
     e = unit_last(z.size)
     exact = getattr(system, "exact_jacobian", False)
     jacobian, residual = system.jacobian, system.residual
-    converged = False
-    it = 0
-    previous = math.inf
+    converged, it, previous = False, 0, math.inf
     for it in range(1, o.max_locate_iterations + 1):
         try:
             g, v, w, dg = minimally_augmented(system, z, k, b, c, e)
@@ -304,12 +307,14 @@ def locate_fold(
         # d = −dz with that row negated (sign flips are exact: bitwise the same update)
         rhs[:-1] = residual(z)
         rhs[-1] = -g
-        a = bordered(dg, second_derivative_row(jacobian, z, vt, w, dg if exact else None))
+        scales = system.scales
+        a = bordered(dg, second_derivative_row(jacobian, z, vt, w, dg if exact else None, scales))
         try:
             d = dense_solve(a, rhs)[2] if type(a) is np.ndarray else factor(a).solve(rhs)
         except SingularMatrixError:
             return None
-        size = max_abs(d)
+        inv = inverse_magnitudes(scales, z)
+        size = scaled_max(d, inv)
         if not math.isfinite(size):
             return None
         z = z - d
@@ -319,38 +324,48 @@ def locate_fold(
         # stagnation accepted up to 1e-6: ill-conditioned systems (cond ~ N² for discretised
         # operators) and forward differences stall there; the fold's parameter is still
         # exact to second order, its state to the accuracy of the derivatives
+        k_ratio = abs(float(z[k])) * inverse_magnitudes(scales, z)[k]
         if newton_done(
             it,
             size,
             previous,
-            z,
             o.locate_tol,
             stall=1e-6,
             perturbation=_FORWARD_D2_ERROR if exact else None,
-            k=k,
+            k_ratio=k_ratio,
         ):
             converged = True
             break
         previous = size
     if not converged:
         return None
+    # the tangent at a fold in z_k spans the kernel of ∂G/∂z, which has no k component: v
+    # (from the last iterate, one update of ≤ locate_tol away)
+    details = {"method": "minimally augmented Newton", "test_function": float(g)}
+    return accept_located(br, z, dg, it, size, details, oriented_tangent(vt, br.row, br.weights))
+
+
+def accept_located(
+    br: Bracket,
+    z: np.ndarray,
+    dg: Any,
+    iterations: int,
+    last_update: float,
+    details: dict,
+    tangent: np.ndarray | None = None,
+) -> Located | None:
+    """A point a locating Newton converged to, as :class:`Located` — if it solves ``G = 0``
+    to tolerance (or to its rounding floor) and lies in the step (within 5% of it); else
+    None (it converged to a point of another step, or off the curve)."""
+    system = br.system
     rn = max_abs(system.residual(z))
-    if not (rn <= o.tol or rn <= system.residual_floor(dg, z)):  # NaN fails too
+    if not (rn <= br.options.tol or rn <= system.residual_floor(dg, z)):  # NaN fails too
         return None
     sigma = br.sigma(z)
     if not (-0.05 * abs(br.h) <= (sigma if br.h >= 0 else -sigma) <= 1.05 * abs(br.h)):
-        return None  # converged to a fold outside this step
-    # the tangent at a fold in z_k spans the kernel of ∂G/∂z, which has no k component: v
-    # (from the last iterate, one update of ≤ locate_tol away)
-    return Located(
-        z,
-        sigma,
-        "converged",
-        it,
-        {"method": "minimally augmented Newton", "test_function": float(g), "last_update": size},
-        tangent=oriented_tangent(vt, br.row, br.weights),
-        residual_norm=rn,
-    )
+        return None
+    details = {**details, "last_update": float(last_update)}
+    return Located(z, sigma, "converged", iterations, details, tangent, rn)
 
 
 def locate_component(br: Bracket, k: int, value: float) -> Located | None:
@@ -463,7 +478,7 @@ def branch_point_directions(
     phi /= np.sqrt(phi @ (weights * phi))
 
     def d2(v1, v2):
-        return second_derivative_row(system.jacobian, z, v1, psi) @ v2
+        return second_derivative_row(system.jacobian, z, v1, psi, None, system.scales) @ v2
 
     a11, a12, a22 = d2(t, t), d2(t, phi), d2(phi, phi)
     scale = max(abs(a11), abs(a12), abs(a22), 1e-300)

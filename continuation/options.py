@@ -48,8 +48,11 @@ class ContinuationOptions:
     """Accepted steps after which the branch ends (normally, with status ``"max_steps"``)."""
     tol: float = 1e-10
     """Newton converges when the max-norm of the residual is below ``tol``..."""
-    step_tol: float = 1e-10
-    """... and the Newton update is below ``step_tol·(1 + |z|)`` in max-norm."""
+    step_tol: float = 1e-12
+    """... and the error left after the last update, about its square, is below ``step_tol``
+    relative to each component's magnitude ``max(typical size, |z_i|)``. Located special
+    points are polished until the update itself is that small (with differenced derivatives,
+    whose error keeps Newton from getting much further, until it is below 1e-10)."""
     max_newton_iterations: int = 10
     target_newton_iterations: int = 5
     """The step size is scaled by ``target_newton_iterations / iterations`` (within

@@ -124,6 +124,9 @@ class Problem:
                 f"sparsity must be {len(unknowns)}×{len(unknowns)}, got {self.sparsity.shape}"
             )
         self._groups = None if self.sparsity is None else column_groups(self.sparsity)
+        # typical sizes for the finite-difference steps (see with_typical_sizes)
+        self._typical_u: Any = 1.0
+        self._typical_p: dict[str, float] = {}
 
     @property
     def n(self) -> int:
@@ -149,6 +152,19 @@ class Problem:
         new.params = {**self.params, **{k: float(v) for k, v in values.items()}}
         return new
 
+    def with_typical_sizes(
+        self, unknowns: np.ndarray | None, params: Mapping[str, float] | None = None
+    ) -> Problem:
+        """A copy whose finite differences step relative to these typical sizes of the
+        unknowns (an array) and parameters (by name) — ``h = rel·max(typical, |x|)`` instead
+        of ``rel·max(1, |x|)`` — so that badly scaled variables are differenced accurately.
+        The tracer sets them from the branch's own typical sizes."""
+        new = object.__new__(Problem)
+        new.__dict__.update(self.__dict__)
+        new._typical_u = 1.0 if unknowns is None else np.asarray(unknowns, dtype=float)
+        new._typical_p = dict(params or {})
+        return new
+
     def callbacks(self) -> tuple[Callable, Callable, Callable]:
         """``(residual, jacobian, param_jacobian)`` for inner loops: the user's own functions
         where given (results as returned: pass them through :func:`as_vector` and
@@ -172,6 +188,7 @@ class Problem:
             method=self.derivatives,
             sparsity=self.sparsity,
             groups=self._groups,
+            typical=self._typical_u,
         )
 
     def param_jacobian(self, u, p, name):
@@ -183,7 +200,8 @@ class Problem:
             q[name] = value
             return self._residual(u, q)
 
-        return fd_derivative(f, float(p[name]), method=self.derivatives)
+        typical = self._typical_p.get(name, 1.0)
+        return fd_derivative(f, float(p[name]), method=self.derivatives, typical=typical)
 
 
 def has_exact_jacobian(problem) -> bool:

@@ -20,7 +20,7 @@ from .corrector import correct
 from .errors import ConvergenceError, ProblemDefinitionError
 from .options import ContinuationOptions
 from .problem import as_problem
-from .system import BranchSystem
+from .system import BranchSystem, CurveSystem
 
 __all__ = ["points_at"]
 
@@ -70,7 +70,10 @@ def points_at(
     free = variables[-1]
     params = {k: float(branch[k][0]) for k in problem.params if k in branch}
     o = options or ContinuationOptions()
-    system = BranchSystem(problem, free, params, o.state_weight)
+    system: CurveSystem = BranchSystem(problem, free, params, o.state_weight)
+    scales = branch.info.get("scales")  # the typical sizes the branch was traced with
+    if scales is not None and set(scales) >= set(variables):
+        system = system.with_scales(np.array([scales[v] for v in variables], dtype=float))
     k = system.index(name)
     if k is None:
         raise ProblemDefinitionError(

@@ -123,7 +123,7 @@ def assemble_branch(state: TracerState, info: dict[str, Any]) -> Branch:
         status=status,
         message=message,
         stats=stats,
-        info={"steps": state.steps, **info},
+        info={"steps": state.steps, **info, "scales": dict(zip(names, system.scales.tolist()))},
     )
 
 

@@ -49,30 +49,28 @@ _REMEDY = (
 
 
 class StepRules:
-    """What the step needs of the tracer's configuration (fixed while a curve is traced).
+    """What the step needs of the tracer's configuration (fixed while a curve is traced):
+    the options, the unit vector ``e_last`` and ``bound_tests``, the ``(index in the state's
+    test values, test)`` of each bound. The arclength weights belong to the curve system
+    (they follow its typical sizes)."""
 
-    ``bound_tests``: ``(index in the state's test values, test, reach)`` for each bound,
-    with ``reach`` = 1/√w_k, the most its component can move per unit of step (the tangent
-    is a unit vector in the weighted norm)."""
-
-    __slots__ = ("options", "weights", "unit_weights", "e_last", "bound_tests")
+    __slots__ = ("options", "e_last", "bound_tests")
 
     def __init__(
         self,
         options: ContinuationOptions,
-        weights: np.ndarray,
-        bound_tests: tuple[tuple[int, BoundTest, float], ...],
+        dim: int,
+        bound_tests: tuple[tuple[int, BoundTest], ...],
     ) -> None:
         self.options = options
-        self.weights = weights
-        # unit weights (one unknown): the weighted products are plain ones
-        self.unit_weights = bool((weights == 1.0).all())
-        self.e_last = np.zeros(weights.size)
+        self.e_last = np.zeros(dim)
         self.e_last[-1] = 1.0
         self.bound_tests = bound_tests
 
-    def wnorm(self, x: np.ndarray) -> float:
-        return math.sqrt(x.dot(self.weights * x))
+
+def wnorm(x: np.ndarray, weights: np.ndarray) -> float:
+    """The weighted (arclength) norm ``√(Σ w_i x_i²)``."""
+    return math.sqrt(x.dot(weights * x))
 
 
 class Trial(NamedTuple):
@@ -119,7 +117,7 @@ def advance(rules: StepRules, state: TracerState) -> Trial | Failure:
     secant = None
     if o.predictor == "secant" and z_prev is not None:
         d = z - z_prev
-        nd = rules.wnorm(d)
+        nd = wnorm(d, system.weights)
         if nd > 0:
             secant = d / nd
     if state.stalled >= _STALL_STEPS:
@@ -133,7 +131,7 @@ def advance(rules: StepRules, state: TracerState) -> Trial | Failure:
         if aimed is not None:
             return aimed
     direction = t if secant is None else secant
-    row = direction if rules.unit_weights else rules.weights * direction
+    row = direction if system.unit_weights else system.weights * direction
     ds = state.ds
     rejected = 0
     while True:
@@ -163,8 +161,8 @@ def _try(
     """One corrector solve at ``ds``: the trial if it is accepted, else the corrector's
     result and the reason it is not."""
     o = rules.options
-    W = rules.weights
-    unit_w = rules.unit_weights
+    W = system.weights
+    unit_w = system.unit_weights
     z_pred = z + ds * direction
     # above ds_min a wandering Newton gives up early (the step is halved anyway)
     c = row.dot(z_pred)
@@ -177,6 +175,7 @@ def _try(
         step_tol=o.step_tol,
         max_iter=o.max_newton_iterations,
         contract=ds > o.ds_min,
+        max_first=2.0 * ds,
     )
     used_fallback = False
     if not res.converged and ds <= o.ds_min:
@@ -255,10 +254,10 @@ def corner_step(
     the approach to a corner halves ds at every step, so the trial sizes start higher, and
     at each size every component is tried."""
     o = rules.options
-    W = rules.weights
+    W = system.weights
     incoming = None
-    if z_prev is not None and rules.wnorm(z - z_prev) > 0:
-        incoming = (z - z_prev) / rules.wnorm(z - z_prev)
+    if z_prev is not None and wnorm(z - z_prev, W) > 0:
+        incoming = (z - z_prev) / wnorm(z - z_prev, W)
     mags = np.abs(t) * np.sqrt(W)
     order = [j for j in np.argsort(mags) if mags[j] > 1e-6 * mags.max()][:4]
     h0 = max(ds_hint, 1e-4 * o.ds_max)
@@ -283,7 +282,7 @@ def _natural_step(
 ) -> Trial | None:
     """A step of ``h`` (weighted) in component ``j`` alone, the way it was moving."""
     o = rules.options
-    W = rules.weights
+    W = system.weights
     sign = 1.0 if t[j] > 0 else -1.0
     row = np.zeros(system.dim)
     row[j] = 1.0
@@ -293,12 +292,12 @@ def _natural_step(
     res = correct(system, z0, row, target, o, budget=2)
     # the other components move by (slope)·h: a looser guard than for arclength steps,
     # still against jumping to a distant branch
-    if not res.converged or rules.wnorm(res.z - z) > 20.0 * h:
+    if not res.converged or wnorm(res.z - z, W) > 20.0 * h:
         return None
     if incoming is not None:  # never back along the way we came
         chord = res.z - z
         along = float(chord @ (W * incoming))
-        if along < 0 and rules.wnorm(chord - along * incoming) < 0.1 * rules.wnorm(chord):
+        if along < 0 and wnorm(chord - along * incoming, W) < 0.1 * wnorm(chord, W):
             return None
     # oriented by the stepped component (the chord through the corner is not aligned with
     # the tangent beyond it)
@@ -306,11 +305,11 @@ def _natural_step(
     if t_new[j] == 0.0:
         return None
     t_new *= sign / t_new[j]
-    t_new /= rules.wnorm(t_new)
+    t_new /= wnorm(t_new, W)
     cos = float(t_new @ (W * t))
     angle = math.degrees(math.acos(max(-1.0, min(1.0, cos))))
     row = W * t_new
-    ds = rules.wnorm(res.z - z)
+    ds = wnorm(res.z - z, W)
     h = float(row.dot(res.z - z))
     return _new_tuple(Trial, (res, t_new, angle, ds, h, row.dot(t_new), 0, True, None))
 
@@ -329,9 +328,11 @@ def aim_at_bound(
     ``rt`` the factor by which det [∂G/∂z; (W t_new)ᵀ] differs in sign from the corrector's
     determinant."""
     o = rules.options
-    for i, tt, reach in rules.bound_tests:
+    W = state.system.weights
+    for i, tt in rules.bound_tests:
         old = state.tests[i]
-        if old is None or old == 0.0 or abs(old) > ds * reach:  # not within reach
+        # within reach: the component moves by at most ds/√w_k (t is a unit vector)
+        if old is None or old == 0.0 or abs(old) * math.sqrt(W[tt.k]) > ds:
             continue
         k = tt.k
         tk = float(t[k])
@@ -340,7 +341,7 @@ def aim_at_bound(
         sigma = -old / tk  # where the tangent line meets the bound
         if not 0.0 < sigma <= ds or not tt.crossed(old, old + ds * tk):
             continue
-        if math.sqrt(rules.weights[k]) * abs(tk) < math.sin(math.radians(o.max_angle)):
+        if math.sqrt(W[k]) * abs(tk) < math.sin(math.radians(o.max_angle)):
             return None  # grazing: a normal step, then locating
         return _aimed(rules, state.system, z, t, ds, tt, sigma, tk)
     return None
@@ -357,7 +358,7 @@ def _aimed(
     tk: float,
 ) -> Trial | None:
     o = rules.options
-    W = rules.weights
+    W = system.weights
     k = tt.k
     z_pred = z + sigma * t
     z_pred[k] = tt.value_at
@@ -379,7 +380,7 @@ def _aimed(
     angle = math.degrees(math.acos(max(-1.0, min(1.0, float(t_new.dot(wt))))))
     h = float(wt.dot(z1 - z))
     dc = z1 - z_pred
-    if angle > o.max_angle or t_new[k] * tk <= 0.0 or h <= 0.0 or rules.wnorm(dc) > ds:
+    if angle > o.max_angle or t_new[k] * tk <= 0.0 or h <= 0.0 or wnorm(dc, W) > ds:
         return None
     return _new_tuple(Trial, (res, t_new, angle, h, h, rt, 0, False, tt))
 

@@ -32,19 +32,29 @@ if TYPE_CHECKING:
 class CurveSystem:
     """Interface of what the tracer follows.
 
-    Attributes: ``names`` (one per component of z), ``dim`` (= m + 1), ``weights`` (of the
-    arclength inner product), ``problem`` (or None), ``fold_components`` (the components
-    whose turning points are detected by default: the free parameter of a branch).
+    Attributes: ``names`` (one per component of z), ``dim`` (= m + 1), ``scales`` (the
+    typical size of each component: updates, tolerances and finite-difference steps are
+    relative to ``max(scale, |z_i|)``), ``weights`` (of the arclength inner product:
+    ``base_weights / scales²``, so arclength is measured in relative terms), ``problem``
+    (or None), ``fold_components`` (the components whose turning points are detected by
+    default: the free parameter of a branch).
     """
 
     names: tuple[str, ...]
     dim: int
+    scales: np.ndarray
+    base_weights: np.ndarray
     weights: np.ndarray
+    unit_weights: bool = False
+    """True if every weight is exactly 1 (the step then skips the weighted products)."""
     problem: Any = None
     fold_components: tuple[str, ...] = ()
     exact_jacobian: bool = False
     """True if ``jacobian`` is exact to rounding (not differenced): its own differences are
     then accurate enough for forward differencing."""
+    derivatives_exact: bool = False
+    """True if the problem's own derivatives are exact (given, or by complex step): the
+    default step tolerance is then tighter (:meth:`ContinuationOptions.for_derivatives`)."""
     refreshes: bool = False
     """True if the equations change along the curve, so that :meth:`refreshed` must be
     called after every accepted point (the tracer skips the call otherwise)."""
@@ -81,7 +91,7 @@ class CurveSystem:
         nearby one): Newton accepts a tiny update with a residual up to ``max(tol, this)``.
         The last column (a parameter) is left out: a parameter derivative differenced
         across a jump of the residual would inflate it."""
-        return rounding_floor(dg[:, :-1], z)
+        return rounding_floor(dg[:, :-1], z, self.scales)
 
     def refreshed(self, z: np.ndarray) -> CurveSystem:
         """The system to use after the accepted point ``z`` (augmented systems update their
@@ -92,6 +102,22 @@ class CurveSystem:
         """This system with its fixed parameters taken from ``values`` where given (starting
         from a special point of another curve)."""
         return self
+
+    def with_scales(self, scales: np.ndarray) -> CurveSystem:
+        """This system with the typical sizes ``scales`` (one per component of z, > 0): the
+        arclength weights become ``base_weights / scales²`` and a :class:`Problem`'s finite
+        differences step relative to them."""
+        scales = np.array(scales, dtype=float)
+        new = object.__new__(type(self))
+        new.__dict__.update(self.__dict__)
+        new.scales = scales
+        new.weights = self.base_weights / (scales * scales)
+        new.unit_weights = all(w == 1.0 for w in new.weights.tolist())
+        new._scaled_problem()
+        return new
+
+    def _scaled_problem(self) -> None:
+        """Hand the typical sizes to the problem's finite differences (a :class:`Problem`)."""
 
     def start_vector(self, u: np.ndarray) -> np.ndarray:
         """The curve vector ``z`` of the unknowns ``u`` at the system's parameter values."""
@@ -160,18 +186,32 @@ class BranchSystem(CurveSystem):
         self.n = len(problem.unknowns)
         self.names = tuple(problem.unknowns) + (free,)
         self.dim = self.n + 1
-        self.weights = state_weights(self.n, 1, state_weight)
-        self.exact_jacobian = has_exact_jacobian(problem)
+        self.scales = np.ones(self.dim)
+        self.base_weights = state_weights(self.n, 1, state_weight)
+        self.weights = self.base_weights.copy()
+        self.unit_weights = bool((self.weights == 1.0).all())
+        self.exact_jacobian = self.derivatives_exact = has_exact_jacobian(problem)
+        self._bind_callbacks()
+        self._shapes = ((self.n, self.n), (self.n,))
+        self.fold_components = (free,)
+
+    def _bind_callbacks(self) -> None:
         # bound once: the corrector's inner loop calls these for every iteration (a
         # Problem's own callbacks, skipping its normalising wrappers: see below)
+        problem = self.problem
         callbacks = getattr(problem, "callbacks", None)
         self._residual, self._jacobian, self._param_jacobian = (
             callbacks()
             if callbacks is not None
             else (problem.residual, problem.jacobian, problem.param_jacobian)
         )
-        self._shapes = ((self.n, self.n), (self.n,))
-        self.fold_components = (free,)
+
+    def _scaled_problem(self) -> None:
+        with_typical = getattr(self.problem, "with_typical_sizes", None)
+        if with_typical is not None:
+            n = self.n
+            self.problem = with_typical(self.scales[:n], {self.free: float(self.scales[n])})
+            self._bind_callbacks()
 
     def with_values(self, values: Mapping[str, float]) -> BranchSystem:
         fixed = {k: float(values[k]) for k in self.params if k in values and k not in self.names}

@@ -27,9 +27,9 @@ from typing import TYPE_CHECKING, Any, Protocol
 
 import numpy as np
 
-from .errors import NonFiniteResidualError, ProblemDefinitionError, SingularMatrixError
+from .branchpoints import locate_branch_point
+from .errors import NonFiniteResidualError, ProblemDefinitionError
 from .events import Event
-from .linalg import bordered, factor
 from .locate import (
     Bracket,
     Located,
@@ -258,8 +258,9 @@ def _check_fold_resolution(found: Located, br: Bracket) -> Located:
     if problem is None or has_exact_jacobian(problem):
         return found
     method = getattr(problem, "derivatives", "central")
-    rel = np.finfo(float).eps ** (1 / 3 if method == "central" else 1 / 2)
-    h_fd = rel * (1.0 + float(np.max(np.abs(found.z))))
+    # the difference step, relative to the components' magnitudes; arclength is measured
+    # in the same relative terms (the weights are 1/scale²)
+    h_fd = np.finfo(float).eps ** (1 / 3 if method == "central" else 1 / 2)
     cos = float(br.t_a @ (br.weights * br.t_b))
     turn = math.acos(max(-1.0, min(1.0, cos)))
     if turn > 0 and abs(br.h) / turn < 100 * h_fd:
@@ -286,21 +287,7 @@ class BranchPointTest(TestFunction):
         return sdet
 
     def locate(self, br: Bracket, f_a: float, f_b: float) -> Located:
-        ref = _bordered_det(br.system, br.z_a, br.row)
-
-        def f(z):
-            try:
-                sgn, logdet = _bordered_det(br.system, z, br.row)
-            except SingularMatrixError:  # landed exactly on the branch point
-                return 0.0
-            return sgn * math.exp(min(logdet - ref[1], 700.0))
-
-        fa = ref[0]
-        sb, lb = _bordered_det(br.system, br.z_b, br.row)
-        fb = sb * math.exp(min(lb - ref[1], 700.0))
-        if fa * fb > 0:  # the sign change was seen with a different border: bisect on it
-            fb = -fa
-        return locate_on_arc(br, f, fa, fb)
+        return locate_branch_point(br, f_a, f_b)
 
     def record(self, system, loc, br, weights, interval) -> Record:
         kind, label, wrt, status, interval, details = super().record(
@@ -310,11 +297,6 @@ class BranchPointTest(TestFunction):
         details.update(branch_point_directions(system, loc.z, tan, weights))
         details["names"] = tuple(system.names)
         return (kind, label, wrt, status, interval, details)
-
-
-def _bordered_det(system, z: np.ndarray, row: np.ndarray) -> tuple[float, float]:
-    lu = factor(bordered(system.jacobian(z), row))
-    return lu.sign_det(), lu.log_abs_det()
 
 
 class EventTest(TestFunction):

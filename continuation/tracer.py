@@ -41,8 +41,9 @@ from .linalg import bordered, factor, max_abs
 from .locate import Bracket, Located, tangent_at
 from .options import ContinuationOptions
 from .problem import as_problem
+from .scaling import given_scales, typical_sizes
 from .state import Point, TracerState, assemble_branch
-from .stepping import STALL_FACTOR, Failure, StepRules, Trial, advance, next_step_size
+from .stepping import STALL_FACTOR, Failure, StepRules, Trial, advance, next_step_size, wnorm
 from .system import BranchSystem, CurveSystem
 from .testfunctions import BoundTest, Record, TestFunction
 
@@ -85,6 +86,7 @@ class Tracer:
         targets: Mapping[str, Sequence[float]] | None = None,
         events: Sequence[Event] = (),
         monitor: Sequence[str] = (),
+        scales: Mapping[str, float] | None = None,
         direction: int = 1,
         options: ContinuationOptions | None = None,
         throw: bool = True,
@@ -104,6 +106,7 @@ class Tracer:
             targets=targets,
             events=events,
             monitor=monitor,
+            scales=scales,
             direction=direction,
             throw=throw,
         )
@@ -114,7 +117,7 @@ class Tracer:
     ) -> Tracer:
         """A tracer for any curve system (fold curves and other augmented systems); the
         keyword arguments are those of :func:`trace` that apply to a curve: ``bounds``,
-        ``targets``, ``events``, ``monitor``, ``direction``, ``throw``."""
+        ``targets``, ``events``, ``monitor``, ``scales``, ``direction``, ``throw``."""
         self = object.__new__(cls)
         self._configure(system, options, **kwargs)
         return self
@@ -128,6 +131,7 @@ class Tracer:
         targets: Mapping[str, Sequence[float]] | None = None,
         events: Sequence[Event] = (),
         monitor: Sequence[str] = (),
+        scales: Mapping[str, float] | None = None,
         direction: int = 1,
         throw: bool = True,
     ) -> None:
@@ -139,17 +143,13 @@ class Tracer:
         self.options = options
         self.throw = bool(throw)
         self.direction = direction
-        self.weights = system.weights
         self.tests = system.test_functions(
             options, monitor=monitor, targets=targets, bounds=bounds, events=events
         )
         self._has_bp = any(t.kind == "branch_point" for t in self.tests)
-        bound_tests = tuple(
-            (i, t, 1.0 / math.sqrt(self.weights[t.k]))
-            for i, t in enumerate(self.tests)
-            if isinstance(t, BoundTest)
-        )
-        self._rules = StepRules(options, self.weights, bound_tests)
+        bound_tests = tuple((i, t) for i, t in enumerate(self.tests) if isinstance(t, BoundTest))
+        self._rules = StepRules(options, system.dim, bound_tests)
+        self._scales = given_scales(system, scales)
 
     # ------------------------------------------------------------------ start
 
@@ -216,19 +216,27 @@ class Tracer:
                 f"the residual is not finite at the starting point {system.values(z0)}",
                 values=system.values(z0),
             )
+        bounds = [t for t in self.tests if isinstance(t, BoundTest)]
+        provisional, settled = typical_sizes(z0, self._scales, bounds)
+        system = system.with_scales(provisional)
         if tangent is None:
             z0, t0, sdet, residual, iters = self._correct_start(system, z0, g0)
         else:
             t0 = np.asarray(tangent, dtype=float)
-            t0 = t0 / self._rules.wnorm(t0)
             residual = float(np.max(np.abs(g0)))
             iters = 0
             sdet = None
+        if not settled:  # components of size 0 take their size from the tangent
+            jacobian = system.jacobian
+            sizes, _ = typical_sizes(z0, self._scales, bounds, t0, lambda: jacobian(z0))
+            if not np.array_equal(sizes, provisional):
+                system = system.with_scales(sizes)
+        t0 = t0 / wnorm(t0, system.weights)  # (a positive factor: sdet keeps its sign)
         system = system.refreshed(z0)
         if skip_bp:
             sdet = None
         elif sdet is None:
-            sdet = factor(bordered(system.jacobian(z0), self.weights * t0)).sign_det()
+            sdet = factor(bordered(system.jacobian(z0), system.weights * t0)).sign_det()
         # starting on a special point, the test functions vanish there up to rounding: their
         # signs are taken after the first step instead
         tests = tuple(
@@ -270,8 +278,9 @@ class Tracer:
                 )
 
     def _initial_tangent(self, system: CurveSystem, z0: np.ndarray, k_free: int, lu: Any):
-        """Unit tangent at ``z0`` (the free parameter moving in ``direction``) and the sign of
-        det [∂G/∂z; (W t)ᵀ] (None if it was not available from the factorization).
+        """The tangent direction at ``z0`` (the free parameter moving in ``direction``; not
+        normalised) and the sign of det [∂G/∂z; (W t)ᵀ] for it (None if it was not available
+        from the factorization).
 
         ``lu``: a factorization of [∂G/∂z; e_kᵀ] at (or, from the corrector, one update
         from) ``z0``."""
@@ -289,7 +298,6 @@ class Tracer:
             # t solves [∂G/∂z; e_kᵀ] t = e_last, so (determinant lemma) det [∂G/∂z; (W t')ᵀ]
             # = det [∂G/∂z; e_kᵀ]·(W t')·t, which for t' = ±t/|t|_W has the sign ±
             sdet = lu.sign_det()
-        t = t / self._rules.wnorm(t)
         if t[k_free] * self.direction < 0:
             t = -t
             if sdet is not None:
@@ -363,7 +371,7 @@ class Tracer:
                 )
             else:
                 if br is None:
-                    br = Bracket(system, last.z, last.t, z1, trial.t, self.weights, self.options)
+                    br = Bracket(system, last.z, last.t, z1, trial.t, system.weights, self.options)
                 loc = tt.locate(br, old, new)
             found.append((loc.sigma, tt, loc))
         direction = math.copysign(1.0, trial.h if br is None else br.h)
@@ -390,7 +398,7 @@ class Tracer:
         end_special = special
         for tt, loc in located:
             interval = (last.s, last.s + h)
-            records: tuple[Record, ...] = (tt.record(system, loc, br, self.weights, interval),)
+            records: tuple[Record, ...] = (tt.record(system, loc, br, system.weights, interval),)
             if tt.terminal:
                 status, message, extra = tt.ending(loc)
                 records += extra
@@ -441,7 +449,7 @@ class Tracer:
         tan = loc.tangent
         if tan is None:
             assert br is not None  # only the aimed end point is located without a bracket
-            tan = tangent_at(system, loc.z, br.row, self.weights, br)
+            tan = tangent_at(system, loc.z, br.row, system.weights, br)
         rn = loc.residual_norm
         if rn is None:
             rn = max_abs(system.residual(loc.z))

@@ -515,22 +515,25 @@ def test_max_abs_matches_numpy_and_flags_nonfinite(n):
 
 def test_fold_newton_stopping_estimate():
     """The locating Newton stops once the estimated next update is below the tolerance, both
-    mixed (1e-12·(1 + |z|)) and relative to the located component z_k. Update sizes are the
-    fold Newton's on the cusp's second fold (x = 1/√3, b = −2/(3√3) = −0.3849...): 1.64e-4
-    then 4.68e-8. With the Newton matrix's error δ known (exact Jacobian: a forward
-    difference in its last row, δ = 1e-7) the estimate C·size² + δ·size, C = size/previous²,
-    is 8.5e-15 (the actual next update was 8.9e-16): below 1e-12·|b| = 3.8e-13. Unknown δ:
-    the linear estimate size²/previous = 1.3e-11 is not, and neither is a large δ's."""
+    relative to the components' magnitudes (typical sizes 1 here, so 1e-12·max(1, |z_i|))
+    and relative to the located component z_k itself (``k_ratio`` = |z_k|/max(1, |z_k|)).
+    Update sizes are the fold Newton's on the cusp's second fold (x = 1/√3,
+    b = −2/(3√3) = −0.3849...): 1.64e-4 then 4.68e-8. With the Newton matrix's error δ known
+    (exact Jacobian: a forward difference in its last row, δ = 1e-7) the estimate
+    C·size² + δ·size, C = size/previous², is 8.5e-15 (the actual next update was 8.9e-16):
+    below 1e-12·|b| = 3.8e-13. Unknown δ: the linear estimate size²/previous = 1.3e-11 is
+    not, and neither is a large δ's."""
     from cusp.continuation.locate import newton_done
 
-    z = np.array([0.5773502691896257, -0.3849001794597505])
-    assert newton_done(2, 4.68e-8, 1.64e-4, z, 1e-12, stall=1e-6, perturbation=1e-7, k=1)
-    assert not newton_done(2, 4.68e-8, 1.64e-4, z, 1e-12, stall=1e-6, k=1)
-    assert not newton_done(2, 4.68e-8, 1.64e-4, z, 1e-12, stall=1e-6, perturbation=1e-3, k=1)
+    b = 0.3849001794597505
+    assert newton_done(2, 4.68e-8, 1.64e-4, 1e-12, stall=1e-6, perturbation=1e-7, k_ratio=b)
+    assert not newton_done(2, 4.68e-8, 1.64e-4, 1e-12, stall=1e-6, k_ratio=b)
+    assert not newton_done(2, 4.68e-8, 1.64e-4, 1e-12, stall=1e-6, perturbation=1e-3, k_ratio=b)
     # not yet in the quadratic regime (the update shrank by less than 100): no early stop
-    assert not newton_done(2, 1e-6, 5e-5, z, 1e-12, stall=1e-6, perturbation=1e-7, k=1)
-    # the same estimate with a fold parameter 100 times smaller (b = −0.00385): 8.5e-15 is
-    # below the mixed 1e-12·(1 + |z|) but not below 1e-12·|b| = 3.8e-15, so Newton goes on
-    small = np.array([0.5773502691896257, -0.003849001794597505])
-    assert newton_done(2, 4.68e-8, 1.64e-4, small, 1e-12, stall=1e-6, perturbation=1e-7)
-    assert not newton_done(2, 4.68e-8, 1.64e-4, small, 1e-12, stall=1e-6, perturbation=1e-7, k=1)
+    assert not newton_done(2, 1e-6, 5e-5, 1e-12, stall=1e-6, perturbation=1e-7, k_ratio=b)
+    # the same estimate with a fold parameter 100 times smaller than its typical size
+    # (b = −0.00385, typical size 1): 8.5e-15 is below 1e-12 relative to the typical size
+    # but not below 1e-12·|b| = 3.8e-15, so Newton goes on
+    assert newton_done(2, 4.68e-8, 1.64e-4, 1e-12, stall=1e-6, perturbation=1e-7)
+    small = b / 100
+    assert not newton_done(2, 4.68e-8, 1.64e-4, 1e-12, stall=1e-6, perturbation=1e-7, k_ratio=small)

@@ -1,0 +1,140 @@
+"""Typical sizes of the components of a curve: what makes the engine independent of units.
+
+Every component ``z_i`` (an unknown or a free parameter) gets a typical size ``s_i > 0``.
+The arclength weights are ``base_weight_i / s_i²``, Newton's update test and the location
+tolerances compare updates with ``max(s_i, |z_i|)``, and finite differences step relative to
+it, so that rescaling an unknown or a parameter by 1e±8 traces the same curve in the same
+steps and finds the same special points (to their relative tolerance).
+
+Unless the user gives a component's size (``scales={"x": 1e6}`` in :func:`~.tracer.trace`),
+it is taken at the start of the curve, in this order:
+
+1. ``|z_i|`` at the starting point, and the bounds of the component (the width of a finite
+   interval, else the largest finite end), whichever is larger. A value at the rounding
+   level of the equations it enters (``|∂G_r/∂z_i · z_i|`` below 1000 ε of the size of the
+   terms of every such equation ``G_r``, such as the 2e-16 left of an area that should be
+   0) counts as 0;
+2. for components still of size 0 (they start at 0, or at a rounding-level value such as
+   1e-16, and have no bounds), the start tangent: the components of known size move at the
+   relative rates ``|t_j|/s_j``; with ``r`` their median, a component moving by ``|t_i|``
+   gets the size ``|t_i| / r`` (what it changes while a typical component changes by its
+   typical size; the median keeps one odd component from setting the rate);
+3. for components that do not move either (identically 0 on this curve), 1: nothing on
+   this curve tells their size (give it in ``scales`` if 1 is far off).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping, Sequence
+from typing import Any
+
+import numpy as np
+import scipy.sparse as sp
+
+from .errors import ProblemDefinitionError
+
+
+def given_scales(system: Any, scales: Mapping[str, float] | None) -> dict[int, float]:
+    """The user's typical sizes by component index (checked: traced names, finite > 0)."""
+    out: dict[int, float] = {}
+    for name, value in (scales or {}).items():
+        k = system.index(name)
+        if k is None:
+            raise ProblemDefinitionError(
+                f"scales names {name!r}, which is not traced on this curve; it must be one of "
+                f"{list(system.names)}"
+            )
+        try:
+            v = float(value)
+        except (TypeError, ValueError):
+            v = math.nan
+        if isinstance(value, bool) or not (math.isfinite(v) and v > 0.0):
+            raise ProblemDefinitionError(
+                f"scales[{name!r}] must be a finite number > 0 (a typical size), got {value!r}"
+            )
+        out[k] = v
+    return out
+
+
+def typical_sizes(
+    z0: np.ndarray,
+    given: Mapping[int, float],
+    bounds: Sequence[Any] = (),
+    tangent: np.ndarray | None = None,
+    jacobian: Any = None,
+) -> tuple[np.ndarray, bool]:
+    """The typical size of every component (module docstring), and whether they are settled
+    (no component was of size 0 or suspiciously small, so the tangent and the Jacobian
+    cannot change them); ``bounds`` are the curve's
+    bound tests (``k`` and ``pair``), ``tangent`` the start tangent (any normalisation) or
+    None before it is known (the sizes still 0 are then provisionally 1), ``jacobian`` a
+    function giving ∂G/∂z at ``z0`` (to recognise values at rounding level; called only if
+    some component is a millionth of the largest or less). Plain Python: it runs once per
+    curve, on the few components of most problems."""
+    s = [abs(v) for v in np.asarray(z0, dtype=float).tolist()]
+    largest = max(s)
+    small = any(0.0 < x <= 1e-6 * largest for x in s)
+    if jacobian is not None and small:
+        for i in _at_rounding_level(jacobian(), s):
+            s[i] = 0.0
+    for t in bounds:
+        lo, hi = t.pair
+        ends = [abs(v) for v in (lo, hi) if math.isfinite(v)]
+        size = hi - lo if len(ends) == 2 else max(ends)
+        s[t.k] = max(s[t.k], size)
+    for k, v in given.items():
+        s[k] = v
+    unknown = [not (0.0 < x < math.inf) for x in s]
+    settled = not small and not any(unknown)
+    if tangent is not None and any(unknown):
+        _size_by_motion(s, unknown, np.abs(np.asarray(tangent, dtype=float)).tolist(), given)
+    return np.array([1.0 if u else x for x, u in zip(s, unknown)]), settled
+
+
+def _size_by_motion(
+    s: list[float], unknown: list[bool], t: list[float], given: Mapping[int, float]
+) -> None:
+    """Step 2 of the module docstring, in place: the components of unknown size that move
+    get ``|t_i| / r``, ``r`` the median relative rate of the components of known size."""
+    tmax = max(t)
+    moving = [ti > 1e-12 * tmax for ti in t]  # below rounding of the largest: not moving
+    rates = sorted(t[i] / s[i] for i in range(len(s)) if not unknown[i] and moving[i])
+    if not rates:
+        return
+    half = len(rates) // 2
+    rate = rates[half] if len(rates) % 2 else 0.5 * (rates[half - 1] + rates[half])
+    if not (0.0 < rate < math.inf):
+        return
+    for i in range(len(s)):
+        if unknown[i] and moving[i] and i not in given:
+            s[i] = t[i] / rate
+            unknown[i] = False
+
+
+def _at_rounding_level(jacobian: Any, magnitudes: list[float]) -> list[int]:
+    """The components whose contribution ``|∂G_r/∂z_i|·|z_i|`` to every equation they enter
+    is below 1000 ε of that equation's terms ``Σ_j |∂G_r/∂z_j|·|z_j|``."""
+    level = 1000.0 * float(np.finfo(float).eps)
+    mags = np.asarray(magnitudes)
+    a = abs(sp.csc_matrix(jacobian)) if sp.issparse(jacobian) else None
+    if a is None:
+        rows = np.abs(np.asarray(jacobian, dtype=float)).tolist()
+        terms = [sum(x * m for x, m in zip(r, magnitudes)) for r in rows]
+        out = []
+        for i, m in enumerate(magnitudes):
+            col = [(r[i], tr) for r, tr in zip(rows, terms) if r[i] > 0.0]
+            if m > 0.0 and col and all(x * m <= level * tr for x, tr in col):
+                out.append(i)
+        return out
+    sizes = np.asarray(a @ mags).ravel()
+    found = []
+    for i, m in enumerate(magnitudes):
+        rows_i = a.indices[a.indptr[i] : a.indptr[i + 1]]
+        vals = a.data[a.indptr[i] : a.indptr[i + 1]]
+        if m > 0.0 and rows_i.size and bool(np.all(vals * m <= level * sizes[rows_i])):
+            found.append(i)
+    return found
+
+
+__all__ = ["given_scales", "typical_sizes"]
