@@ -406,3 +406,50 @@ def test_example_trace_uses_its_free_parameter_bounds_and_monitor():
     assert [sp.with_respect_to for sp in snap.special("fold")] == ["P", "delta", "delta", "P"]
     short = ex.cusp_normal_form().trace(bounds={"b": (-1.0, 0.0)})
     assert short["b"][-1] == 0.0
+
+
+def test_closed_forms_of_the_suite_references():
+    """The references of the suite's examples against their closed forms or published values,
+    evaluated in float (independently of the mpmath code that produced them)."""
+    # pp2: the fold on the prey branch, published with the problem (0.83292932223415686);
+    # the branch points u1 = 1/3 (p1 = (2/3)/(1 − e^{−5/3})) and u1 = 0 (p1 = 3/5)
+    (_, uf, pf), (_, ub, pb), (_, u0, p0) = ex.pp2_references()
+    assert pf == pytest.approx(0.83292932223415686, rel=1e-15)
+    g = lambda u: 3 * u * (1 - u) / (1 - np.exp(-5 * u))  # noqa: E731
+    assert g(uf) == pytest.approx(pf, rel=1e-15)
+    assert (g(uf + 1e-6) < pf) and (g(uf - 1e-6) < pf)  # a maximum of p1 along the branch
+    assert (ub, pb) == (1 / 3, pytest.approx((2 / 3) / (1 - np.exp(-5 / 3)), rel=1e-15))
+    assert (u0, p0) == (0.0, 0.6)
+    # enz: rho R'(s) = -1 at the folds, -3 at the branch points, s0 = s + rho R(s)
+    for kind, s, s0 in ex.enz_symmetric_points():
+        d = 1 + s + s**2
+        assert 100 * (1 - s**2) / d**2 == pytest.approx(-1 if kind == "fold" else -3, rel=1e-12)
+        assert s0 == pytest.approx(s + 100 * s / d, rel=1e-15)
+    # CSTR: d ln Da/dx1 = 1/(x1 (1 - x1)) - k/(1 + k x1/gamma)^2 = 0, k = 16/3
+    for f in ex.cstr_folds():
+        x1, k = f["x1"], 16 / 3
+        assert 1 / (x1 * (1 - x1)) == pytest.approx(k / (1 + k * x1 / 20) ** 2, rel=1e-12)
+    # Gray-Scott (F = 0.04): fold k = sqrt(F)/2 - F = 0.06, v = sqrt(F) = 0.2, u = 1/2
+    fold, bp = ex.gray_scott_references(0.04)
+    assert fold[1] == pytest.approx({"u": 0.5, "v": 0.2, "k": 0.06}, rel=1e-15)
+    assert bp[1] == {"u": 1.0, "v": 0.0, "k": -0.04}
+    # Brusselator: every branch point makes the mode's 2 x 2 block singular
+    c = ex.BRUSSELATOR
+    for L, k in ex.brusselator_branch_points(4):
+        m = 4 * 25 * np.sin(k * np.pi / 10) ** 2 / L**2
+        block = [[c["B"] - 1 - c["Dx"] * m, c["A"] ** 2], [-c["B"], -(c["A"] ** 2) - c["Dy"] * m]]
+        assert abs(np.linalg.det(block)) < 1e-9 * m**2 * c["Dx"] * c["Dy"]
+    # elastica: the buckling loads 4n² sin²((2k − 1)π/(4n)), near the continuum ((2k − 1)π/2)²
+    for k, P in enumerate(ex.elastica_buckling_loads(10)[:2], start=1):
+        assert P == pytest.approx(400 * np.sin((2 * k - 1) * np.pi / 40) ** 2, rel=1e-14)
+        assert P == pytest.approx(((2 * k - 1) * np.pi / 2) ** 2, rel=2e-2)
+    # rigid bar: Koiter's two-thirds law, exact for this model
+    theta, P = ex.rigid_bar_limit(0.01)
+    assert np.sin(theta) ** 3 == pytest.approx(np.sin(0.01), rel=1e-14)
+    assert P == pytest.approx((1 - np.sin(0.01) ** (2 / 3)) ** 1.5, rel=1e-14)
+    # imperfect normal forms
+    (fold,) = ex.imperfect_transcritical(5e-4).references()
+    assert fold.values["x"] ** 2 == pytest.approx(5e-4) and fold.values["p"] == -2 * np.sqrt(5e-4)
+    (fold,) = ex.imperfect_pitchfork(2e-3).references()
+    assert fold.values["x"] == pytest.approx(0.1, rel=1e-15)
+    assert fold.values["p"] == pytest.approx(-0.03, rel=1e-15)
