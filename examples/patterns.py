@@ -63,8 +63,8 @@ def gray_scott(F: float = 0.04, *, derivatives: str = "analytic") -> Example:
             Reference(kind, {**values, "F": F}, ("k",)) for kind, values in gray_scott_references(F)
         )
 
-    s = F + 0.0  # k = 0 at the start
-    v0 = (F + (F**2 - 4 * F * s**2) ** 0.5) / (2 * s)
+    # the upper root at k = 0: F v² − F v + F² = 0, v = (1 + √(1 − 4F))/2, u = 1 − v
+    v0 = (1 + (1 - 4 * F) ** 0.5) / 2
     return make_example(
         "Gray-Scott uniform steady states",
         residual,
@@ -73,7 +73,7 @@ def gray_scott(F: float = 0.04, *, derivatives: str = "analytic") -> Example:
         jacobian,
         param_jacobian,
         derivatives=derivatives,
-        u0=[1 - s * v0 / F, v0],
+        u0=[1 - v0, v0],
         free="k",
         bounds={"k": (-0.1, 0.1), "v": (-0.5, 2.0)},
         references=references,
