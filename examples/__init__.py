@@ -19,13 +19,32 @@ fallbacks). The modules, by family:
 - :mod:`~cusp.examples.bratu`: the finite-difference Bratu problem (dense or sparse, any N);
 - :mod:`~cusp.examples.structures`: the shallow arch (two-mode Ritz), cohesive bars;
 - :mod:`~cusp.examples.chemistry`: CO oxidation (BifurcationKit), the A → B reactor
-  (AUTO-07p ``ab``).
+  (AUTO-07p ``ab``);
+- :mod:`~cusp.examples.auto_demos`: AUTO-07p demos ``pp2`` (predator–prey), ``log``
+  (logistic map), ``dd2`` (discrete predator–prey);
+- :mod:`~cusp.examples.reactors`: the enzyme model (AUTO-07p ``enz``), a CSTR with Arrhenius
+  kinetics;
+- :mod:`~cusp.examples.patterns`: Gray–Scott and Brusselator steady states, Lorenz equilibria
+  (AUTO-07p ``lrz``);
+- :mod:`~cusp.examples.mechanics`: the elastica, a rigid bar with a spring (perfect and
+  imperfect);
+- :mod:`~cusp.examples.bifurcations`: a pitchfork crossed along its parabola, imperfect
+  transcritical and pitchfork bifurcations, a narrow transcritical crossing;
+- :mod:`~cusp.examples.stress`: badly scaled variants (:func:`rescaled`) and parallel
+  branches.
 
 Imports only :mod:`cusp.continuation`, numpy and scipy; mpmath is imported by the reference
 functions when they run.
 """
 
 from ._base import DERIVATIVES, Example, Reference
+from .auto_demos import PP2_PARAMS, dd2, logistic_map, pp2, pp2_references
+from .bifurcations import (
+    imperfect_pitchfork,
+    imperfect_transcritical,
+    narrow_transcritical,
+    subcritical_pitchfork,
+)
 from .bratu import (
     BRATU_FOLD_N99999,
     bratu,
@@ -46,6 +65,13 @@ from .chemistry import (
     co_oxidation,
     co_quartic,
 )
+from .mechanics import (
+    elastica,
+    elastica_buckling_loads,
+    elastica_names,
+    rigid_bar,
+    rigid_bar_limit,
+)
 from .normal_forms import (
     cusp_fold_curve,
     cusp_folds,
@@ -54,6 +80,24 @@ from .normal_forms import (
     cusp_start,
     pitchfork,
     transcritical,
+)
+from .patterns import (
+    BRUSSELATOR,
+    brusselator,
+    brusselator_branch_points,
+    brusselator_names,
+    gray_scott,
+    gray_scott_references,
+    lorenz,
+)
+from .reactors import cstr, cstr_folds, enz, enz_symmetric_points
+from .stress import (
+    parallel_s_curves,
+    rescaled,
+    scaled_ab,
+    scaled_arch,
+    scaled_cusp,
+    scaled_truss,
 )
 from .structures import (
     arch_codim2,
@@ -99,17 +143,37 @@ CATALOGUE = {
     "cohesive_bilinear_opening": cohesive_bilinear_opening,
     "co_oxidation": co_oxidation,
     "ab_reactor": ab_reactor,
+    "pp2": pp2,
+    "logistic_map": logistic_map,
+    "dd2": dd2,
+    "enz": enz,
+    "cstr": cstr,
+    "gray_scott": gray_scott,
+    "brusselator": brusselator,
+    "lorenz": lorenz,
+    "elastica": elastica,
+    "rigid_bar": rigid_bar,
+    "rigid_bar_imperfect": lambda **kw: rigid_bar(0.01, **kw),
+    "subcritical_pitchfork": subcritical_pitchfork,
+    "imperfect_transcritical": imperfect_transcritical,
+    "imperfect_pitchfork": imperfect_pitchfork,
+    "narrow_transcritical": narrow_transcritical,
+    "scaled_cusp": scaled_cusp,
+    "scaled_truss": scaled_truss,
+    "scaled_ab": scaled_ab,
+    "scaled_arch": scaled_arch,
+    "parallel_s_curves": parallel_s_curves,
 }
 
 __all__ = [
     "BRATU_FOLD_N99999",
+    "BRUSSELATOR",
     "CATALOGUE",
     "CO_CUSP",
     "CO_FOLDS_K04",
     "CO_Q",
     "DERIVATIVES",
-    "Example",
-    "Reference",
+    "PP2_PARAMS",
     "ab_cusp",
     "ab_folds",
     "ab_reactor",
@@ -120,6 +184,9 @@ __all__ = [
     "bratu_fd_fold",
     "bratu_fd_fold_state",
     "bratu_names",
+    "brusselator",
+    "brusselator_branch_points",
+    "brusselator_names",
     "co_cusp",
     "co_folds",
     "co_oxidation",
@@ -129,17 +196,45 @@ __all__ = [
     "cohesive_bilinear_opening",
     "cohesive_exponential",
     "cohesive_exponential_fold",
+    "cstr",
+    "cstr_folds",
     "cusp_fold_curve",
     "cusp_folds",
     "cusp_normal_form",
     "cusp_real_roots",
     "cusp_start",
+    "dd2",
+    "elastica",
+    "elastica_buckling_loads",
+    "elastica_names",
+    "enz",
+    "enz_symmetric_points",
+    "Example",
+    "gray_scott",
+    "gray_scott_references",
+    "imperfect_pitchfork",
+    "imperfect_transcritical",
+    "logistic_map",
+    "lorenz",
+    "narrow_transcritical",
+    "parallel_s_curves",
     "pitchfork",
+    "pp2",
+    "pp2_references",
+    "Reference",
+    "rescaled",
+    "rigid_bar",
+    "rigid_bar_limit",
+    "scaled_ab",
+    "scaled_arch",
+    "scaled_cusp",
+    "scaled_truss",
     "shallow_arch",
     "snapback_control",
     "snapback_cusp",
     "snapback_monitor",
     "snapback_turning_points",
+    "subcritical_pitchfork",
     "transcritical",
     "truss_2dof",
     "truss_2dof_references",
