@@ -20,7 +20,8 @@ class SpecialPoint:
     ``index``: its row in the branch arrays. ``values``: every unknown and parameter.
     ``status``: ``"converged"`` (located to tolerance) or ``"guess"`` (only bracketed: the
     ``interval`` of arclength holds it). ``details``: kind-specific data (test-function values,
-    null vectors, Newton iterations, ...).
+    null vectors, Newton iterations, ...). ``scales``: the typical sizes of the components of
+    the branch it lies on (a branch or fold curve started from it uses them).
     """
 
     kind: str
@@ -33,6 +34,7 @@ class SpecialPoint:
     s: float = float("nan")
     interval: tuple[float, float] | None = None
     details: dict[str, Any] = field(default_factory=dict)
+    scales: dict[str, float] | None = None
 
     def __repr__(self) -> str:
         vals = ", ".join(f"{k}={v:.10g}" for k, v in list(self.values.items())[:6])

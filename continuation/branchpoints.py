@@ -41,7 +41,20 @@ def locate_branch_point(br: Bracket, f_a: float, f_b: float) -> Located:
     """The branch point inside the step ``br`` where the determinant's sign changed from
     ``f_a`` to ``f_b``: bracketed by regula falsi to 1e-3 of the step, then Newton on the
     extended system; if that fails, regula falsi to the location tolerance (a bracketed
-    estimate: status ``"guess"`` unless the bracket closed on a zero)."""
+    estimate: status ``"guess"`` unless the bracket closed on a zero). The result carries
+    the two branches' tangents there (:func:`branch_point_directions`): its ``tangent`` is
+    this branch's, its details the other's (``other_tangent``), for branch switching."""
+    found = _locate(br, f_a, f_b)
+    theta = min(1.0, max(0.0, br.sigma(found.z) / br.h))
+    estimate = br.guess_derivative(theta)  # this branch's tangent, from the step's arc
+    directions = branch_point_directions(br.system, found.z, estimate, br.weights)
+    tangent = directions.pop("tangent")
+    if float(tangent @ br.row) < 0:
+        tangent = -tangent
+    return found._replace(tangent=tangent, details={**found.details, **directions})
+
+
+def _locate(br: Bracket, f_a: float, f_b: float) -> Located:
     rough = _regula_falsi(br, f_a, f_b, rtol=1e-3)
     if br.system.dim <= MAX_DENSE and rough.status == "converged":
         found = _newton_extended(br, rough.z)
@@ -54,6 +67,98 @@ def locate_branch_point(br: Bracket, f_a: float, f_b: float) -> Located:
         details = {**found.details, "reason": "extended-system Newton failed; bracketed only"}
         return found._replace(status="guess", details=details)
     return found
+
+
+def branch_point_directions(
+    system: Any, z: np.ndarray, estimate: np.ndarray, weights: np.ndarray, seed: int = 0
+) -> dict[str, Any]:
+    """The tangents of the two branches that cross at the simple branch point ``z``.
+
+    ``estimate``: an approximation of this branch's tangent there (the step's interpolant:
+    exactly at the branch point no bordered system gives it). The kernel of ``∂G/∂z`` is
+    two-dimensional: it is computed (dense SVD up to :data:`MAX_DENSE` components, else
+    inverse iteration on the bordered matrix) with the left null vector ``ψ``; ``t`` is the
+    estimate projected onto the kernel, ``φ`` the kernel vector W-orthogonal to it. The
+    branches' tangents ``α t + β φ`` solve the algebraic bifurcation equation
+
+        ψ·D²G[α t + β φ]² = a11 α² + 2 a12 α β + a22 β² = 0,
+
+    whose two roots are taken in full (not assuming β = 0 for this branch: ``t`` is only an
+    estimate): the root nearer ``t`` is this branch (returned as ``tangent``, refined), the
+    other is ``other_tangent``. Where the equation has no two distinct real roots (not a
+    simple branch point) ``other_tangent`` is ``φ`` and ``details["abe_degenerate"]`` is
+    set. All tangents have unit weighted norm.
+    """
+    dg = system.jacobian(z)
+    t = estimate / math.sqrt(estimate @ (weights * estimate))
+    if z.size <= MAX_DENSE + 1:
+        dense = dg.toarray() if hasattr(dg, "toarray") else np.asarray(dg, dtype=float)
+        u_, _, vt_ = np.linalg.svd(dense)
+        psi, kernel = u_[:, -1], vt_[-2:]
+        t = kernel.T @ (kernel @ t)  # onto the kernel
+        t /= math.sqrt(t @ (weights * t))
+        v = max(kernel, key=lambda k: _off(k, t, weights))
+        phi = v - (v @ (weights * t)) * t
+    else:
+        phi, psi = _kernel_by_inverse_iteration(dg, weights * t, seed)
+        phi = phi - (phi @ (weights * t)) * t
+    phi /= math.sqrt(phi @ (weights * phi))
+
+    def d2(v1: np.ndarray, v2: np.ndarray) -> float:
+        row = second_derivative_row(system.jacobian, z, v1, psi, None, system.scales)
+        return float(row @ v2)
+
+    a11, a12, a22 = d2(t, t), d2(t, phi), d2(phi, phi)
+    disc = a12 * a12 - a11 * a22
+    scale = max(abs(a11), abs(a12), abs(a22), 1e-300)
+    out: dict[str, Any] = {"null_vector": phi, "left_null_vector": psi}
+    out["abe_coefficients"] = (a11, a12, a22)
+    if disc <= 1e-16 * scale * scale:
+        # no two distinct real roots: the orthogonal direction, flagged
+        this, other = t, phi
+        out["abe_degenerate"] = True
+    else:
+        q = -(a12 + math.copysign(math.sqrt(disc), a12))
+        first = a22 * t + q * phi  # the root β/α = q/a22 (homogeneous: no division)
+        second = q * t + a11 * phi  # the root β/α = a11/q
+        first /= math.sqrt(first @ (weights * first))
+        second /= math.sqrt(second @ (weights * second))
+        near_first = abs(float(first @ (weights * t))) >= abs(float(second @ (weights * t)))
+        this, other = (first, second) if near_first else (second, first)
+        if float(this @ (weights * t)) < 0:
+            this = -this
+    out["tangent"] = this
+    out["other_tangent"] = other
+    return out
+
+
+def _off(k: np.ndarray, t: np.ndarray, weights: np.ndarray) -> float:
+    """How much of the kernel vector ``k`` is W-orthogonal to ``t``."""
+    r = k - (k @ (weights * t)) * t
+    return float(r @ (weights * r))
+
+
+def _kernel_by_inverse_iteration(
+    dg: Any, row: np.ndarray, seed: int
+) -> tuple[np.ndarray, np.ndarray]:
+    """The kernel vector of the nearly singular ``[∂G/∂z; rowᵀ]`` and the left null vector of
+    ``∂G/∂z``, by four steps of inverse iteration from random vectors (for systems too large
+    for a dense SVD)."""
+    rng = np.random.default_rng(seed)
+    try:
+        lu = factor(bordered(dg, row))
+    except SingularMatrixError:  # exactly singular: the dense SVD after all
+        dense = dg.toarray() if hasattr(dg, "toarray") else np.asarray(dg, dtype=float)
+        u_, _, vt_ = np.linalg.svd(dense)
+        return vt_[-2] - (vt_[-2] @ row) / (vt_[-1] @ row) * vt_[-1], u_[:, -1]
+    phi = rng.standard_normal(row.size)
+    psi = rng.standard_normal(row.size)
+    for _ in range(4):
+        phi = lu.solve(phi)
+        phi /= np.linalg.norm(phi)
+        psi = lu.solve(psi, trans=True)
+        psi /= np.linalg.norm(psi)
+    return phi, psi[:-1]
 
 
 def _bordered_det(system: Any, z: np.ndarray, row: np.ndarray) -> tuple[float, float]:
@@ -152,4 +257,4 @@ def _extended_system(
     return a, rhs
 
 
-__all__ = ["MAX_DENSE", "locate_branch_point"]
+__all__ = ["MAX_DENSE", "branch_point_directions", "locate_branch_point"]

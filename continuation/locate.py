@@ -138,6 +138,12 @@ class Bracket:
         ]
         return min(roots, key=lambda r: abs(r - linear)) if roots else linear
 
+    def pair_theta(self, k: int) -> float | None:
+        """θ ∈ (0, 1) between two turning points of component ``k`` of the interpolant that
+        leave no net sign change of its derivative (see :func:`hermite_turning_pair`)."""
+        delta = float(self.z_b[k] - self.z_a[k]) / self.h
+        return hermite_turning_pair(float(self.d_a[k]), float(self.d_b[k]), delta)
+
     def point_at(self, sigma: float, strict: bool = False, start=None):
         """The curve point whose pseudo-arclength from ``z_a`` (along ``t_a``) is ``sigma``."""
         o = self.options
@@ -167,6 +173,32 @@ class Located(NamedTuple):
     """Unit tangent at ``z`` oriented like the step, when the locating iteration gave it."""
     residual_norm: float | None = None
     """Max-norm of the residual at ``z``, when the locating iteration computed it."""
+
+
+def hermite_turning_pair(ta: float, tb: float, delta: float) -> float | None:
+    """Two turning points of one component inside a step, seen by its cubic Hermite
+    interpolant: ``ta``, ``tb`` the component's derivatives with respect to θ ∈ [0, 1]
+    (divided by the step's length ``h``) at the ends, ``delta`` its change over the step
+    divided by ``h``. The interpolant's derivative ``ta + bθ + aθ²`` (a = 3(ta + tb) − 6δ,
+    b = 6δ − 4ta − 2tb) has the same sign at both ends but two roots inside when its vertex
+    lies in (0, 1) with the other sign; the vertex θ is returned (else None): a tight S-curve
+    whose two folds one step spans, which the end values alone cannot show.
+
+    >>> # x³ − a x at a = 0.03 over x ∈ [−0.4, 0.4]: folds at x = ±0.1
+    >>> round(hermite_turning_pair(3 * 0.16 - 0.03, 3 * 0.16 - 0.03, 0.16 - 0.03), 12)
+    0.5
+    """
+    if not ta * tb > 0.0:
+        return None
+    a = 3.0 * (ta + tb) - 6.0 * delta
+    if a == 0.0:
+        return None
+    b = 6.0 * delta - 4.0 * ta - 2.0 * tb
+    theta = -b / (2.0 * a)
+    if not 0.0 < theta < 1.0:
+        return None
+    vertex = ta - b * b / (4.0 * a)
+    return theta if vertex * ta < 0.0 else None
 
 
 def oriented_tangent(t: np.ndarray, row: np.ndarray, weights: np.ndarray) -> np.ndarray | None:
@@ -394,7 +426,10 @@ def locate_component(br: Bracket, k: int, value: float) -> Located | None:
 
 def locate_on_arc(br: Bracket, f, f_a: float, f_b: float, rtol: float | None = None) -> Located:
     """Zero of ``f(z)`` along the arc by Illinois regula falsi on the pseudo-arclength, to
-    ``rtol`` (default ``locate_tol``) relative to the step."""
+    ``rtol`` (default ``locate_tol``) relative to the step. A trial point where the
+    corrector's matrix is exactly singular, on the curve already (residual within
+    tolerance), is taken as the zero itself: it is the singular point the test function
+    looks for (a branch point)."""
     o = br.options
     lo, hi, flo, fhi = 0.0, br.h, f_a, f_b
     xtol = (o.locate_tol if rtol is None else rtol) * abs(br.h) + 4 * _EPS * abs(br.h)
@@ -404,6 +439,9 @@ def locate_on_arc(br: Bracket, f, f_a: float, f_b: float, rtol: float | None = N
     for it in range(1, o.max_locate_iterations + 1):
         sigma = (lo * fhi - hi * flo) / (fhi - flo)
         res = br.point_at(sigma)
+        if not res.converged and res.reason == "singular" and res.residual_norm <= o.tol:
+            details = {"method": "Illinois", "test_values": (0.0, 0.0), "singular_trial": True}
+            return Located(res.z, sigma, "converged", it, details)
         if not res.converged:
             break
         fz = f(res.z)
@@ -442,54 +480,3 @@ def locate_on_arc(br: Bracket, f, f_a: float, f_b: float, rtol: float | None = N
         sigma = 0.5 * (lo + hi)
         return Located(br.guess(sigma / br.h), sigma, "guess", it, {"interval": (lo, hi)})
     return Located(best[0], best[1], "guess", it, {"method": "Illinois", "interval": (lo, hi)})
-
-
-def branch_point_directions(
-    system, z: np.ndarray, t: np.ndarray, weights: np.ndarray, seed: int = 0
-) -> dict:
-    """Kernel of ``∂G/∂z`` at a simple branch point and the tangent of the other branch.
-
-    The kernel is spanned by the current tangent ``t`` and ``φ`` (found by inverse iteration
-    on the nearly singular ``[∂G/∂z; (Wt)^T]``); the left null vector ``ψ`` likewise. The
-    algebraic bifurcation equation ``ψ·D²G[αt + βφ]² = a11 α² + 2 a12 αβ + a22 β² = 0`` has
-    the root β = 0 (this branch) and ``(α, β) = (−a22, 2 a12)`` (the other branch).
-    """
-    rng = np.random.default_rng(seed)
-    dg = system.jacobian(z)
-    row = weights * t
-    try:
-        lu = factor(bordered(dg, row))
-        phi = rng.standard_normal(z.size)
-        psi = rng.standard_normal(z.size)
-        for _ in range(4):
-            phi = lu.solve(phi)
-            phi /= np.linalg.norm(phi)
-            psi = lu.solve(psi, trans=True)
-            psi /= np.linalg.norm(psi)
-        psi = psi[:-1]
-    except SingularMatrixError:
-        dense = dg.toarray() if hasattr(dg, "toarray") else dg
-        u_, s_, vt_ = np.linalg.svd(dense)
-        psi = u_[:, -1]
-        kernel = vt_[-2:]
-        phi = kernel[0] - (kernel[0] @ row) / (t @ row) * t
-        phi /= np.linalg.norm(phi)
-    phi = phi - (phi @ row) * t  # W-orthogonal to t
-    phi /= np.sqrt(phi @ (weights * phi))
-
-    def d2(v1, v2):
-        return second_derivative_row(system.jacobian, z, v1, psi, None, system.scales) @ v2
-
-    a11, a12, a22 = d2(t, t), d2(t, phi), d2(phi, phi)
-    scale = max(abs(a11), abs(a12), abs(a22), 1e-300)
-    if abs(a12) > 1e-8 * scale:
-        other = -a22 * t + 2.0 * a12 * phi
-    else:
-        other = phi  # degenerate bifurcation equation: fall back to the orthogonal direction
-    other /= np.sqrt(other @ (weights * other))
-    return {
-        "null_vector": phi,
-        "left_null_vector": psi,
-        "other_tangent": other,
-        "abe_coefficients": (float(a11), float(a12), float(a22)),
-    }

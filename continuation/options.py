@@ -60,7 +60,19 @@ class ContinuationOptions:
     max_angle: float = 30.0
     """Degrees: a step whose tangent turns further is rejected (guard against branch jumping)."""
     target_angle: float = 15.0
-    """Degrees: the step size is adapted to aim at this tangent turn per step."""
+    """Degrees: the nominal tangent turn per step (a step turning more than twice this is
+    rejected, and the step size aims at it)."""
+    target_contraction: float = 0.05
+    """Nominal first contraction |Δz₂|/|Δz₁| of the corrector (Deuflhard): a step whose
+    contraction exceeds four times this is rejected, and the step size aims at it."""
+    target_distance: float = 0.1
+    """Nominal distance from the predictor to the corrected point, as a fraction of ds (how
+    much the curve bends away from its tangent within a step): a step whose distance exceeds
+    twice this fraction of ds is rejected."""
+    curve_tol: float = 0.02
+    """Nominal distance from the predictor to the corrected point, in the weighted norm
+    (relative to the components' typical sizes): a step whose distance exceeds four times
+    this is rejected. The one number that sets how closely the steps follow the curve."""
     growth: float = 2.0
     """Largest factor by which ds may grow in one step."""
     predictor: str = "tangent"
@@ -82,6 +94,9 @@ class ContinuationOptions:
             "step_tol",
             "max_angle",
             "target_angle",
+            "target_contraction",
+            "target_distance",
+            "curve_tol",
             "locate_tol",
         ):
             _positive(name, getattr(self, name))

@@ -13,7 +13,8 @@ it is taken at the start of the curve, in this order:
    interval, else the largest finite end), whichever is larger. A value at the rounding
    level of the equations it enters (``|∂G_r/∂z_i · z_i|`` below 1000 ε of the size of the
    terms of every such equation ``G_r``, such as the 2e-16 left of an area that should be
-   0) counts as 0;
+   0) counts as 0; starting from a point of another curve (a branch point, a fold), a
+   component below a millionth of its size on that curve takes that size;
 2. for components still of size 0 (they start at 0, or at a rounding-level value such as
    1e-16, and have no bounds), the start tangent: the components of known size move at the
    relative rates ``|t_j|/s_j``; with ``r`` their median, a component moving by ``|t_i|``
@@ -63,6 +64,7 @@ def typical_sizes(
     bounds: Sequence[Any] = (),
     tangent: np.ndarray | None = None,
     jacobian: Any = None,
+    inherited: Mapping[int, float] | None = None,
 ) -> tuple[np.ndarray, bool]:
     """The typical size of every component (module docstring), and whether they are settled
     (no component was of size 0 or suspiciously small, so the tangent and the Jacobian
@@ -70,8 +72,11 @@ def typical_sizes(
     bound tests (``k`` and ``pair``), ``tangent`` the start tangent (any normalisation) or
     None before it is known (the sizes still 0 are then provisionally 1), ``jacobian`` a
     function giving ∂G/∂z at ``z0`` (to recognise values at rounding level; called only if
-    some component is a millionth of the largest or less). Plain Python: it runs once per
-    curve, on the few components of most problems."""
+    some component is a millionth of the largest or less), ``inherited`` the sizes on a
+    curve the start lies on (a branch point's or a fold's branch), taken by the components
+    whose size here is below a millionth of them (0 up to rounding at a branch point says
+    nothing of a component's size; its branch does). Plain Python: it runs once per curve,
+    on the few components of most problems."""
     s = [abs(v) for v in np.asarray(z0, dtype=float).tolist()]
     largest = max(s)
     small = any(0.0 < x <= 1e-6 * largest for x in s)
@@ -83,6 +88,9 @@ def typical_sizes(
         ends = [abs(v) for v in (lo, hi) if math.isfinite(v)]
         size = hi - lo if len(ends) == 2 else max(ends)
         s[t.k] = max(s[t.k], size)
+    for k, v in (inherited or {}).items():
+        if s[k] < 1e-6 * v:
+            s[k] = v
     for k, v in given.items():
         s[k] = v
     unknown = [not (0.0 < x < math.inf) for x in s]

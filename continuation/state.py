@@ -90,7 +90,8 @@ def assemble_branch(state: TracerState, info: dict[str, Any]) -> Branch:
         values.update(fixed)
         return values
 
-    specials = _special_points(points, T, ss, values_at)
+    scales = dict(zip(names, system.scales.tolist()))
+    specials = _special_points(points, T, ss, values_at, scales)
     status = state.status or "running"
     if state.status is None:
         message = "the branch is still being traced (result of an unfinished state)"
@@ -106,6 +107,7 @@ def assemble_branch(state: TracerState, info: dict[str, Any]) -> Branch:
                 status="converged",
                 label=status,
                 s=float(ss[-1]),
+                scales=dict(scales),
             )
         )
     stats = {
@@ -123,11 +125,11 @@ def assemble_branch(state: TracerState, info: dict[str, Any]) -> Branch:
         status=status,
         message=message,
         stats=stats,
-        info={"steps": state.steps, **info, "scales": dict(zip(names, system.scales.tolist()))},
+        info={"steps": state.steps, **info, "scales": dict(scales)},
     )
 
 
-def _special_points(points, T, ss, values_at) -> list[SpecialPoint]:
+def _special_points(points, T, ss, values_at, scales) -> list[SpecialPoint]:
     specials = []
     for i, pt in enumerate(points):
         for kind, label, wrt, status, interval, details in pt.special or ():
@@ -143,6 +145,7 @@ def _special_points(points, T, ss, values_at) -> list[SpecialPoint]:
                     s=float(ss[i]),
                     interval=interval,
                     details=dict(details),  # the state's record stays as it was
+                    scales=dict(scales),
                 )
             )
     return specials

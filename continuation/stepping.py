@@ -27,7 +27,7 @@ import numpy as np
 
 from .corrector import NewtonResult, correct, damped_newton, newton
 from .errors import ContinuationError, ConvergenceError, NonFiniteResidualError
-from .locate import oriented_tangent
+from .locate import Bracket, oriented_tangent
 
 if TYPE_CHECKING:
     from .options import ContinuationOptions
@@ -39,6 +39,8 @@ logger = logging.getLogger("cusp.continuation.tracer")
 
 _new_tuple = tuple.__new__  # builds a NamedTuple without its Python-level constructor
 
+_AIM_REACH = 1.25  # a bound within this many steps along the tangent is aimed at
+_MIN_FACTOR = 0.1  # a rejected step is retried at least this large (times ds)
 _STALL_STEPS = 10  # steps at ds < STALL_FACTOR·ds_min before a corner step is tried
 STALL_FACTOR = 1e3
 
@@ -75,7 +77,8 @@ def wnorm(x: np.ndarray, weights: np.ndarray) -> float:
 
 class Trial(NamedTuple):
     """An accepted step: the corrector's result ``res`` (its ``z`` is the new point), the
-    unit tangent ``t`` there, the tangent's turn ``angle`` (degrees), the step size ``ds``
+    unit tangent ``t`` there, ``factor`` (by which its guards would scale the step size:
+    :func:`guard_factor`), the step size ``ds``
     used and the new point's pseudo-arclength ``h`` from the last one, ``rt`` (det
     [∂G/∂z; (W t)ᵀ] has the sign of the corrector's determinant times the sign of ``rt``),
     the number of rejected tries, whether it was a corner step, and the bound test it was
@@ -86,7 +89,7 @@ class Trial(NamedTuple):
 
     res: NewtonResult
     t: np.ndarray
-    angle: float
+    factor: float
     ds: float
     h: float
     rt: float
@@ -114,12 +117,7 @@ def advance(rules: StepRules, state: TracerState) -> Trial | Failure:
     last = state.last
     z, t, prev = last.z, last.t, last.prev
     z_prev = None if prev is None else prev.z
-    secant = None
-    if o.predictor == "secant" and z_prev is not None:
-        d = z - z_prev
-        nd = wnorm(d, system.weights)
-        if nd > 0:
-            secant = d / nd
+    secant = _secant(o, system, z, z_prev)
     if state.stalled >= _STALL_STEPS:
         # creeping at ds near ds_min (say, Newton with a Jacobian differenced across a
         # kink): try to pass the corner directly
@@ -138,14 +136,68 @@ def advance(rules: StepRules, state: TracerState) -> Trial | Failure:
         tried = _try(rules, system, z, t, ds, direction, row, secant)
         if isinstance(tried, Trial):
             return tried._replace(rejected=rejected) if rejected else tried
-        res, reason = tried
+        res, reason, factor = tried
         if ds <= o.ds_min:
             corner = corner_step(rules, system, z, t, state.ds, z_prev)
             if corner is not None:
                 return corner
             return _failure(system, z, ds, res, reason, o)
-        ds = max(0.5 * ds, o.ds_min)
+        # a rejected guard says how much smaller the step should be (at least halved)
+        ds = max(ds * max(min(0.5, factor), _MIN_FACTOR), o.ds_min)
         rejected += 1
+
+
+def _secant(
+    o: ContinuationOptions, system: CurveSystem, z: np.ndarray, z_prev: np.ndarray | None
+) -> np.ndarray | None:
+    """The unit secant through the last two points for the secant predictor, else None."""
+    if o.predictor != "secant" or z_prev is None:
+        return None
+    d = z - z_prev
+    nd = wnorm(d, system.weights)
+    return d / nd if nd > 0 else None
+
+
+def confirm_step(rules: StepRules, state: TracerState, trial: Trial) -> Trial | None:
+    """Confirm a step across which a test function changed sign, before anything is located
+    in it: None if the half step from the same point lies on the step's cubic Hermite arc,
+    else the step to take instead (the half step, or a shorter one if the half step is
+    rejected).
+
+    A step that jumped to a nearby branch (one whose tangent turned little and whose
+    correction was small, as when two branches pass close and parallel) passes every guard
+    of the step itself, and changes the sign of the branch-point test: its arc joins the two
+    branches. The half step stays on the first branch, off that arc by about half the
+    distance between them, where a true step's arc is off the curve by its interpolation
+    error, O(ds⁴) against the predictor's distance δ = O(ds²): the step is confirmed when the
+    half step is within ``δ/10`` of the arc (on a circle turning 30° in the step, the arc is
+    off by δ/160)."""
+    o = rules.options
+    system = state.system
+    W = system.weights
+    last = state.last
+    z, t = last.z, last.t
+    secant = _secant(o, system, z, None if last.prev is None else last.prev.z)
+    direction = t if secant is None else secant
+    row = direction if system.unit_weights else W * direction
+    ds = trial.ds
+    half = _try(rules, system, z, t, 0.5 * ds, direction, row, secant)
+    if not isinstance(half, Trial):  # the half step fails where the whole one passed
+        shorter = advance(rules, state._replace(ds=max(0.25 * ds, o.ds_min)))
+        return shorter._replace(rejected=trial.rejected + 1) if isinstance(shorter, Trial) else None
+    z1 = trial.res.z
+    delta = wnorm(z1 - (z + ds * direction), W)
+    br = Bracket(system, z, t, z1, trial.t, W, o)
+    zh = half.res.z
+    off = wnorm(zh - br.guess(br.sigma(zh) / br.h), W)
+    if off <= 0.1 * delta + 1e-9 * ds:
+        return None
+    logger.info(
+        "a step of %g whose half step is %.3g off its arc (predictor distance %.3g): a jump "
+        "to another branch, retaken as the half step",
+        ds, off, delta,
+    )  # fmt: skip
+    return half._replace(rejected=trial.rejected + 1)
 
 
 def _try(
@@ -157,9 +209,9 @@ def _try(
     direction: np.ndarray,
     row: np.ndarray,
     secant: np.ndarray | None,
-) -> Trial | tuple[NewtonResult, str]:
+) -> Trial | tuple[NewtonResult, str, float]:
     """One corrector solve at ``ds``: the trial if it is accepted, else the corrector's
-    result and the reason it is not."""
+    result, the reason it is not and the factor its guards ask for."""
     o = rules.options
     W = system.weights
     unit_w = system.unit_weights
@@ -190,23 +242,63 @@ def _try(
         )
         used_fallback = True
     if not res.converged:
-        return res, res.reason
+        return res, res.reason, 0.5
     t_new = res.lu.solve(rules.e_last)
     t_new /= math.sqrt(t_new.dot(t_new if unit_w else W * t_new))
     rt = float(row.dot(t_new))  # (a float: the comparisons below cost less)
     cosang = rt if secant is None else float(t_new.dot(W * t))
     angle = math.degrees(math.acos(max(-1.0, min(1.0, cosang))))
     dc = res.z - z_pred
-    correction = math.sqrt(dc.dot(dc if unit_w else W * dc))
-    if angle > o.max_angle:
-        return res, f"tangent turned {angle:.1f} degrees"
-    if correction > ds:
-        return res, "correction larger than the step"
+    distance = math.sqrt(dc.dot(dc if unit_w else W * dc))
+    factor, guard = guard_factor(o, res.contraction, distance, ds, angle, res.iterations)
+    if guard:
+        return res, guard, factor
     if used_fallback:
         logger.info("step accepted by the damped fallback corrector at ds=%g", ds)
     # the pseudo-arclength of the step: row·(z1 − z) = ds·(row·direction) = ds, as the
     # corrector satisfies the (linear) hyperplane equation to rounding
-    return _new_tuple(Trial, (res, t_new, angle, ds, ds, rt, 0, False, None))
+    return _new_tuple(Trial, (res, t_new, factor, ds, ds, rt, 0, False, None))
+
+
+def guard_factor(
+    o: ContinuationOptions,
+    contraction: float,
+    distance: float,
+    ds: float,
+    angle: float,
+    iterations: int,
+) -> tuple[float, str]:
+    """The factor by which the step's guards would scale ``ds``, and why the step is
+    rejected (``""`` when it is accepted).
+
+    Each guard compares what the step measured with its nominal value and gives the factor
+    that would bring it there, from how the measure grows with ds (Allgower & Georg §6.1):
+
+    - Newton's first contraction κ = |Δz₂|/|Δz₁| grows like ds²: ``√(κ̄/κ)``, κ̄ =
+      ``target_contraction``;
+    - the predictor–corrector distance δ grows like ds²: ``target_distance·ds/δ`` (δ/ds, the
+      curve's bending within the step, grows like ds) and ``√(curve_tol/δ)``;
+    - the tangent's turn α grows like ds: ``target_angle/α``;
+    - the Newton count: ``target_newton_iterations/iterations``.
+
+    The step is rejected when one of the first three asks for less than half of ``ds`` (κ over
+    4κ̄, δ over 2·target_distance·ds or 4·curve_tol, α over 2·target_angle) or the turn
+    exceeds ``max_angle``; the next ``ds`` is the accepted one times the smallest factor (see
+    :func:`next_step_size`)."""
+    f_kappa = math.sqrt(o.target_contraction / contraction) if contraction > 0.0 else math.inf
+    if distance > 0.0:
+        f_delta = min(o.target_distance * ds / distance, math.sqrt(o.curve_tol / distance))
+    else:
+        f_delta = math.inf
+    f_angle = o.target_angle / angle if angle > 0.0 else math.inf
+    worst = min(f_kappa, f_delta, f_angle)
+    if worst < 0.5 or angle > o.max_angle:
+        if angle > o.max_angle or worst == f_angle:
+            return worst, f"angle: the tangent turned {angle:.3g} degrees"
+        if worst == f_kappa:
+            return worst, f"contraction: Newton's first contraction was {contraction:.3g}"
+        return worst, f"distance: the corrector moved {distance:.3g} from the predictor"
+    return min(worst, o.target_newton_iterations / max(iterations, 1)), ""
 
 
 def _failure(
@@ -306,19 +398,20 @@ def _natural_step(
         return None
     t_new *= sign / t_new[j]
     t_new /= wnorm(t_new, W)
-    cos = float(t_new @ (W * t))
-    angle = math.degrees(math.acos(max(-1.0, min(1.0, cos))))
     row = W * t_new
     ds = wnorm(res.z - z, W)
     h = float(row.dot(res.z - z))
-    return _new_tuple(Trial, (res, t_new, angle, ds, h, row.dot(t_new), 0, True, None))
+    # past a corner the turn says nothing of the curve's bending: Newton's count decides
+    factor = o.target_newton_iterations / max(res.iterations, 1)
+    return _new_tuple(Trial, (res, t_new, factor, ds, h, row.dot(t_new), 0, True, None))
 
 
 def aim_at_bound(
     rules: StepRules, state: TracerState, z: np.ndarray, t: np.ndarray, ds: float
 ) -> Trial | None:
-    """A step that would cross a bound ends on it instead: from the tangent predictor's
-    crossing of the bound, Newton with that component fixed (one solve, where a step past
+    """A step that would cross a bound, or come within a quarter step of it, ends on it
+    instead: from the tangent predictor's crossing of the bound, Newton with that component
+    fixed (one solve, where a step past
     the bound and locating it would take two). Used only where the bound is transversal
     with margin — the tangent within 90° − ``max_angle`` of the bound's normal (in the
     weighted metric), so that the curve, turning by at most ``max_angle``, still crosses
@@ -331,15 +424,16 @@ def aim_at_bound(
     W = state.system.weights
     for i, tt in rules.bound_tests:
         old = state.tests[i]
-        # within reach: the component moves by at most ds/√w_k (t is a unit vector)
-        if old is None or old == 0.0 or abs(old) * math.sqrt(W[tt.k]) > ds:
+        # within reach: the component moves by at most ds/√w_k along the unit tangent
+        reach = _AIM_REACH * ds
+        if old is None or old == 0.0 or abs(old) * math.sqrt(W[tt.k]) > reach:
             continue
         k = tt.k
         tk = float(t[k])
         if tk == 0.0:
             continue
         sigma = -old / tk  # where the tangent line meets the bound
-        if not 0.0 < sigma <= ds or not tt.crossed(old, old + ds * tk):
+        if not 0.0 < sigma <= reach or not tt.crossed(old, old + reach * tk):
             continue
         if math.sqrt(W[k]) * abs(tk) < math.sin(math.radians(o.max_angle)):
             return None  # grazing: a normal step, then locating
@@ -379,27 +473,27 @@ def _aimed(
     rt = float(t_new.dot(tan))  # the sign factor of det [∂G/∂z; (W t_new)ᵀ]
     angle = math.degrees(math.acos(max(-1.0, min(1.0, float(t_new.dot(wt))))))
     h = float(wt.dot(z1 - z))
-    dc = z1 - z_pred
-    if angle > o.max_angle or t_new[k] * tk <= 0.0 or h <= 0.0 or wnorm(dc, W) > ds:
+    if t_new[k] * tk <= 0.0 or h <= 0.0:
         return None
-    return _new_tuple(Trial, (res, t_new, angle, h, h, rt, 0, False, tt))
+    factor, guard = guard_factor(
+        o, res.contraction, wnorm(z1 - z_pred, W), h, angle, res.iterations
+    )
+    if guard:
+        return None
+    return _new_tuple(Trial, (res, t_new, factor, h, h, rt, 0, False, tt))
 
 
-def next_step_size(
-    options: ContinuationOptions, iterations: int, angle: float, rejected: int, ds: float
-) -> float:
-    """The ``ds`` after a step of size ``ds`` whose corrector took ``iterations`` and whose
-    tangent turned by ``angle`` degrees: scaled by ``target_newton_iterations /
-    iterations`` and by ``target_angle / angle``, whichever is smaller, within
-    ``[0.5, growth]`` (not above 1 after ``rejected`` tries) and ``[ds_min, ds_max]``."""
+def next_step_size(options: ContinuationOptions, factor: float, rejected: int, ds: float) -> float:
+    """The ``ds`` after an accepted step of size ``ds`` whose guards ask for ``factor``
+    (:func:`guard_factor`): scaled by it within ``[0.5, growth]`` (not above 1 after
+    ``rejected`` tries) and ``[ds_min, ds_max]``."""
     o = options
-    k = max(iterations, 1)
-    f_newton = o.target_newton_iterations / k
-    f_angle = o.target_angle / max(angle, 1e-12)
-    factor = min(o.growth, max(0.5, min(f_newton, f_angle)))
+    factor = min(o.growth, max(0.5, factor))
     if rejected:
         factor = min(factor, 1.0)
     return min(o.ds_max, max(o.ds_min, ds * factor))
 
 
-__all__ = ["Failure", "StepRules", "Trial", "advance", "next_step_size"]
+__all__ = [
+    "Failure", "StepRules", "Trial", "advance", "confirm_step", "guard_factor", "next_step_size",
+]  # fmt: skip

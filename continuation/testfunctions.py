@@ -30,10 +30,11 @@ import numpy as np
 from .branchpoints import locate_branch_point
 from .errors import NonFiniteResidualError, ProblemDefinitionError
 from .events import Event
+from .linalg import bordered, factor
 from .locate import (
     Bracket,
     Located,
-    branch_point_directions,
+    hermite_turning_pair,
     locate_component,
     locate_fold,
     locate_on_arc,
@@ -51,6 +52,8 @@ class CurveSystem(Protocol):
 
     names: tuple[str, ...]
     problem: Any
+    dim: int
+    weights: np.ndarray
 
     def index(self, name: str) -> int | None: ...
 
@@ -80,6 +83,9 @@ class TestFunction:
     __slots__ = ("label", "wrt", "direction", "terminal")
     __test__ = False  # not a pytest test class
     kind = "test"
+    confirm = True
+    """A sign change is confirmed before it is located (a jump to another branch changes the
+    sign of tests of the curve's geometry; see :func:`~.stepping.confirm_step`)."""
 
     def __init__(
         self, label: str, wrt: str | None = None, direction: int = 0, terminal: bool = False
@@ -106,6 +112,14 @@ class TestFunction:
         if self.direction == 0:
             return True
         return (self.direction > 0) == up
+
+    def split_points(self, old: float, new: float, br_data: tuple[Any, ...]) -> tuple[float, ...]:
+        """Where to split a step in which the test may have more than one zero (two, which
+        leave no net sign change, or three): θ ∈ (0, 1) between the zeros the test sees a
+        sign of, ascending (empty: none seen). ``br_data``: the step's ends, their unit
+        tangents, its pseudo-arclength and the cosine of its turn,
+        ``(z_a, t_a, z_b, t_b, h, cos_b)``."""
+        return ()
 
     def locate(self, br: Bracket, f_a: float, f_b: float) -> Located:
         """The zero inside the step ``br`` (``f_a``, ``f_b``: the values at its ends)."""
@@ -141,6 +155,7 @@ class ComponentTest(TestFunction):
     """``z_k − value``: a component reaching a value."""
 
     __slots__ = ("k", "value_at")
+    confirm = False  # a component's value, wherever the step went
 
     def __init__(
         self,
@@ -219,6 +234,17 @@ class FoldTest(TestFunction):
     def value(self, system, z, t, sdet) -> float:
         return float(t[self.k])
 
+    def split_points(self, old, new, br_data) -> tuple[float, ...]:
+        """Two turning points of component ``k`` within one step, seen by the step's cubic
+        Hermite interpolant (:func:`~.locate.hermite_turning_pair`): its vertex between them."""
+        if (old < 0) != (new < 0):
+            return ()
+        z_a, t_a, z_b, t_b, h, cos_b = br_data
+        k = self.k
+        tb = float(t_b[k]) / cos_b if cos_b > 0.1 else float(t_b[k])
+        theta = hermite_turning_pair(float(t_a[k]), tb, float(z_b[k] - z_a[k]) / h)
+        return () if theta is None else (theta,)
+
     def locate(self, br: Bracket, f_a: float, f_b: float) -> Located:
         return _check_fold_resolution(self._locate(br, f_a, f_b), br)
 
@@ -273,6 +299,87 @@ def _check_fold_resolution(found: Located, br: Bracket) -> Located:
     return found
 
 
+SPECTRUM_MAX_DIM = 50
+"""Dense curve systems up to this many components carry the spectrum of the branch-point
+test's matrix at every point (one eigendecomposition a step), which shows two or more branch
+points inside one step; larger ones see only the determinant's net sign change."""
+
+
+class SignWithSpectrum(float):
+    """The branch-point test's value (the sign of det M, M = [∂G/∂z; (W t)ᵀ]) that also
+    carries M's eigenvalues and unit eigenvectors (``eigenvalues``, ``eigenvectors``)."""
+
+    eigenvalues: np.ndarray | None
+    eigenvectors: np.ndarray | None
+
+    def __new__(cls, sign: float, m: np.ndarray) -> SignWithSpectrum:
+        self = super().__new__(cls, sign)
+        try:
+            lam, vec = np.linalg.eig(m)
+        except np.linalg.LinAlgError:
+            lam, vec = None, None
+        self.eigenvalues, self.eigenvectors = lam, vec
+        return self
+
+
+def eigenvalue_crossings(old: Any, new: Any) -> list[float]:
+    """Where eigenvalues of the branch-point matrix change sign between two points (values
+    :class:`SignWithSpectrum`), as estimates θ ∈ (0, 1), ascending; empty when either point
+    carries no spectrum.
+
+    Each eigenvector at the first point is matched to the one at the second most parallel
+    to it (greedily, best match first); matched eigenvalues and complex-conjugate pairs form
+    groups (a complex pair may turn into two real eigenvalues inside the step and one of
+    them cross zero). A group whose product of eigenvalues changes sign holds a crossing,
+    estimated where the linear interpolant of that product vanishes, θ = P_a/(P_a − P_b).
+
+    Two modes crossing zero in opposite directions within one step leave the determinant's
+    sign (and the count of negative eigenvalues) unchanged: only following each eigenvalue
+    shows them (a Turing window of the Brusselator, where one mode destabilises as another
+    restabilises)."""
+    la, va = getattr(old, "eigenvalues", None), getattr(old, "eigenvectors", None)
+    lb, vb = getattr(new, "eigenvalues", None), getattr(new, "eigenvectors", None)
+    if la is None or lb is None or va is None or vb is None or la.shape != lb.shape:
+        return []
+    n = la.size
+    parent = list(range(2 * n))  # union-find: eigenvalue i of a is i, j of b is n + j
+
+    def root(i: int) -> int:
+        while parent[i] != i:
+            parent[i] = parent[parent[i]]
+            i = parent[i]
+        return i
+
+    def join(i: int, j: int) -> None:
+        parent[root(i)] = root(j)
+
+    overlap = np.abs(va.conj().T @ vb)
+    used_a, used_b = set(), set()
+    for flat in np.argsort(-overlap, axis=None).tolist():
+        i, j = divmod(flat, n)
+        if i not in used_a and j not in used_b:
+            used_a.add(i)
+            used_b.add(j)
+            join(i, n + j)
+    for lam, offset in ((la, 0), (lb, n)):
+        scale = float(np.max(np.abs(lam))) or 1.0
+        for i in range(n):
+            if abs(lam[i].imag) > 1e-12 * scale:
+                # its conjugate partner: the nearest value to conj(λ_i)
+                j = int(np.argmin(np.abs(lam - lam[i].conjugate())))
+                join(offset + i, offset + j)
+    products: dict[int, list[complex]] = {}
+    for k in range(2 * n):
+        pair = products.setdefault(root(k), [1.0 + 0j, 1.0 + 0j])
+        pair[k >= n] *= la[k] if k < n else lb[k - n]
+    out = []
+    for pa, pb in products.values():
+        a, b = pa.real, pb.real
+        if a != 0.0 and b != 0.0 and (a < 0) != (b < 0):
+            out.append(a / (a - b))
+    return sorted(out)
+
+
 class BranchPointTest(TestFunction):
     """The sign of det [∂G/∂z; (W t)ᵀ]: it changes at a simple branch point (where a second
     curve crosses) and nowhere else on a regular curve."""
@@ -284,7 +391,27 @@ class BranchPointTest(TestFunction):
         super().__init__("branch point")
 
     def value(self, system, z, t, sdet) -> float:
-        return sdet
+        if t is None:
+            return sdet
+        jac = None
+        if system.dim <= SPECTRUM_MAX_DIM:
+            jac = system.jacobian(z)
+            if type(jac) is not np.ndarray:
+                jac = None
+        if jac is None:
+            if sdet is None:
+                sdet = factor(bordered(system.jacobian(z), system.weights * t)).sign_det()
+            return sdet
+        m = bordered(jac, system.weights * t)
+        if sdet is None:
+            sdet = factor(m).sign_det()
+        return SignWithSpectrum(sdet, m)
+
+    def split_points(self, old, new, br_data) -> tuple[float, ...]:
+        """Several eigenvalues of the bordered matrix [∂G/∂z; (W t)ᵀ] that change sign within
+        one step (:func:`eigenvalue_crossings`): θ midway between their estimated zeros."""
+        thetas = eigenvalue_crossings(old, new)
+        return tuple(0.5 * (a + b) for a, b in zip(thetas[:-1], thetas[1:]))
 
     def locate(self, br: Bracket, f_a: float, f_b: float) -> Located:
         return locate_branch_point(br, f_a, f_b)
@@ -293,9 +420,7 @@ class BranchPointTest(TestFunction):
         kind, label, wrt, status, interval, details = super().record(
             system, loc, br, weights, interval
         )
-        tan = tangent_at(system, loc.z, br.row, weights, br)
-        details.update(branch_point_directions(system, loc.z, tan, weights))
-        details["names"] = tuple(system.names)
+        details["names"] = tuple(system.names)  # the directions need the same components
         return (kind, label, wrt, status, interval, details)
 
 
@@ -304,6 +429,7 @@ class EventTest(TestFunction):
 
     __slots__ = ("event",)
     kind = "event"
+    confirm = False
 
     def __init__(self, event: Event) -> None:
         super().__init__(event.label, None, event.direction, event.terminal)

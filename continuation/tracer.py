@@ -3,15 +3,20 @@
 A step has five phases:
 
 1. **predict and correct** (:func:`~.stepping.advance`): tangent (or secant) predictor,
-   Newton corrector on the bordered system, acceptance tests (Newton convergence, tangent
-   turn ≤ ``max_angle``, correction ≤ ds), halving on failure; the corner step and the
-   step aimed at a bound are variants of it;
+   Newton corrector on the bordered system and the three guards (first contraction,
+   predictor-corrector distance, tangent turn; :func:`~.stepping.guard_factor`), a shorter
+   step on rejection; the corner step and the step aimed at a bound are variants of it;
 2. **accept and adapt**: the curve system is refreshed at the new point (augmented systems
    update their borders) and the next step size is set (:func:`~.stepping.next_step_size`);
 3. **evaluate** the test functions the curve system defines
-   (:meth:`~.system.CurveSystem.test_functions`) at the new point;
-4. **locate and insert**: a sign change between the two ends of the step is located inside
-   it and the located points are linked in, in arclength order;
+   (:meth:`~.system.CurveSystem.test_functions`) at the new point
+   (:func:`~.crossings.evaluate`); when a test of the curve's geometry changed sign the step
+   is first confirmed by its half step (:func:`~.stepping.confirm_step`), and a sign change
+   that the half step does not reproduce was a jump: the step is redone shorter;
+4. **locate and insert**: a sign change between the two ends of the step, or two zeros of
+   one test inside it (:func:`~.crossings.pairs`), is located inside it
+   (:func:`~.crossings.locate_crossings`) and the located points are linked in, in
+   arclength order;
 5. **terminate**: a bound, a terminal event or ``max_steps`` ends the branch.
 
 The solver state (:class:`~.state.TracerState`) is an immutable record replaced at every
@@ -30,6 +35,7 @@ import numpy as np
 
 from .branch import Branch, SpecialPoint
 from .corrector import correct
+from .crossings import corner_folds, evaluate, locate_crossings, splits
 from .errors import (
     ConvergenceError,
     NonFiniteResidualError,
@@ -43,7 +49,16 @@ from .options import ContinuationOptions
 from .problem import as_problem
 from .scaling import given_scales, typical_sizes
 from .state import Point, TracerState, assemble_branch
-from .stepping import STALL_FACTOR, Failure, StepRules, Trial, advance, next_step_size, wnorm
+from .stepping import (
+    STALL_FACTOR,
+    Failure,
+    StepRules,
+    Trial,
+    advance,
+    confirm_step,
+    next_step_size,
+    wnorm,
+)
 from .system import BranchSystem, CurveSystem
 from .testfunctions import BoundTest, Record, TestFunction
 
@@ -52,11 +67,6 @@ logger = logging.getLogger(__name__)
 _new_tuple = tuple.__new__  # builds a NamedTuple without its Python-level constructor
 
 _DEFAULT_OPTIONS = ContinuationOptions()  # frozen: shared (validation costs 20 µs a call)
-
-_NONE: tuple[tuple[tuple[TestFunction, Located], ...], None] = ((), None)  # nothing located
-
-#: a test that changed sign in a step: (test, value at the start, value at the end)
-_Crossing = tuple[TestFunction, float, float]
 
 
 class Tracer:
@@ -147,6 +157,12 @@ class Tracer:
             options, monitor=monitor, targets=targets, bounds=bounds, events=events
         )
         self._has_bp = any(t.kind == "branch_point" for t in self.tests)
+        # the tests that can see several zeros inside one step
+        self._split_tests = tuple(
+            (i, t)
+            for i, t in enumerate(self.tests)
+            if type(t).split_points is not TestFunction.split_points
+        )
         bound_tests = tuple((i, t) for i, t in enumerate(self.tests) if isinstance(t, BoundTest))
         self._rules = StepRules(options, system.dim, bound_tests)
         self._scales = given_scales(system, scales)
@@ -194,20 +210,32 @@ class Tracer:
             skip_bp = True
         elif sp.kind == "fold":
             skip_bp = True
-        return self._start(system, z0, tangent, start_label, skip_bp)
+        inherited = _by_index(system, sp.scales)
+        return self._start(system, z0, tangent, start_label, skip_bp, inherited)
 
-    def init_at(self, z0: Any, *, start_label: str = "start") -> TracerState:
-        """Start from a full curve vector ``z0`` (corrected with its last component fixed)."""
+    def init_at(
+        self, z0: Any, *, start_label: str = "start", sizes: Mapping[str, float] | None = None
+    ) -> TracerState:
+        """Start from a full curve vector ``z0`` (corrected with its last component fixed).
+        ``sizes``: the typical sizes on a curve the start lies on (a branch whose fold this
+        curve continues), for the components whose value at ``z0`` is far below them."""
         z0 = np.asarray(z0, dtype=float)
         if z0.shape != (self.system.dim,):
             raise ProblemDefinitionError(
                 f"z0 must hold {self.system.dim} values {list(self.system.names)}, "
                 f"got shape {z0.shape}"
             )
-        return self._start(self.system, z0, None, start_label, False)
+        inherited = _by_index(self.system, sizes)
+        return self._start(self.system, z0, None, start_label, False, inherited)
 
     def _start(
-        self, system: CurveSystem, z0: np.ndarray, tangent: Any, start_label: str, skip_bp: bool
+        self,
+        system: CurveSystem,
+        z0: np.ndarray,
+        tangent: Any,
+        start_label: str,
+        skip_bp: bool,
+        inherited: Mapping[int, float] | None = None,
     ) -> TracerState:
         o = self.options
         g0 = system.residual(z0)
@@ -217,7 +245,8 @@ class Tracer:
                 values=system.values(z0),
             )
         bounds = [t for t in self.tests if isinstance(t, BoundTest)]
-        provisional, settled = typical_sizes(z0, self._scales, bounds)
+        given = self._scales
+        provisional, settled = typical_sizes(z0, given, bounds, inherited=inherited)
         system = system.with_scales(provisional)
         if tangent is None:
             z0, t0, sdet, residual, iters = self._correct_start(system, z0, g0)
@@ -228,7 +257,9 @@ class Tracer:
             sdet = None
         if not settled:  # components of size 0 take their size from the tangent
             jacobian = system.jacobian
-            sizes, _ = typical_sizes(z0, self._scales, bounds, t0, lambda: jacobian(z0))
+            sizes, _ = typical_sizes(
+                z0, given, bounds, t0, lambda: jacobian(z0), inherited=inherited
+            )
             if not np.array_equal(sizes, provisional):
                 system = system.with_scales(sizes)
         t0 = t0 / wnorm(t0, system.weights)  # (a positive factor: sdet keeps its sign)
@@ -317,66 +348,30 @@ class Tracer:
         trial = advance(self._rules, state)
         if isinstance(trial, Failure):
             return self._fail(state, trial)
-        # 2. accept: the system valid beyond the new point (the step size is set in 5.)
-        res, t1, _, _, h, rt, _, corner, _ = trial
-        z1 = res.z
-        system = state.system
-        if system.refreshes:
-            system = system.refreshed(z1)
-        # 3. evaluate the test functions; those whose change counts are crossings
-        sdet = None
-        if self._has_bp:
-            # the sign of det [∂G/∂z; (W t_new)ᵀ] from the corrector's LU with border `row`
-            # (Cramer: the two determinants differ by the factor row·t_new)
-            sdet = res.lu.sign_det() * (1.0 if rt > 0 else -1.0)
-        values = []
-        crossings = []
-        for tt, old in zip(self.tests, state.tests):
-            new = tt.value(system, z1, t1, sdet)
-            values.append(new)
-            # no crossing unless the sign changed or an end is exactly zero
-            if (
-                old is not None
-                and ((old < 0) != (new < 0) or new == 0.0 or old == 0.0)
-                and tt.crossed(old, new)
-            ):
-                crossings.append((tt, old, new))
+        while True:
+            # 2. accept: the system valid beyond the new point (the step size is set in 5.)
+            # 3. evaluate the test functions; those whose change counts are crossings
+            system, values, crossings = evaluate(self.tests, self._has_bp, state, trial)
+            if trial.corner or trial.aimed is not None or not any(c[0].confirm for c in crossings):
+                break
+            # a test of the curve's geometry changed sign: confirm the step first
+            shorter = confirm_step(self._rules, state, trial)
+            if shorter is None:
+                break
+            trial = shorter
         # 4. locate the crossings inside the step (a corner's folds are only bracketed)
         special = None
-        if corner:
-            special, crossings = _corner_folds(crossings, state.last.s, h)
-        located, br = self._locate(state, system, trial, crossings) if crossings else _NONE
+        if trial.corner:
+            special, crossings = corner_folds(crossings, state.last.s, trial.h)
+        elif self._split_tests:
+            replaced, parts = splits(self._split_tests, self.options, state, system, trial, values)
+            if replaced:
+                crossings = [c for c in crossings if c[0] not in replaced] + parts
+        located = (
+            locate_crossings(self.options, state, system, trial, crossings) if crossings else ()
+        )
         # 5. insert the located points, adapt the step size, terminate
-        return self._finish(state, system, trial, tuple(values), special, located, br)
-
-    def _locate(
-        self, state: TracerState, system: CurveSystem, trial: Trial, crossings: list[_Crossing]
-    ) -> tuple[list[tuple[TestFunction, Located]], Bracket | None]:
-        """Each crossing located inside the step, in the order of travel; the step's bracket
-        (None if nothing needed one)."""
-        last = state.last
-        z1 = trial.res.z
-        br = None
-        found = []
-        for tt, old, new in crossings:
-            if tt is trial.aimed:  # the step ended on this bound: nothing to locate
-                loc = Located(
-                    z1,
-                    trial.h,
-                    "converged",
-                    trial.res.iterations,
-                    {"method": "step aimed at the bound"},
-                    tangent=trial.t,
-                    residual_norm=trial.res.residual_norm,
-                )
-            else:
-                if br is None:
-                    br = Bracket(system, last.z, last.t, z1, trial.t, system.weights, self.options)
-                loc = tt.locate(br, old, new)
-            found.append((loc.sigma, tt, loc))
-        direction = math.copysign(1.0, trial.h if br is None else br.h)
-        found.sort(key=lambda item: item[0] * direction)
-        return [(tt, loc) for _, tt, loc in found], br
+        return self._finish(state, system, trial, values, special, located)
 
     def _finish(
         self,
@@ -385,18 +380,17 @@ class Tracer:
         trial: Trial,
         values: tuple,
         special: tuple[Record, ...] | None,
-        located: Sequence[tuple[TestFunction, Located]],
-        br: Bracket | None,
+        located: Sequence[tuple[TestFunction, Located, Bracket | None]],
     ) -> TracerState:
         """Link the located points between the last point and the step's end, and end the
         branch on a terminal test or ``max_steps``."""
         o = self.options
-        res, t1, angle, ds, h, _, rejected, _, aimed = trial
+        res, t1, factor, ds, h, _, rejected, _, aimed = trial
         last = state.last
         prev, n_points = last, state.n_points
         status, message = None, ""
         end_special = special
-        for tt, loc in located:
+        for tt, loc, br in located:
             interval = (last.s, last.s + h)
             records: tuple[Record, ...] = (tt.record(system, loc, br, system.weights, interval),)
             if tt.terminal:
@@ -431,7 +425,7 @@ class Tracer:
             )  # fmt: skip
             n_points += 1
         stalled = state.stalled + 1 if ds < STALL_FACTOR * o.ds_min else 0
-        ds_next = next_step_size(o, res.iterations, angle, rejected, ds)
+        ds_next = next_step_size(o, factor, rejected, ds)
         return _new_tuple(
             TracerState,
             (end, system, ds_next, values, steps, status, message, n_points, stalled),
@@ -469,24 +463,15 @@ class Tracer:
         return assemble_branch(state, {"direction": self.direction})
 
 
-def _corner_folds(
-    crossings: list[_Crossing], s: float, h: float
-) -> tuple[tuple[Record, ...] | None, list[_Crossing]]:
-    """The tangent jumped across a corner: a fold there is non-smooth and only bracketed;
-    it is recorded on the corner step's own end point (not located inside the step)."""
-    records = tuple(
-        (
-            tt.kind,
-            f"{tt.label} (non-smooth)",
-            tt.wrt,
-            "guess",
-            (s, s + h),
-            {"non_smooth": True, "method": "corner step (natural parameter)"},
-        )
-        for tt, _, _ in crossings
-        if tt.kind == "fold"
-    )
-    return records or None, [c for c in crossings if c[0].kind != "fold"]
+def _by_index(system: CurveSystem, sizes: Mapping[str, float] | None) -> dict[int, float]:
+    """Typical sizes by name (of a curve a start lies on) as ``{component index: size}``, for
+    the components of ``system`` they name."""
+    out = {}
+    for name, size in (sizes or {}).items():
+        k = system.index(name)
+        if k is not None and math.isfinite(size) and size > 0.0:
+            out[k] = float(size)
+    return out
 
 
 def trace(problem: Any, u0: Any, *, free: str, **kwargs: Any) -> Branch:

@@ -40,120 +40,13 @@ import pytest
 
 import cusp.examples as ex
 from cusp.continuation import Branch, SpecialPoint, trace
-
-KINDS = ("fold", "branch_point")
-PARAM_RTOL = 1e-10
-STATE_RTOL = 1e-8
-
-#: (name, factory, keyword arguments): one problem each. A rescaled variant is a problem of
-#: its own.
-SUITE: list[tuple[str, Callable[..., ex.Example], dict[str, Any]]] = [
-    # AUTO-07p demos
-    ("pp2", ex.pp2, {}),
-    ("ab", ex.ab_reactor, {}),
-    ("enz", ex.enz, {}),
-    ("lrz", ex.lorenz, {}),
-    ("log", ex.logistic_map, {}),
-    ("dd2", ex.dd2, {}),
-    ("cusp", ex.cusp_normal_form, {}),
-    # chemistry and patterns
-    ("co_oxidation", ex.co_oxidation, {}),
-    ("cstr_arrhenius", ex.cstr, {}),
-    ("gray_scott", ex.gray_scott, {}),
-    ("brusselator_n4", ex.brusselator, {"n": 4}),
-    ("bratu_n10", ex.bratu, {"n": 10}),
-    ("bratu_n31_sparse", ex.bratu, {"n": 31, "sparse": True}),
-    # mechanics
-    ("truss_green", ex.truss_green, {}),
-    ("truss_rotated", ex.truss_rotated, {}),
-    ("truss_2dof_h2", ex.truss_2dof, {"H": 2.0}),
-    ("truss_2dof_h1.8", ex.truss_2dof, {"H": 1.8}),
-    ("arch_e6", ex.shallow_arch, {"e": 6.0}),
-    ("arch_e4.8", ex.shallow_arch, {"e": 4.8}),
-    ("arch_e3", ex.shallow_arch, {"e": 3.0}),
-    ("elastica_n10", ex.elastica, {"n": 10}),
-    ("rigid_bar", ex.rigid_bar, {}),
-    ("rigid_bar_imperfect", ex.rigid_bar, {"theta0": 0.01}),
-    ("snapback_monitor", ex.snapback_monitor, {}),
-    # bifurcations
-    ("transcritical", ex.transcritical, {}),
-    ("pitchfork", ex.pitchfork, {}),
-    ("subcritical_pitchfork", ex.subcritical_pitchfork, {}),
-    ("imperfect_transcritical", ex.imperfect_transcritical, {"eps": 5e-4}),
-    ("imperfect_transcritical_passing", ex.imperfect_transcritical, {"eps": -3e-3}),
-    ("imperfect_pitchfork", ex.imperfect_pitchfork, {}),
-    ("narrow_transcritical", ex.narrow_transcritical, {}),
-    # stress: tight pairs, parallel branches, scales
-    ("cusp_a1e-4", ex.cusp_normal_form, {"a": 1e-4}),
-    ("ab_p3_2.45", ex.ab_reactor, {"p3": 2.45}),
-    ("parallel_s_curves", ex.parallel_s_curves, {}),
-    ("cusp_b_x1e8", ex.scaled_cusp, {"scale": 1e8}),
-    ("truss_v_x1e6", ex.scaled_truss, {"scale": 1e6}),
-    ("truss_v_x1e-6", ex.scaled_truss, {"scale": 1e-6}),
-    ("ab_u1_x1e6_u2_x1e-6", ex.scaled_ab, {}),
-    ("arch_p_x1e8", ex.scaled_arch, {"scale": 1e8}),
-]
+from cusp.examples.suite import ON_BRANCH, SUITE, check, expected_points, problem
 
 #: What the current engine gets wrong, per problem (strict: a fixed case fails until its mark
 #: is removed).
-XFAIL: dict[str, str] = {
-    "pp2": "jumps from the prey branch to the trivial branch u1 = 0 (8 points): misses the "
-    "fold at p1 = 0.83292932223415686 and the branch points at p1 = 0.8219 and 0.6, reports a "
-    "false branch point (guess) at p1 = 0.81442",
-    "dd2": "the branch point at p1 = 1 (crossing of the trivial branch) is located 1.3e-4 off, "
-    "at p1 = 1.000134 (status guess)",
-    "gray_scott": "the transcritical branch point at k = -0.04 is reported (converged) at "
-    "k = -0.0400007222, v = -7.2e-7: 7.2e-7 off",
-    "brusselator_n4": "finds 3 of the 7 branch points (L = 0.1494, 0.2417, 0.4137) in 9 "
-    "points: the pair at L = 0.2056, 0.2175 shares the step from L = 0.15 to 0.25 with the one "
-    "found at 0.2417, the pair at 0.5694, 0.6694 lies in the step from 0.45 to 0.85; their "
-    "sign changes of the determinant cancel",
-    "rigid_bar_imperfect": "jumps from the arm theta > 0 to theta < 0 before the limit point: "
-    "misses the fold at P = 0.93119 and reports a false branch point (guess) at P = 1.0363",
-    "subcritical_pitchfork": "at the vertex of the parabola reports a fold (converged, "
-    "p = -1.5e-12) and a branch point (guess) at p = -1.2e-6, x = 7.5e-6 instead of one branch "
-    "point at p = x = 0",
-    "imperfect_transcritical_passing": "jumps to the other arm of the hyperbola near the "
-    "vertices (x < 0 at 4 of 9 points) and reports a false branch point (guess) at p = 0.0389",
-    "cusp_a1e-4": "misses both folds (b = +-3.849e-7): one step goes from b = -1.0e-5 to "
-    "b = 0.0349 across the whole tight S, and the two sign changes of db/ds cancel",
-    "ab_p3_2.45": "misses both folds (p1 = 0.131774 and 0.131165): the 9-point trace steps "
-    "across the tight S without detecting either",
-    "cusp_b_x1e8": "steps stay below ds_max = 0.5 in absolute units: after max_steps = 5000 "
-    "steps b has moved by 2500 (to -9.99975e7) of the 6.2e7 to the first fold; no fold "
-    "reported (the branch ends normally, status max_steps)",
-    "truss_v_x1e6": "steps stay below ds_max = 0.5 in absolute units: after max_steps = 5000 "
-    "steps v = 2499 of the 2.1e5 of the first limit point; no fold reported",
-    "truss_v_x1e-6": "reports a false branch point (converged) at P = 0.0344265187 just before "
-    "the first limit point (v = 2.1e-7), then raises ConvergenceError there (Newton and the "
-    "damped fallback fail at ds_min, residual 2e-10)",
-    "ab_u1_x1e6_u2_x1e-6": "steps stay small in absolute units: after max_steps = 5000 steps "
-    "u1 = 3534 of the 3.1e5 of the first fold; no fold reported",
-    "arch_p_x1e8": "steps stay below ds_max = 0.5 in absolute units: after max_steps = 5000 "
-    "steps p = 2499 of the 3.9e9 of the first branch point; no special point reported",
-}
-
-#: Jump risks: every traced point must lie on the branch through the start (a description
-#: and a predicate on the branch's columns, true at every point).
-ON_BRANCH: dict[str, tuple[str, Callable[[Branch], np.ndarray]]] = {
-    "imperfect_transcritical": ("x < 0 (the arm of the start)", lambda br: br["x"] < 0),
-    "imperfect_transcritical_passing": ("x > 0 (the arm of the start)", lambda br: br["x"] > 0),
-    "imperfect_pitchfork": ("x > 0 (the arm of the start)", lambda br: br["x"] > 0),
-    "rigid_bar_imperfect": ("theta > 0 (the tilt of the imperfection)", lambda br: br["theta"] > 0),
-    "parallel_s_curves": (  # the second curve has x³ − x − b = −δ = −0.02
-        "|x³ − x − b| < δ/2 (nearer the first curve than the second)",
-        lambda br: np.abs(br["x"] ** 3 - br["x"] - br["b"]) < 0.01,
-    ),
-}
+XFAIL: dict[str, str] = {}
 
 TIMES: dict[str, float] = {}
-
-
-def _factory(name: str) -> ex.Example:
-    for entry, factory, kwargs in SUITE:
-        if entry == name:
-            return factory(**kwargs)
-    raise KeyError(name)
 
 
 def _cases(xfail: dict[str, str]) -> list[Any]:
@@ -162,69 +55,6 @@ def _cases(xfail: dict[str, str]) -> list[Any]:
         marks = [pytest.mark.xfail(strict=True, reason=xfail[name])] if name in xfail else []
         out.append(pytest.param(name, factory, kwargs, id=name, marks=marks))
     return out
-
-
-# ---------------------------------------------------------------------------------------------
-# Comparing the special points with the references
-# ---------------------------------------------------------------------------------------------
-
-
-def expected_points(example: ex.Example) -> list[ex.Reference]:
-    """The references a trace of the example's branch must report: folds and branch points
-    of its free parameter (not cusps or codimension-2 points of a fold curve)."""
-    return [r for r in example.references() if r.kind in KINDS and r.free[0] == example.free]
-
-
-def _turning(example: ex.Example, kind: str, wrt: str | None) -> str | None:
-    """The variable a point is matched by: the one that turns at a fold, the free parameter
-    at a branch point."""
-    return (wrt or example.free) if kind == "fold" else None
-
-
-def _sizes(example: ex.Example, refs: list[ex.Reference]) -> dict[str, float]:
-    """Each variable's size: its largest magnitude at the start and at the references."""
-    start = {**dict(zip(example.unknowns, example.u0)), **example.params}
-    return {k: max([abs(float(start[k]))] + [abs(r.values[k]) for r in refs]) for k in start}
-
-
-def compare(example: ex.Example, br: Branch) -> list[str]:
-    """Everything wrong with the branch's folds and branch points, in sentences."""
-    refs = expected_points(example)
-    sizes = _sizes(example, refs)
-    pool = [sp for sp in br.special_points if sp.kind in KINDS]
-    wrong = []
-    for ref in refs:
-        key = _turning(example, ref.kind, ref.with_respect_to)
-        var = key or example.free
-        same = [
-            sp
-            for sp in pool
-            if sp.kind == ref.kind and _turning(example, sp.kind, sp.with_respect_to) == key
-        ]
-        label = f"{ref.kind} at {var} = {ref.values[var]!r}"
-        if not same:
-            wrong.append(f"missing: {label}")
-            continue
-        sp = min(same, key=lambda s: abs(s.values[var] - ref.values[var]))
-        tol = PARAM_RTOL * abs(ref.values[var]) or PARAM_RTOL
-        if abs(sp.values[var] - ref.values[var]) > tol:
-            wrong.append(f"missing: {label} (nearest reported {sp.values[var]!r})")
-            continue
-        pool.remove(sp)
-        state_size = max(abs(ref.values[k]) for k in example.unknowns) or 1.0
-        for k in (*example.unknowns, example.free):
-            if k == var:
-                continue
-            err = abs(sp.values[k] - ref.values[k])
-            if err > STATE_RTOL * (sizes[k] or state_size):
-                wrong.append(f"{label}: {k} = {sp.values[k]!r}, reference {ref.values[k]!r}")
-    for sp in pool:
-        var = sp.with_respect_to or example.free
-        wrong.append(
-            f"unexpected: {sp.kind} ({sp.status}) at {var} = {sp.values[var]!r}, "
-            f"point {sp.index} of {len(br)}"
-        )
-    return wrong
 
 
 # ---------------------------------------------------------------------------------------------
@@ -240,13 +70,7 @@ def test_special_points(name, factory, kwargs):
         br = example.trace()
     finally:
         TIMES[name] = time.perf_counter() - start
-    assert br.success, f"{br.status}: {br.message}"
-    wrong = compare(example, br)
-    if name in ON_BRANCH:
-        what, on = ON_BRANCH[name]
-        off = np.flatnonzero(~on(br))
-        if off.size:
-            wrong.append(f"left its branch ({what}) at {off.size} of {len(br)} points")
+    wrong = check(example, br, name)
     assert not wrong, "\n".join(wrong)
 
 
@@ -255,7 +79,7 @@ def test_suite_is_large_and_distinct():
     assert len(names) >= 30 and len(set(names)) == len(names)
     assert set(XFAIL) <= set(names) and set(ON_BRANCH) <= set(names)
     for name in names:  # every problem has something to find, or a jump to avoid
-        assert expected_points(_factory(name)) or name in ON_BRANCH, name
+        assert expected_points(problem(name)) or name in ON_BRANCH, name
 
 
 # ---------------------------------------------------------------------------------------------
@@ -463,14 +287,7 @@ SWITCHES: dict[str, list[Switch]] = {
 }
 
 #: Switching cases the current engine fails, by (problem, index in SWITCHES[problem]).
-SWITCH_XFAIL: dict[tuple[str, int], str] = {
-    ("pp2", 0): "the first trace jumps to u1 = 0 and never locates the branch point at "
-    "p1 = 0.8219 (see test_special_points[pp2])",
-    ("pp2", 1): "the first trace jumps to u1 = 0 and never locates the branch point at "
-    "p1 = 0.6 (see test_special_points[pp2])",
-    ("dd2", 0): "switching from the branch point located 1.3e-4 off (p1 = 1.000134, guess) "
-    "follows the prey branch u1 = 1 - 1/p1 again, not the trivial branch u = 0",
-}
+SWITCH_XFAIL: dict[tuple[str, int], str] = {}
 
 
 def _switch_cases() -> list[Any]:
@@ -490,7 +307,7 @@ def _angle(a: np.ndarray, b: np.ndarray) -> float:
 
 @pytest.mark.parametrize(("name", "i"), _switch_cases())
 def test_switch_branch(name, i):
-    example, sw = _factory(name), SWITCHES[name][i]
+    example, sw = problem(name), SWITCHES[name][i]
     br = example.trace()
     located = [
         sp

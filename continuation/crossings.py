@@ -1,0 +1,230 @@
+"""Phases 3 and 4 of a step: evaluate the test functions at a step's end, find the tests
+whose sign changed (also twice inside the step, :func:`pairs`) and locate their zeros
+inside the step (:func:`locate_crossings`)."""
+
+from __future__ import annotations
+
+import logging
+import math
+from collections.abc import Sequence
+
+import numpy as np
+
+from .locate import Bracket, Located, tangent_at
+from .options import ContinuationOptions
+from .state import TracerState
+from .stepping import Trial, wnorm
+from .system import CurveSystem
+from .testfunctions import Record, TestFunction
+
+logger = logging.getLogger(__name__)
+
+#: a test that changed sign in a step: (test, value at the start, value at the end, and
+#: None, or the part of the step that holds the zero: (z_a, t_a, z_b, t_b, its start's
+#: pseudo-arclength from the step's start))
+Crossing = tuple[TestFunction, float, float, "tuple | None"]
+
+
+def evaluate(
+    tests: Sequence[TestFunction], has_bp: bool, state: TracerState, trial: Trial
+) -> tuple[CurveSystem, tuple, list[Crossing]]:
+    """The curve system refreshed at the trial's point, the test values there and the
+    tests whose change from the last point counts."""
+    res, t1 = trial.res, trial.t
+    z1 = res.z
+    system = state.system
+    if system.refreshes:
+        system = system.refreshed(z1)
+    sdet = None
+    if has_bp:
+        # the sign of det [∂G/∂z; (W t_new)ᵀ] from the corrector's LU with border `row`
+        # (Cramer: the two determinants differ by the factor row·t_new)
+        sdet = res.lu.sign_det() * (1.0 if trial.rt > 0 else -1.0)
+    values = []
+    crossings: list[Crossing] = []
+    for tt, old in zip(tests, state.tests):
+        new = tt.value(system, z1, t1, sdet)
+        values.append(new)
+        # no crossing unless the sign changed or an end is exactly zero
+        if (
+            old is not None
+            and ((old < 0) != (new < 0) or new == 0.0 or old == 0.0)
+            and tt.crossed(old, new)
+        ):
+            crossings.append((tt, old, new, None))
+    return system, tuple(values), crossings
+
+
+def splits(
+    split_tests: Sequence[tuple[int, TestFunction]],
+    options: ContinuationOptions,
+    state: TracerState,
+    system: CurveSystem,
+    trial: Trial,
+    values: tuple,
+) -> tuple[set[TestFunction], list[Crossing]]:
+    """Several zeros of one test inside the step (two leave no net sign change): where the
+    test sees them (:meth:`~.testfunctions.TestFunction.split_points`), the curve points
+    between them are corrected, and each part of the step whose ends have opposite signs
+    holds one crossing (parts are split again, up to :data:`SPLIT_DEPTH` times). Returns
+    the tests whose crossings these replace, and the crossings."""
+    last = state.last
+    a = (last.z, last.t, 0.0)
+    b = (trial.res.z, trial.t, math.nan)
+    replaced: set[TestFunction] = set()
+    out: list[Crossing] = []
+    for i, tt in split_tests:
+        old, new = state.tests[i], values[i]
+        if old is None or old == 0.0 or new == 0.0:
+            continue
+        found = _split(tt, options, system, a, old, b, new, SPLIT_DEPTH)
+        if found is not None:
+            replaced.add(tt)
+            out += found
+    return replaced, out
+
+
+SPLIT_DEPTH = 3
+"""How often a part of a step is split again when its test sees further zeros inside it."""
+
+
+def _split(
+    tt: TestFunction,
+    options: ContinuationOptions,
+    system: CurveSystem,
+    a: tuple[np.ndarray, np.ndarray, float],
+    va: float,
+    b: tuple[np.ndarray, np.ndarray, float],
+    vb: float,
+    depth: int,
+) -> list[Crossing] | None:
+    """The crossings of ``tt`` between the curve points ``a`` and ``b`` ((z, unit tangent,
+    pseudo-arclength from the step's start)) split where the test sees several zeros; None
+    if it sees none (or a split point cannot be corrected): the part is taken whole."""
+    za, ta, sa = a
+    zb, tb, _ = b
+    W = system.weights
+    wta = W * ta
+    h = float(wta.dot(zb - za))
+    if h == 0.0:
+        return None
+    thetas = tt.split_points(va, vb, (za, ta, zb, tb, h, float(wta.dot(tb))))
+    if not thetas:
+        return None
+    br = Bracket(system, za, ta, zb, tb, W, options)
+    points = [(a, va)]
+    for theta in thetas:
+        res = br.point_at(theta * br.h)
+        if not res.converged:
+            return None
+        tm = tangent_at(system, res.z, br.row, W, br)
+        points.append(((res.z, tm, sa + br.sigma(res.z)), tt.value(system, res.z, tm, None)))
+    points.append((b, vb))
+    logger.info("%r sees several zeros inside one step: split at theta=%s", tt, thetas)
+    out: list[Crossing] = []
+    for (p, vp), (q, vq) in zip(points[:-1], points[1:]):
+        inner = _split(tt, options, system, p, vp, q, vq, depth - 1) if depth > 1 else None
+        if inner is not None:
+            out += inner
+        elif vp != 0.0 and ((vp < 0) != (vq < 0) or vq == 0.0) and tt.crossed(vp, vq):
+            out.append((tt, vp, vq, (p[0], p[1], q[0], q[1], p[2])))
+    return out
+
+
+def locate_crossings(
+    options: ContinuationOptions,
+    state: TracerState,
+    system: CurveSystem,
+    trial: Trial,
+    crossings: list[Crossing],
+) -> list[tuple[TestFunction, Located, Bracket | None]]:
+    """Each crossing located inside the step (or the part of it that holds it), in the
+    order of travel, with the bracket it was located in (None for the step's own end)."""
+    last = state.last
+    z1 = trial.res.z
+    W = system.weights
+    br = None
+    found = []
+    for tt, old, new, part in crossings:
+        where: Bracket | None
+        if tt is trial.aimed:  # the step ended on this bound: nothing to locate
+            loc = Located(
+                z1,
+                trial.h,
+                "converged",
+                trial.res.iterations,
+                {"method": "step aimed at the bound"},
+                tangent=trial.t,
+                residual_norm=trial.res.residual_norm,
+            )
+            where = None
+        elif part is not None:  # one of two zeros inside the step
+            where = Bracket(system, part[0], part[1], part[2], part[3], W, options)
+            loc = tt.locate(where, old, new)
+            loc = loc._replace(sigma=loc.sigma + part[4])
+        else:
+            if br is None:
+                br = Bracket(system, last.z, last.t, z1, trial.t, W, options)
+            loc, where = tt.locate(br, old, new), br
+        found.append((loc.sigma, tt, loc, where))
+    direction = math.copysign(1.0, trial.h if br is None else br.h)
+    found.sort(key=lambda item: item[0] * direction)
+    return _turning_at_branch_points(
+        [(tt, loc, where) for _, tt, loc, where in found], W, trial.h, options
+    )
+
+
+def _turning_at_branch_points(
+    found: list[tuple[TestFunction, Located, Bracket | None]],
+    weights: np.ndarray,
+    h: float,
+    options: ContinuationOptions,
+) -> list[tuple[TestFunction, Located, Bracket | None]]:
+    """Drop a fold located at a branch point located in the same step.
+
+    A parameter may turn at a branch point (the parabola p = −x² of a subcritical pitchfork
+    at its vertex): the fold test changes sign there, but the point is singular, not a fold,
+    and the fold's Newton iteration (on a system singular at that point) creeps towards it,
+    its state off by about √tol. A fold within ``max(10⁻³·|h|, 100·√locate_tol)`` (weighted
+    distance) of a converged branch point is that turn: it is dropped, and the branch point
+    says which component turns there (``details["turning"]``)."""
+    bps = [loc for tt, loc, _ in found if tt.kind == "branch_point" and loc.status == "converged"]
+    if not bps:
+        return found
+    near = max(1e-3 * abs(h), 100.0 * math.sqrt(options.locate_tol))
+    out = []
+    turning: dict[int, list[str | None]] = {}
+    for tt, loc, where in found:
+        if tt.kind == "fold":
+            at = next((b for b in bps if wnorm(loc.z - b.z, weights) <= near), None)
+            if at is not None:
+                logger.info("%r located at a branch point: the parameter turns there", tt)
+                turning.setdefault(id(at), []).append(tt.wrt)
+                continue
+        out.append((tt, loc, where))
+    return [
+        (tt, loc._replace(details={**loc.details, "turning": tuple(turning[id(loc)])}), where)
+        if id(loc) in turning
+        else (tt, loc, where)
+        for tt, loc, where in out
+    ]
+
+
+def corner_folds(
+    crossings: list[Crossing], s: float, h: float
+) -> tuple[tuple[Record, ...] | None, list[Crossing]]:
+    """The tangent jumped across a corner: a fold there is non-smooth and only bracketed;
+    it is recorded on the corner step's own end point (not located inside the step)."""
+    records = tuple(
+        (
+            tt.kind,
+            f"{tt.label} (non-smooth)",
+            tt.wrt,
+            "guess",
+            (s, s + h),
+            {"non_smooth": True, "method": "corner step (natural parameter)"},
+        )
+        for tt, _, _, _ in crossings
+        if tt.kind == "fold"
+    )
+    return records or None, [c for c in crossings if c[0].kind != "fold"]

@@ -1,0 +1,201 @@
+"""The published-problem suite of the continuation engine, and how a traced branch is judged.
+
+:data:`SUITE` lists the problems (name, factory, keyword arguments): AUTO-07p demos,
+chemistry, mechanics, bifurcations in normal form and stress variants of this package; their
+references are computed independently of the engine (closed forms, sympy, mpmath at 40
+digits; provenance in each example's docstring and in docs/test-problems.md §7–§12).
+
+:func:`check` judges a branch traced from a problem's start: every reference fold and branch
+point of its free parameter is found, of the same kind, matched by the variable that turns
+(the free parameter, or the monitored unknown of a snap-back) to :data:`PARAM_RTOL` and by
+every other variable to :data:`STATE_RTOL` relative to its size; nothing else is reported;
+the branch ends normally; and, for the jump risks of :data:`ON_BRANCH`, every point lies on
+the branch through the start. The tests (tests/suite) and the step-control measurements
+(scripts/tune_guards.py) both use it.
+
+>>> from cusp.examples.suite import check, problem
+>>> ex = problem("cusp")
+>>> check(ex, ex.trace())
+[]
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from typing import Any
+
+import numpy as np
+
+from cusp.continuation import Branch
+
+from ._base import Example, Reference
+from .auto_demos import dd2, logistic_map, pp2
+from .bifurcations import (
+    imperfect_pitchfork,
+    imperfect_transcritical,
+    narrow_transcritical,
+    subcritical_pitchfork,
+)
+from .bratu import bratu
+from .chemistry import ab_reactor, co_oxidation
+from .mechanics import elastica, rigid_bar
+from .normal_forms import cusp_normal_form, pitchfork, transcritical
+from .patterns import brusselator, gray_scott, lorenz
+from .reactors import cstr, enz
+from .stress import parallel_s_curves, scaled_ab, scaled_arch, scaled_cusp, scaled_truss
+from .structures import shallow_arch
+from .trusses import snapback_monitor, truss_2dof, truss_green, truss_rotated
+
+KINDS = ("fold", "branch_point")
+PARAM_RTOL = 1e-10
+"""Relative tolerance on the variable that turns at a special point (absolute where it is 0)."""
+STATE_RTOL = 1e-8
+"""Tolerance on every other variable, relative to its size."""
+
+#: (name, factory, keyword arguments): one problem each. A rescaled variant is a problem of
+#: its own.
+SUITE: list[tuple[str, Callable[..., Example], dict[str, Any]]] = [
+    # AUTO-07p demos
+    ("pp2", pp2, {}),
+    ("ab", ab_reactor, {}),
+    ("enz", enz, {}),
+    ("lrz", lorenz, {}),
+    ("log", logistic_map, {}),
+    ("dd2", dd2, {}),
+    ("cusp", cusp_normal_form, {}),
+    # chemistry and patterns
+    ("co_oxidation", co_oxidation, {}),
+    ("cstr_arrhenius", cstr, {}),
+    ("gray_scott", gray_scott, {}),
+    ("brusselator_n4", brusselator, {"n": 4}),
+    ("bratu_n10", bratu, {"n": 10}),
+    ("bratu_n31_sparse", bratu, {"n": 31, "sparse": True}),
+    # mechanics
+    ("truss_green", truss_green, {}),
+    ("truss_rotated", truss_rotated, {}),
+    ("truss_2dof_h2", truss_2dof, {"H": 2.0}),
+    ("truss_2dof_h1.8", truss_2dof, {"H": 1.8}),
+    ("arch_e6", shallow_arch, {"e": 6.0}),
+    ("arch_e4.8", shallow_arch, {"e": 4.8}),
+    ("arch_e3", shallow_arch, {"e": 3.0}),
+    ("elastica_n10", elastica, {"n": 10}),
+    ("rigid_bar", rigid_bar, {}),
+    ("rigid_bar_imperfect", rigid_bar, {"theta0": 0.01}),
+    ("snapback_monitor", snapback_monitor, {}),
+    # bifurcations
+    ("transcritical", transcritical, {}),
+    ("pitchfork", pitchfork, {}),
+    ("subcritical_pitchfork", subcritical_pitchfork, {}),
+    ("imperfect_transcritical", imperfect_transcritical, {"eps": 5e-4}),
+    ("imperfect_transcritical_passing", imperfect_transcritical, {"eps": -3e-3}),
+    ("imperfect_pitchfork", imperfect_pitchfork, {}),
+    ("narrow_transcritical", narrow_transcritical, {}),
+    # stress: tight pairs, parallel branches, scales
+    ("cusp_a1e-4", cusp_normal_form, {"a": 1e-4}),
+    ("ab_p3_2.45", ab_reactor, {"p3": 2.45}),
+    ("parallel_s_curves", parallel_s_curves, {}),
+    ("cusp_b_x1e8", scaled_cusp, {"scale": 1e8}),
+    ("truss_v_x1e6", scaled_truss, {"scale": 1e6}),
+    ("truss_v_x1e-6", scaled_truss, {"scale": 1e-6}),
+    ("ab_u1_x1e6_u2_x1e-6", scaled_ab, {}),
+    ("arch_p_x1e8", scaled_arch, {"scale": 1e8}),
+]
+
+#: Jump risks: every traced point must lie on the branch through the start (a description
+#: and a predicate on the branch's columns, true at every point).
+ON_BRANCH: dict[str, tuple[str, Callable[[Branch], np.ndarray]]] = {
+    "imperfect_transcritical": ("x < 0 (the arm of the start)", lambda br: br["x"] < 0),
+    "imperfect_transcritical_passing": ("x > 0 (the arm of the start)", lambda br: br["x"] > 0),
+    "imperfect_pitchfork": ("x > 0 (the arm of the start)", lambda br: br["x"] > 0),
+    "rigid_bar_imperfect": ("theta > 0 (the tilt of the imperfection)", lambda br: br["theta"] > 0),
+    "parallel_s_curves": (  # the second curve has x³ − x − b = −δ = −0.02
+        "|x³ − x − b| < δ/2 (nearer the first curve than the second)",
+        lambda br: np.abs(br["x"] ** 3 - br["x"] - br["b"]) < 0.01,
+    ),
+}
+
+
+def problem(name: str) -> Example:
+    """The suite's problem called ``name``."""
+    for entry, factory, kwargs in SUITE:
+        if entry == name:
+            return factory(**kwargs)
+    raise KeyError(f"no suite problem {name!r}; known: {[n for n, _, _ in SUITE]}")
+
+
+def expected_points(example: Example) -> list[Reference]:
+    """The references a trace of the example's branch must report: folds and branch points
+    of its free parameter (not cusps or codimension-2 points of a fold curve)."""
+    return [r for r in example.references() if r.kind in KINDS and r.free[0] == example.free]
+
+
+def _turning(example: Example, kind: str, wrt: str | None) -> str | None:
+    """The variable a point is matched by: the one that turns at a fold, the free parameter
+    at a branch point."""
+    return (wrt or example.free) if kind == "fold" else None
+
+
+def _sizes(example: Example, refs: list[Reference]) -> dict[str, float]:
+    """Each variable's size: its largest magnitude at the start and at the references."""
+    start = {**dict(zip(example.unknowns, example.u0)), **example.params}
+    return {k: max([abs(float(start[k]))] + [abs(r.values[k]) for r in refs]) for k in start}
+
+
+def compare(example: Example, br: Branch) -> list[str]:
+    """Everything wrong with the branch's folds and branch points, in sentences."""
+    refs = expected_points(example)
+    sizes = _sizes(example, refs)
+    pool = [sp for sp in br.special_points if sp.kind in KINDS]
+    wrong = []
+    for ref in refs:
+        key = _turning(example, ref.kind, ref.with_respect_to)
+        var = key or example.free
+        same = [
+            sp
+            for sp in pool
+            if sp.kind == ref.kind and _turning(example, sp.kind, sp.with_respect_to) == key
+        ]
+        label = f"{ref.kind} at {var} = {ref.values[var]!r}"
+        if not same:
+            wrong.append(f"missing: {label}")
+            continue
+        sp = min(same, key=lambda s: abs(s.values[var] - ref.values[var]))
+        tol = PARAM_RTOL * abs(ref.values[var]) or PARAM_RTOL
+        if abs(sp.values[var] - ref.values[var]) > tol:
+            wrong.append(f"missing: {label} (nearest reported {sp.values[var]!r})")
+            continue
+        pool.remove(sp)
+        state_size = max(abs(ref.values[k]) for k in example.unknowns) or 1.0
+        for k in (*example.unknowns, example.free):
+            if k == var:
+                continue
+            err = abs(sp.values[k] - ref.values[k])
+            if err > STATE_RTOL * (sizes[k] or state_size):
+                wrong.append(f"{label}: {k} = {sp.values[k]!r}, reference {ref.values[k]!r}")
+    for sp in pool:
+        var = sp.with_respect_to or example.free
+        wrong.append(
+            f"unexpected: {sp.kind} ({sp.status}) at {var} = {sp.values[var]!r}, "
+            f"point {sp.index} of {len(br)}"
+        )
+    return wrong
+
+
+def check(example: Example, br: Branch, name: str | None = None) -> list[str]:
+    """Everything wrong with a branch traced from the example's start, in sentences: its
+    special points (:func:`compare`), an abnormal end, and (for a problem ``name`` of
+    :data:`ON_BRANCH`) the points off the branch through the start."""
+    wrong = [] if br.success else [f"ended abnormally: {br.status}: {br.message}"]
+    wrong += compare(example, br)
+    if name in ON_BRANCH:
+        what, on = ON_BRANCH[name]
+        off = np.flatnonzero(~on(br))
+        if off.size:
+            wrong.append(f"left its branch ({what}) at {off.size} of {len(br)} points")
+    return wrong
+
+
+__all__ = [
+    "KINDS", "ON_BRANCH", "PARAM_RTOL", "STATE_RTOL", "SUITE", "check", "compare", "problem",
+    "expected_points",
+]  # fmt: skip
