@@ -25,10 +25,12 @@ from .derivatives import JacobianCheck, check_jacobian
 from .errors import (
     ContinuationError,
     ConvergenceError,
+    MaxStepsWarning,
     NonFiniteResidualError,
     OptionsError,
     ProblemDefinitionError,
     SingularMatrixError,
+    StepGuardError,
 )
 from .events import Event
 from .foldcurve import fold_curve
@@ -48,6 +50,7 @@ __all__ = [
     "ContinuationProblem",
     "CurveSystem",
     "ConvergenceError",
+    "MaxStepsWarning",
     "Event",
     "JacobianCheck",
     "NonFiniteResidualError",
@@ -55,6 +58,7 @@ __all__ = [
     "Problem",
     "ProblemDefinitionError",
     "SingularMatrixError",
+    "StepGuardError",
     "SpecialPoint",
     "TestFunction",
     "Tracer",

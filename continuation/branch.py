@@ -7,8 +7,9 @@ from typing import Any
 
 import numpy as np
 
-#: statuses that count as a normal end of a branch
-SUCCESS_STATUSES = frozenset({"bound", "max_steps", "terminal_event"})
+#: statuses that count as a normal end of a branch (``"max_steps"`` does not: the branch
+#: stopped short of its bounds)
+SUCCESS_STATUSES = frozenset({"bound", "terminal_event"})
 
 
 @dataclass(frozen=True)

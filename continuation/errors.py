@@ -25,7 +25,7 @@ class ContinuationError(RuntimeError):
         self.values = dict(values or {})
 
 
-def _format_values(values: Mapping[str, float], limit: int = 6) -> str:
+def format_values(values: Mapping[str, float], limit: int = 6) -> str:
     items = list(values.items())
     text = ", ".join(f"{k}={v:.10g}" for k, v in items[:limit])
     if len(items) > limit:
@@ -55,10 +55,24 @@ class ConvergenceError(ContinuationError):
         self.residual_norm = float(residual_norm)
         self.remedy = remedy
         message = (
-            f"{what} at {_format_values(values)} with ds={ds:.3g}: {iterations} iterations, "
+            f"{what} at {format_values(values)} with ds={ds:.3g}: {iterations} iterations, "
             f"residual norm {residual_norm:.3g}. {remedy}"
         )
         super().__init__(message, values=values)
+
+
+class StepGuardError(ConvergenceError):
+    """Newton converged at ``ds_min``, but a guard of the step rejects it: the branch cannot
+    be followed safely from the last point (status ``"guard_failure"``).
+
+    ``guard`` is ``"angle"`` (the tangent turned more than the limits allow),
+    ``"contraction"`` (Newton's first contraction too weak: the corrector may be converging
+    to another branch) or ``"distance"`` (the corrector moved too far from the predictor);
+    the other attributes are those of :class:`ConvergenceError`."""
+
+    def __init__(self, what: str, *, guard: str, **kwargs) -> None:
+        self.guard = guard
+        super().__init__(what, **kwargs)
 
 
 class NonFiniteResidualError(ContinuationError):
@@ -67,3 +81,8 @@ class NonFiniteResidualError(ContinuationError):
 
 class SingularMatrixError(ContinuationError):
     """A linear system that must be regular was exactly singular."""
+
+
+class MaxStepsWarning(UserWarning):
+    """A branch ended because it took ``max_steps`` steps, before reaching a bound or a
+    terminal event: it is incomplete (its status ``"max_steps"`` is not a success)."""

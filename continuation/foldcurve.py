@@ -253,15 +253,16 @@ class FoldSystem(CurveSystem):
     def cusp_coefficient(self, z) -> float:
         """``½⟨w, D²F[v, v]⟩`` with the null vectors normalised by the current borders.
 
-        With an analytic (or complex-step) Jacobian: a central difference of ``∂F/∂z·v``
-        along ``v``. With a finite-difference Jacobian that would difference differences
+        With an analytic (or complex-step) Jacobian: a five-point central difference of
+        ``∂F/∂z·v`` along ``v``. With a finite-difference Jacobian that would difference differences
         (noise ~1e-7 relative); the five-point second difference of ``w·F`` along ``v`` with
         step ε^{1/6} is used instead (noise ~1e-10 relative, set by the null vectors).
         """
         _, v, w, _, _ = self.bordered_solve(z)
         vt = self.lift(v)
         if self._exact_jacobian:
-            return 0.5 * float(second_derivative_row(self.df, z, vt, w, None, self.scales) @ vt)
+            row = second_derivative_row(self.df, z, vt, w, None, self.scales, accurate=True)
+            return 0.5 * float(row @ vt)
         # the five-point second difference (truncation O(h⁴)) with a step of ε^{1/6}
         # relative to the components' magnitudes: rounding ε/h² and truncation h⁴ balance
         # at ~ε^{2/3} ≈ 4e-11 relative, where the three-point one (step ε^{1/4}) is ~1e-8

@@ -45,7 +45,8 @@ class ContinuationOptions:
     ds_max: float = 0.5
     """Largest step size."""
     max_steps: int = 5000
-    """Accepted steps after which the branch ends (normally, with status ``"max_steps"``)."""
+    """Accepted steps after which the branch ends, incomplete: status ``"max_steps"`` (not a
+    success) and a :class:`~.errors.MaxStepsWarning`."""
     tol: float = 1e-10
     """Newton converges when the max-norm of the residual is below ``tol``..."""
     step_tol: float = 1e-12

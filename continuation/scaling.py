@@ -22,6 +22,11 @@ it is taken at the start of the curve, in this order:
    typical size; the median keeps one odd component from setting the rate);
 3. for components that do not move either (identically 0 on this curve), 1: nothing on
    this curve tells their size (give it in ``scales`` if 1 is far off).
+
+Along the curve a size only grows: when a component exceeds :data:`GROWTH` times its size,
+its size becomes its magnitude there (:func:`grown_sizes`; not for sizes the user gave). A
+concentration that starts at 1e-3 and climbs to 0.1 would otherwise be followed in steps
+of its starting size, thousands of them.
 """
 
 from __future__ import annotations
@@ -56,6 +61,30 @@ def given_scales(system: Any, scales: Mapping[str, float] | None) -> dict[int, f
             )
         out[k] = v
     return out
+
+
+GROWTH = 4.0
+"""Factor by which a component must exceed its typical size before the size follows it."""
+
+
+def grown_sizes(scales: np.ndarray, z: np.ndarray, given: Mapping[int, float]) -> np.ndarray | None:
+    """The sizes after the curve reached ``z`` (see the module docstring), or None if none
+    grew. ``given``: the user's sizes by component index (kept).
+
+    >>> grown_sizes(np.array([1.0, 1e-3]), np.array([2.0, 5e-3]), {})
+    array([1.   , 0.005])
+    >>> grown_sizes(np.array([1.0, 1e-3]), np.array([2.0, 5e-3]), {1: 1e-3}) is None
+    True
+    """
+    mag = np.abs(z)
+    grown = mag > GROWTH * scales
+    if not grown.any():
+        return None
+    for k in given:
+        grown[k] = False
+    if not grown.any():
+        return None
+    return np.where(grown, mag, scales)
 
 
 def typical_sizes(

@@ -20,13 +20,18 @@ from __future__ import annotations
 
 import logging
 import math
-from collections.abc import Mapping
 from typing import TYPE_CHECKING, Any, NamedTuple
 
 import numpy as np
 
 from .corrector import NewtonResult, correct, damped_newton, newton
-from .errors import ContinuationError, ConvergenceError, NonFiniteResidualError
+from .errors import (
+    ContinuationError,
+    ConvergenceError,
+    NonFiniteResidualError,
+    StepGuardError,
+    format_values,
+)
 from .locate import Bracket, oriented_tangent
 
 if TYPE_CHECKING:
@@ -43,11 +48,29 @@ _AIM_REACH = 1.25  # a bound within this many steps along the tangent is aimed a
 _MIN_FACTOR = 0.1  # a rejected step is retried at least this large (times ds)
 _STALL_STEPS = 10  # steps at ds < STALL_FACTOR·ds_min before a corner step is tried
 STALL_FACTOR = 1e3
+_STALL_LIMIT = 100  # steps creeping below STALL_FACTOR·ds_min before the branch ends
 
 _REMEDY = (
     "Try a smaller ds_min or ds_max, a better starting point, an analytic jacobian, or "
     "check the residual for discontinuities; pass throw=False to keep the partial branch."
 )
+
+
+_KEEP = "; pass throw=False to keep the partial branch."
+_GUARD_REMEDY = {
+    "angle": "The tangent turns faster than max_angle allows even over ds_min: a corner or "
+    "a kink of the curve, or a residual that is not smooth there. Lower ds_min, raise "
+    "max_angle (and target_angle) if the curve really turns that fast, or check the "
+    "residual for kinks" + _KEEP,
+    "contraction": "Newton contracts too weakly (first contraction above "
+    "4*target_contraction), whatever the step: an inaccurate Jacobian (compare it with the "
+    "residual's differences: check_jacobian), a nearly singular one, or badly scaled "
+    "components. Fix or give an analytic jacobian, give typical sizes (scales=...), or "
+    "raise target_contraction" + _KEEP,
+    "distance": "The corrector lands too far from the predictor even at ds_min: the curve "
+    "bends more than curve_tol allows. Lower ds_min, raise curve_tol (a coarser curve) or "
+    "target_distance" + _KEEP,
+}
 
 
 class StepRules:
@@ -124,6 +147,15 @@ def advance(rules: StepRules, state: TracerState) -> Trial | Failure:
         corner = corner_step(rules, system, z, t, state.ds, z_prev)
         if corner is not None:
             return corner
+        if state.stalled >= _STALL_LIMIT:
+            # still creeping: a step of STALL_FACTOR·ds_min that the guards reject ends it
+            ds = STALL_FACTOR * o.ds_min
+            row = t if system.unit_weights else system.weights * t
+            tried = _try(rules, system, z, t, ds, t, row, None)
+            if isinstance(tried, Trial):
+                return tried
+            res, reason, _ = tried
+            return _failure(system, z, ds, res, reason, o, crept=state.stalled)
     elif secant is None and rules.bound_tests:
         aimed = aim_at_bound(rules, state, z, t, state.ds)
         if aimed is not None:
@@ -132,11 +164,23 @@ def advance(rules: StepRules, state: TracerState) -> Trial | Failure:
     row = direction if system.unit_weights else system.weights * direction
     ds = state.ds
     rejected = 0
+    kappa = math.inf  # the first contraction of the last step rejected for it
     while True:
         tried = _try(rules, system, z, t, ds, direction, row, secant)
         if isinstance(tried, Trial):
             return tried._replace(rejected=rejected) if rejected else tried
         res, reason, factor = tried
+        if reason.startswith("contraction:"):
+            # κ falls like ds² when the step is too long; a κ that stays put on a step at
+            # most half as long is the Newton matrix's own error: no step size cures it
+            if res.contraction >= 0.5 * kappa:
+                reason = (
+                    f"contraction: Newton's first contraction stays at {res.contraction:.3g} "
+                    f"on shorter steps (ds={ds:.3g}): the Jacobian is inconsistent with the "
+                    "residual"
+                )
+                return _failure(system, z, ds, res, reason, o)
+            kappa = res.contraction
         if ds <= o.ds_min:
             corner = corner_step(rules, system, z, t, state.ds, z_prev)
             if corner is not None:
@@ -302,15 +346,37 @@ def guard_factor(
 
 
 def _failure(
-    system: CurveSystem, z: np.ndarray, ds: float, res: NewtonResult, reason: str, o: Any
+    system: CurveSystem,
+    z: np.ndarray,
+    ds: float,
+    res: NewtonResult,
+    reason: str,
+    o: Any,
+    crept: int = 0,
 ) -> Failure:
+    """The failure of the step from ``z`` at ``ds`` (after ``crept`` steps creeping near
+    ``ds_min``, if any), with the reason of the corrector or of a guard."""
     values = system.values(z)
+    if crept:
+        reason += f"; the branch crept {crept} steps shorter than {STALL_FACTOR:g}*ds_min"
     if reason == "nonfinite":
         msg = (
             f"the residual is not finite within ds_min={o.ds_min:g} of "
             f"{format_values(values)}; the branch stops there"
         )
         return Failure("nonfinite_residual", msg, NonFiniteResidualError(msg, values=values))
+    guard, _, detail = reason.partition(": ")
+    if guard in _GUARD_REMEDY:
+        exc: ConvergenceError = StepGuardError(
+            f"the step's {guard} guard rejects the step ({detail}; Newton converged)",
+            guard=guard,
+            values=values,
+            ds=ds,
+            iterations=res.iterations,
+            residual_norm=res.residual_norm,
+            remedy=_GUARD_REMEDY[guard],
+        )
+        return Failure("guard_failure", str(exc), exc)
     exc = ConvergenceError(
         f"Newton's method and the damped fallback failed ({reason})",
         values=values,
@@ -320,12 +386,6 @@ def _failure(
         remedy=_REMEDY,
     )
     return Failure("convergence_failure", str(exc), exc)
-
-
-def format_values(values: Mapping[str, float], limit: int = 6) -> str:
-    items = list(values.items())
-    text = ", ".join(f"{k}={v:.10g}" for k, v in items[:limit])
-    return text + (" ..." if len(items) > limit else "")
 
 
 def corner_step(

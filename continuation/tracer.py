@@ -17,7 +17,8 @@ A step has five phases:
    one test inside it (:func:`~.crossings.pairs`), is located inside it
    (:func:`~.crossings.locate_crossings`) and the located points are linked in, in
    arclength order;
-5. **terminate**: a bound, a terminal event or ``max_steps`` ends the branch.
+5. **terminate**: a bound or a terminal event ends the branch (``max_steps`` too, with a
+   :class:`~.errors.MaxStepsWarning`: the branch is incomplete, not a success).
 
 The solver state (:class:`~.state.TracerState`) is an immutable record replaced at every
 step; it holds the curve system valid at its last point, so stepping twice from the same
@@ -28,6 +29,7 @@ from __future__ import annotations
 
 import logging
 import math
+import warnings
 from collections.abc import Mapping, Sequence
 from typing import Any
 
@@ -38,16 +40,18 @@ from .corrector import correct
 from .crossings import corner_folds, evaluate, locate_crossings, splits
 from .errors import (
     ConvergenceError,
+    MaxStepsWarning,
     NonFiniteResidualError,
     ProblemDefinitionError,
     SingularMatrixError,
+    format_values,
 )
 from .events import Event
 from .linalg import bordered, factor, max_abs
 from .locate import Bracket, Located, tangent_at
 from .options import ContinuationOptions
 from .problem import as_problem
-from .scaling import given_scales, typical_sizes
+from .scaling import given_scales, grown_sizes, typical_sizes
 from .state import Point, TracerState, assemble_branch
 from .stepping import (
     STALL_FACTOR,
@@ -411,11 +415,28 @@ class Tracer:
         else:
             if status is None and steps >= o.max_steps:
                 status = "max_steps"
-                message = f"the branch ended after max_steps={o.max_steps} steps"
+                message = (
+                    f"the branch stopped after max_steps={o.max_steps} steps at "
+                    f"{format_values(system.values(res.z))}, before reaching a bound or a "
+                    f"terminal event: it is incomplete (the last step was ds={ds:.3g}). "
+                    + (
+                        "The steps were cut far below ds: the step's guards keep rejecting "
+                        "longer steps (check the Jacobian against the residual: "
+                        "check_jacobian; or give typical sizes, scales=...)"
+                        if state.stalled or ds < 1e-3 * o.ds
+                        else "Raise max_steps, or ds_max if the steps are at it, or give "
+                        "bounds that end the branch"
+                    )
+                )
+                warnings.warn(message, MaxStepsWarning, stacklevel=3)
                 end_special = (
                     *(end_special or ()),
                     ("endpoint", "max_steps", None, "converged", None, {}),
                 )
+            grown = grown_sizes(system.scales, res.z, self._scales)
+            if grown is not None:  # the step's end is in the new sizes' metric
+                system = system.with_scales(grown)
+                t1 = t1 / wnorm(t1, system.weights)
             end = _new_tuple(  # a Point (see stepping.Trial on tuple.__new__)
                 Point,
                 (

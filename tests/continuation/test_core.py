@@ -17,10 +17,12 @@ from cusp.continuation import (
     ContinuationOptions,
     ConvergenceError,
     Event,
+    MaxStepsWarning,
     NonFiniteResidualError,
     OptionsError,
     Problem,
     ProblemDefinitionError,
+    StepGuardError,
     Tracer,
     check_jacobian,
     trace,
@@ -324,10 +326,11 @@ def test_grazing_bound_is_located_not_aimed():
     assert br["b"][-1] == pytest.approx(1.2**3 - 1.2, abs=1e-12)  # b = x³ − x exactly
 
 
-def test_max_steps_is_a_normal_end():
-    br = trace(cusp_problem(analytic=True), [X0], free="b", max_steps=5)
-    assert br.status == "max_steps" and br.success
-    assert "max_steps=5" in br.message
+def test_max_steps_is_an_incomplete_end_with_a_warning():
+    with pytest.warns(MaxStepsWarning, match=r"max_steps=5 steps at x=.*incomplete"):
+        br = trace(cusp_problem(analytic=True), [X0], free="b", max_steps=5)
+    assert br.status == "max_steps" and not br.success
+    assert "max_steps=5" in br.message and "Raise max_steps" in br.message
     assert br.info["steps"] == 5
 
 
@@ -367,6 +370,38 @@ def test_nonfinite_residual_raises_by_default():
 def test_nonfinite_start_raises():
     with pytest.raises(NonFiniteResidualError, match="starting point"):
         trace(nan_beyond(-2.0), [X0], free="b")
+
+
+def _wrong_jacobian_beyond(b_wrong, factor):
+    """x³ + x − b = 0 whose analytic Jacobian is off by ``factor`` for b > ``b_wrong``: the
+    curve b = x³ + x is regular, but Newton on the wrong Jacobian contracts by
+    |1 − 1/factor| whatever the step (0.67 for factor 0.6, above 4·target_contraction)."""
+
+    def res(u, p):
+        return np.array([u[0] ** 3 + u[0] - p["b"]])
+
+    def jac(u, p):
+        wrong = factor if p["b"] > b_wrong else 1.0
+        return np.array([[wrong * (3 * u[0] ** 2 + 1)]])
+
+    return Problem(res, ["x"], {"b": 0.0}, jacobian=jac)
+
+
+def test_guard_failure_is_typed_and_keeps_the_partial_branch():
+    prob = _wrong_jacobian_beyond(0.5, 0.6)
+    br = trace(prob, [0.0], free="b", bounds={"b": (-1.0, 1.0)}, throw=False)
+    assert br.status == "guard_failure" and not br.success
+    # the partial branch: every point on the curve, up to where the Jacobian goes wrong
+    assert 0.45 < br["b"][-1] <= 0.5 + 1e-12
+    assert np.allclose(br["x"] ** 3 + br["x"], br["b"], rtol=0, atol=1e-10)
+    # the message names the point, the guard and a remedy
+    assert "contraction guard" in br.message and "check_jacobian" in br.message
+    assert f"b={br['b'][-1]:.10g}" in br.message
+    with pytest.raises(StepGuardError) as info:
+        trace(prob, [0.0], free="b", bounds={"b": (-1.0, 1.0)})
+    err = info.value
+    assert isinstance(err, ConvergenceError) and err.guard == "contraction"
+    assert err.values["b"] == br["b"][-1] and "throw=False" in err.remedy
 
 
 def test_convergence_failure_partial_branch():

@@ -116,8 +116,12 @@ def test_targets_land_exactly():
 # ---------------------------------------------------------------------------------------------
 
 
-def test_max_steps_ends_normally_with_a_status():
-    case, br = _cusp(max_steps=5)
+def test_max_steps_ends_incomplete_with_a_status_and_a_warning():
+    from cusp.continuation import MaxStepsWarning
+
+    with pytest.warns(MaxStepsWarning):
+        case, br = _cusp(max_steps=5)
+    assert br.status == "max_steps" and not br.success
     assert len(br["b"]) <= 6
     assert br["b"][-1] < 1.0
     assert isinstance(br.status, str) and br.status
@@ -192,7 +196,7 @@ def test_bad_options_raise_value_error_naming_the_field(kwargs, field):
 def test_options_are_frozen_and_keywords_override():
     import dataclasses
 
-    from cusp.continuation import ContinuationOptions, trace
+    from cusp.continuation import ContinuationOptions, MaxStepsWarning, trace
 
     opts = ContinuationOptions(ds=0.01, ds_max=0.05, max_steps=1000)
     with pytest.raises(dataclasses.FrozenInstanceError):
@@ -201,7 +205,8 @@ def test_options_are_frozen_and_keywords_override():
     br = trace(case.problem, u0=[-1.3247], free="b", bounds=BOUNDS, options=opts)
     assert br.success and br["b"][-1] == 1.0
     assert np.all(np.abs(br.stats["ds"]) <= 0.05 * (1 + 1e-12))
-    br3 = trace(case.problem, u0=[-1.3247], free="b", bounds=BOUNDS, options=opts, max_steps=3)
+    with pytest.warns(MaxStepsWarning):
+        br3 = trace(case.problem, u0=[-1.3247], free="b", bounds=BOUNDS, options=opts, max_steps=3)
     assert len(br3["b"]) <= 4
 
 
