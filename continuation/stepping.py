@@ -165,19 +165,22 @@ def advance(rules: StepRules, state: TracerState) -> Trial | Failure:
     ds = state.ds
     rejected = 0
     kappa = math.inf  # the first contraction of the last step rejected for it
+    kept = 0  # how many times in a row it stayed put on a step half as long
     while True:
         tried = _try(rules, system, z, t, ds, direction, row, secant)
         if isinstance(tried, Trial):
             return tried._replace(rejected=rejected) if rejected else tried
         res, reason, factor = tried
         if reason.startswith("contraction:"):
-            # κ falls like ds² when the step is too long; a κ that stays put on a step at
-            # most half as long is the Newton matrix's own error: no step size cures it
-            if res.contraction >= 0.5 * kappa:
+            # κ falls like ds² when the step is too long; a κ that stays put while the
+            # step shrinks eightfold (three rejections) is the Newton matrix's own error
+            # (near a fold it may stay put for a halving or two): no step size cures it
+            kept = kept + 1 if res.contraction >= 0.5 * kappa else 0
+            if kept >= 3:
                 reason = (
                     f"contraction: Newton's first contraction stays at {res.contraction:.3g} "
-                    f"on shorter steps (ds={ds:.3g}): the Jacobian is inconsistent with the "
-                    "residual"
+                    f"on ever shorter steps (down to ds={ds:.3g}): the Jacobian is "
+                    "inconsistent with the residual"
                 )
                 return _failure(system, z, ds, res, reason, o)
             kappa = res.contraction
