@@ -73,11 +73,23 @@ def splits(
     b = (trial.res.z, trial.t, math.nan)
     replaced: set[TestFunction] = set()
     out: list[Crossing] = []
+    data = None
     for i, tt in split_tests:
         old, new = state.tests[i], values[i]
         if old is None or old == 0.0 or new == 0.0:
             continue
-        found = _split(tt, options, system, a, old, b, new, SPLIT_DEPTH)
+        if data is None:
+            if options.predictor == "tangent" and trial.aimed is None and not trial.corner:
+                # the step's h and rt are the pseudo-arclength along t_a and (W t_a)·t_b
+                data = (a[0], a[1], b[0], b[1], trial.h, trial.rt)
+            else:
+                data = _part_data(system, a, b)
+            if data[4] == 0.0:
+                break
+        thetas = tt.split_points(old, new, data)
+        if not thetas:  # (most steps: nothing to split)
+            continue
+        found = _split(tt, options, system, a, old, b, new, SPLIT_DEPTH, data, thetas)
         if found is not None:
             replaced.add(tt)
             out += found
@@ -97,20 +109,24 @@ def _split(
     b: tuple[np.ndarray, np.ndarray, float],
     vb: float,
     depth: int,
+    data: tuple | None = None,
+    thetas: tuple[float, ...] | None = None,
 ) -> list[Crossing] | None:
     """The crossings of ``tt`` between the curve points ``a`` and ``b`` ((z, unit tangent,
     pseudo-arclength from the step's start)) split where the test sees several zeros; None
-    if it sees none (or a split point cannot be corrected): the part is taken whole."""
+    if it sees none (or a split point cannot be corrected): the part is taken whole.
+    ``data``: :func:`_part_data` of the part, and ``thetas`` its split points, if known."""
+    if thetas is None:
+        if data is None:
+            data = _part_data(system, a, b)
+        if data[4] == 0.0:
+            return None
+        thetas = tt.split_points(va, vb, data)
+    if not thetas:
+        return None
     za, ta, sa = a
     zb, tb, _ = b
     W = system.weights
-    wta = W * ta
-    h = float(wta.dot(zb - za))
-    if h == 0.0:
-        return None
-    thetas = tt.split_points(va, vb, (za, ta, zb, tb, h, float(wta.dot(tb))))
-    if not thetas:
-        return None
     br = Bracket(system, za, ta, zb, tb, W, options)
     points = [(a, va)]
     for theta in thetas:
@@ -129,6 +145,15 @@ def _split(
         elif vp != 0.0 and ((vp < 0) != (vq < 0) or vq == 0.0) and tt.crossed(vp, vq):
             out.append((tt, vp, vq, (p[0], p[1], q[0], q[1], p[2])))
     return out
+
+
+def _part_data(system: CurveSystem, a: tuple, b: tuple) -> tuple:
+    """``(z_a, t_a, z_b, t_b, h, cos_b)`` of the part of a step between curve points ``a``
+    and ``b``: its pseudo-arclength along ``t_a`` and the cosine of its turn."""
+    za, ta, _ = a
+    zb, tb, _ = b
+    wta = system.weights * ta
+    return (za, ta, zb, tb, float(wta.dot(zb - za)), float(wta.dot(tb)))
 
 
 def locate_crossings(

@@ -26,6 +26,7 @@ from collections.abc import Mapping, Sequence
 from typing import TYPE_CHECKING, Any, Protocol
 
 import numpy as np
+from scipy.linalg import lapack
 
 from .branchpoints import locate_branch_point
 from .errors import NonFiniteResidualError, ProblemDefinitionError
@@ -112,6 +113,10 @@ class TestFunction:
         if self.direction == 0:
             return True
         return (self.direction > 0) == up
+
+    def splits_on(self, system: CurveSystem) -> bool:
+        """Whether :meth:`split_points` can see anything on curves of ``system``."""
+        return type(self).split_points is not TestFunction.split_points
 
     def split_points(self, old: float, new: float, br_data: tuple[Any, ...]) -> tuple[float, ...]:
         """Where to split a step in which the test may have more than one zero (two, which
@@ -299,26 +304,32 @@ def _check_fold_resolution(found: Located, br: Bracket) -> Located:
     return found
 
 
+_geev = lapack.dgeev
+
 SPECTRUM_MAX_DIM = 50
-"""Dense curve systems up to this many components carry the spectrum of the branch-point
+"""Dense curve systems of 3 to this many components carry the spectrum of the branch-point
 test's matrix at every point (one eigendecomposition a step), which shows two or more branch
-points inside one step; larger ones see only the determinant's net sign change."""
+points of different modes inside one step; larger ones see only the determinant's net sign
+change. So do curves with one unknown (2 components): their matrix holds one row of the
+Jacobian, one mode, and two branch points in one step are one eigenvalue crossing zero and
+back, which the spectra at the step's ends cannot show either."""
 
 
 class SignWithSpectrum(float):
     """The branch-point test's value (the sign of det M, M = [∂G/∂z; (W t)ᵀ]) that also
-    carries M's eigenvalues and unit eigenvectors (``eigenvalues``, ``eigenvectors``)."""
+    carries M's spectrum from LAPACK's dgeev: ``spectrum`` = (real parts, imaginary parts,
+    unit real eigenvectors; a complex pair j, j + 1 has the vectors Re v, Im v), or None."""
 
-    eigenvalues: np.ndarray | None
-    eigenvectors: np.ndarray | None
+    spectrum: tuple[list[float], list[float], np.ndarray] | None
 
     def __new__(cls, sign: float, m: np.ndarray) -> SignWithSpectrum:
         self = super().__new__(cls, sign)
-        try:
-            lam, vec = np.linalg.eig(m)
-        except np.linalg.LinAlgError:
-            lam, vec = None, None
-        self.eigenvalues, self.eigenvectors = lam, vec
+        wr, wi, _, vr, info = _geev(m, compute_vl=0, compute_vr=1)
+        if info != 0 or not np.all(np.isfinite(vr)):
+            self.spectrum = None
+        else:
+            norms = np.sqrt(np.einsum("ij,ij->j", vr, vr))
+            self.spectrum = (wr.tolist(), wi.tolist(), vr / np.where(norms > 0, norms, 1.0))
         return self
 
 
@@ -337,11 +348,10 @@ def eigenvalue_crossings(old: Any, new: Any) -> list[float]:
     sign (and the count of negative eigenvalues) unchanged: only following each eigenvalue
     shows them (a Turing window of the Brusselator, where one mode destabilises as another
     restabilises)."""
-    la, va = getattr(old, "eigenvalues", None), getattr(old, "eigenvectors", None)
-    lb, vb = getattr(new, "eigenvalues", None), getattr(new, "eigenvectors", None)
-    if la is None or lb is None or va is None or vb is None or la.shape != lb.shape:
+    sa, sb = getattr(old, "spectrum", None), getattr(new, "spectrum", None)
+    if sa is None or sb is None or len(sa[0]) != len(sb[0]):
         return []
-    n = la.size
+    n = len(sa[0])
     parent = list(range(2 * n))  # union-find: eigenvalue i of a is i, j of b is n + j
 
     def root(i: int) -> int:
@@ -350,31 +360,28 @@ def eigenvalue_crossings(old: Any, new: Any) -> list[float]:
             i = parent[i]
         return i
 
-    def join(i: int, j: int) -> None:
-        parent[root(i)] = root(j)
-
-    overlap = np.abs(va.conj().T @ vb)
-    used_a, used_b = set(), set()
-    for flat in np.argsort(-overlap, axis=None).tolist():
-        i, j = divmod(flat, n)
-        if i not in used_a and j not in used_b:
-            used_a.add(i)
-            used_b.add(j)
-            join(i, n + j)
-    for lam, offset in ((la, 0), (lb, n)):
-        scale = float(np.max(np.abs(lam))) or 1.0
+    flat = np.argsort(-np.abs(sa[2].T @ sb[2]), axis=None).tolist()
+    free_a, free_b = [True] * n, [True] * n
+    for f in flat:
+        i, j = divmod(f, n)
+        if free_a[i] and free_b[j]:
+            free_a[i] = free_b[j] = False
+            parent[root(i)] = root(n + j)
+    # products of each group at each end: a complex pair contributes |λ|² (> 0) once
+    factors = []
+    for offset, (wr, wi, _) in ((0, sa), (n, sb)):
         for i in range(n):
-            if abs(lam[i].imag) > 1e-12 * scale:
-                # its conjugate partner: the nearest value to conj(λ_i)
-                j = int(np.argmin(np.abs(lam - lam[i].conjugate())))
-                join(offset + i, offset + j)
-    products: dict[int, list[complex]] = {}
-    for k in range(2 * n):
-        pair = products.setdefault(root(k), [1.0 + 0j, 1.0 + 0j])
-        pair[k >= n] *= la[k] if k < n else lb[k - n]
+            if wi[i] > 0.0:  # the first of a pair (LAPACK: positive imaginary part first)
+                parent[root(offset + i + 1)] = root(offset + i)
+                factors.append((offset + i, wr[i] * wr[i] + wi[i] * wi[i]))
+            elif wi[i] == 0.0:
+                factors.append((offset + i, wr[i]))
+    products: dict[int, list[float]] = {}
+    for k, value in factors:
+        pair = products.setdefault(root(k), [1.0, 1.0])
+        pair[k >= n] *= value
     out = []
-    for pa, pb in products.values():
-        a, b = pa.real, pb.real
+    for a, b in products.values():
         if a != 0.0 and b != 0.0 and (a < 0) != (b < 0):
             out.append(a / (a - b))
     return sorted(out)
@@ -394,7 +401,7 @@ class BranchPointTest(TestFunction):
         if t is None:
             return sdet
         jac = None
-        if system.dim <= SPECTRUM_MAX_DIM:
+        if 3 <= system.dim <= SPECTRUM_MAX_DIM:
             jac = system.jacobian(z)
             if type(jac) is not np.ndarray:
                 jac = None
@@ -406,6 +413,9 @@ class BranchPointTest(TestFunction):
         if sdet is None:
             sdet = factor(m).sign_det()
         return SignWithSpectrum(sdet, m)
+
+    def splits_on(self, system) -> bool:
+        return 3 <= system.dim <= SPECTRUM_MAX_DIM  # its values carry spectra
 
     def split_points(self, old, new, br_data) -> tuple[float, ...]:
         """Several eigenvalues of the bordered matrix [∂G/∂z; (W t)ᵀ] that change sign within

@@ -162,11 +162,7 @@ class Tracer:
         )
         self._has_bp = any(t.kind == "branch_point" for t in self.tests)
         # the tests that can see several zeros inside one step
-        self._split_tests = tuple(
-            (i, t)
-            for i, t in enumerate(self.tests)
-            if type(t).split_points is not TestFunction.split_points
-        )
+        self._split_tests = tuple((i, t) for i, t in enumerate(self.tests) if t.splits_on(system))
         bound_tests = tuple((i, t) for i, t in enumerate(self.tests) if isinstance(t, BoundTest))
         self._rules = StepRules(options, system.dim, bound_tests)
         self._scales = given_scales(system, scales)

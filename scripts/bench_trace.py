@@ -1,10 +1,10 @@
-"""Benchmark `continuation.trace` against contique and a plain SciPy natural-parameter loop.
+"""Benchmark `continuation.trace` against contique, pacopy and a plain SciPy natural-parameter loop.
 
 Usage (from the repository root):
 
     python scripts/bench_trace.py [--repeat 7] [--out docs/benchmarks/trace.md]
 
-All three run in ONE process on the same problems, each timed timeit-style (autorange a loop
+All of them run in ONE process on the same problems, each timed timeit-style (autorange a loop
 count, then the best of `--repeat` rounds, per full branch; rounds interleaved across tools):
 
 * cusp normal form x^3 - x - b = 0, b from -1 to 1 (folds at b = -+2/(3 sqrt 3));
@@ -21,6 +21,20 @@ Tools:
   a table per step, which we send to a StringIO (the printing is part of its cost: it cannot be
   switched off). Folds are not located by contique: we take the point with the extreme
   parameter where the parameter increment changes sign (a bracket), and report its error;
+* pacopy 0.1.9 (optional, GPL, not on PyPI at that version: `pip install
+  "git+https://github.com/sigma-py/pacopy@354702b056094e707c2447f98d2f90718cc5ef69"`, the
+  commit that sets version 0.1.9; the repository moved from nschloe/pacopy): `pacopy.euler_newton`
+  (pseudo-arclength, tangent predictor, Newton corrector by two solves with the Jacobian), with
+  a `jacobian_solver` on the example's analytic Jacobian (LAPACK gesv, as the floor below);
+  pacopy has no finite-difference mode, so analytic only. Settings: its defaults
+  (stepsize0 = 0.5, max_newton_steps = 5, stepsize_aggressiveness = 2, cos_alpha_min = 0.9,
+  theta0 = 1, i.e. the same Euclidean arclength in (x, lam) as ours) except newton_tol = 1e-10
+  (ours: tol) and stepsize_max = 0.5 (ours: ds_max), verbose off. A callback records the points
+  and stops it (a private exception) once the parameter passes the end. It builds a rich
+  `Console` in every corrector call (and its start-up Newton prints, sent to a StringIO):
+  part of its cost, it cannot be switched off. Folds: bracketed as for contique. Newton
+  iterations: the corrector iterations of the accepted steps (read by wrapping its
+  `_newton_corrector` during the run);
 * floor: a bare pseudo-arclength loop (about 40 lines) with the same step rules as ours
   (tangent predictor, bordered Newton by LAPACK gesv, the same convergence test, step control
   and angle guard) but no special points, no bookkeeping and no result: what the step
@@ -29,7 +43,7 @@ Tools:
   range, forward and then backward (hysteresis sweep); a fold is "detected" by the jump of the
   solution to the other sheet, and estimated by the last parameter before the jump.
 
-contique is optional: if it is missing its rows say so.
+contique and pacopy are optional: if one is missing the report says so.
 """
 
 from __future__ import annotations
@@ -37,6 +51,7 @@ from __future__ import annotations
 import argparse
 import contextlib
 import datetime
+import importlib.metadata
 import io
 import math
 import os
@@ -48,6 +63,7 @@ from pathlib import Path
 import numpy as np
 import scipy
 import scipy.optimize
+from scipy.linalg import lapack
 
 import cusp.examples as ex
 from cusp.continuation import Problem, trace
@@ -204,6 +220,105 @@ def run_contique(pb, analytic, contique):
     return summary
 
 
+class _PacopyStop(Exception):
+    """Raised by our callback to end `pacopy.euler_newton` once the parameter passes the end."""
+
+
+def run_pacopy(pb, pacopy):
+    """`pacopy.euler_newton` (0.1.x) on problem ``pb`` with the analytic Jacobian (see the
+    module docstring for the settings)."""
+    cnt = {"f": 0}
+    res, jac_u, pjac, free, p = _functions(pb)
+    gesv = lapack.dgesv
+    solver_error = pacopy.JacobianSolverError
+
+    class PacopyProblem:
+        # the interface of pacopy 0.1.x: inner, norm2_r, f, df_dlmbda, jacobian_solver
+        def inner(self, a, b):
+            return a.dot(b)
+
+        def norm2_r(self, a):
+            return a.dot(a)
+
+        def f(self, u, lmbda):
+            cnt["f"] += 1
+            p[free] = lmbda
+            return res(u, p)
+
+        def df_dlmbda(self, u, lmbda):
+            p[free] = lmbda
+            return pjac(u, p, free)
+
+        def jacobian_solver(self, u, lmbda, rhs):
+            p[free] = lmbda
+            _, _, x, info = gesv(jac_u(u, p), rhs)
+            if info:
+                raise solver_error  # pacopy halves the step
+            return x
+
+    lam1 = pb["lam1"]
+    up = lam1 > pb["lam0"]
+    lams, newton, last = [], 0, [0]
+
+    def callback(k, lmbda, u):
+        nonlocal newton
+        lams.append(lmbda)
+        newton += last[0]  # the corrector that produced this (accepted) point
+        last[0] = 0
+        if (lmbda >= lam1) if up else (lmbda <= lam1):
+            raise _PacopyStop
+
+    module = importlib.import_module("pacopy.euler_newton")
+    corrector = module._newton_corrector
+
+    def counted_corrector(*a):
+        out = corrector(*a)
+        last[0] = out[2]  # num_newton_steps
+        return out
+
+    module._newton_corrector = counted_corrector
+    try:
+        with contextlib.redirect_stdout(io.StringIO()), contextlib.suppress(_PacopyStop):
+            pacopy.euler_newton(
+                PacopyProblem(),
+                np.array([pb["x0"]], dtype=float),  # pacopy updates u in place
+                pb["lam0"],
+                callback,
+                max_steps=2000,
+                max_num_retries=50,
+                verbose=False,
+                newton_tol=TOL,
+                stepsize0=0.5 if up else -0.5,
+                stepsize_max=0.5,
+            )
+    finally:
+        module._newton_corrector = corrector
+
+    def summary():
+        return {
+            "points": len(lams),
+            "newton": newton,
+            "nfev": cnt["f"],
+            "folds": _bracketed_folds(np.asarray(lams)),
+            "located": "bracketed (extreme point)",
+            "ok": bool(len(lams)) and ((lams[-1] >= lam1) if up else (lams[-1] <= lam1)),
+        }
+
+    return summary
+
+
+def _import_pacopy():
+    """pacopy if version 0.1.x is installed, else None, and a note for the report."""
+    try:
+        import pacopy
+    except ImportError:
+        return None, "pacopy is not installed: no rows."
+    version = importlib.metadata.version("pacopy")
+    if not version.startswith("0.1."):
+        return None, f"pacopy {version} is installed, but this script drives the 0.1.x API."
+    return pacopy, None
+
+
 def _bracketed_folds(lams):
     d = np.diff(lams)
     out = []
@@ -215,8 +330,6 @@ def _bracketed_folds(lams):
 
 def run_floor(pb):
     """The bare loop (see the module docstring): defaults of `ContinuationOptions`."""
-    from scipy.linalg import lapack
-
     gesv, getrs = lapack.dgesv, lapack.dgetrs
     cnt = {"f": 0}
     res, jac, pjac, free, params = _functions(pb)
@@ -385,9 +498,12 @@ def _phases_once(pb, rounds):
         setattr(owner, name, timed)
 
     wrap(st, "newton", "corrector (steps and start)")
+    wrap(st, "damped_newton", "corrector (steps and start)")
     wrap(st, "correct", "corrector (steps and start)")
     wrap(tr, "correct", "corrector (steps and start)")
-    wrap(tr.Tracer, "_locate", "special-point location")
+    wrap(tr, "locate_crossings", "special-point location")
+    wrap(tr, "corner_folds", "special-point location")
+    wrap(tr.Tracer, "_located_point", "special-point location")
     wrap(tr, "tangent_at", "special-point location")
     wrap(tr.Tracer, "__init__", "setup and result")
     wrap(tr.Tracer, "result", "setup and result")
@@ -481,6 +597,7 @@ def main(argv=None):
         import contique
     except ImportError:
         contique = None
+    pacopy, pacopy_note = _import_pacopy()
 
     variants = [
         ("ours", "analytic", lambda pb: run_ours(pb, True)),
@@ -499,6 +616,14 @@ def main(argv=None):
                 lambda pb: run_contique(pb, False, contique),
             ),
         ]
+    if pacopy is not None:
+        variants.append(
+            (
+                "pacopy " + importlib.metadata.version("pacopy"),
+                "analytic",
+                lambda pb: run_pacopy(pb, pacopy),
+            )
+        )
     variants += [
         ("floor: bare loop", "analytic", run_floor),
         ("SciPy root loop", "analytic", lambda pb: run_scipy(pb, True)),
@@ -536,26 +661,51 @@ def main(argv=None):
         if contique is not None:
             for deriv in ("analytic", "central FD"):
                 ratios.append(
-                    (pb["name"], deriv, times[("ours", deriv)] / times[("contique", deriv)])
+                    (
+                        "contique",
+                        pb["name"],
+                        deriv,
+                        times[("ours", deriv)] / times[("contique", deriv)],
+                    )
                 )
-        if not contique:
-            ratios.append((pb["name"], "—", float("nan")))
+        if pacopy is not None:
+            ratios.append(
+                (
+                    "pacopy",
+                    pb["name"],
+                    "analytic",
+                    times[("ours", "analytic")] / times[("pacopy", "analytic")],
+                )
+            )
 
     now = datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M UTC")
     lines = [
-        "# Benchmark: `trace` vs contique vs a SciPy natural-parameter loop",
+        "# Benchmark: `trace` vs contique vs pacopy vs a SciPy natural-parameter loop",
         "",
         f"Measured {now} at commit `{git_rev()}` on: {machine()}.",
         "",
         "Reproduce from the repository root: `python scripts/bench_trace.py` "
-        "(contique is optional: `pip install contique`).",
+        "(contique is optional: `pip install contique==1.1.1`; so is pacopy 0.1.9, GPL, "
+        "not on PyPI at that version and not a dependency of this project: `pip install "
+        '"git+https://github.com/sigma-py/pacopy@354702b056094e707c2447f98d2f90718cc5ef69"`, '
+        "the commit that sets version 0.1.9, in the repository formerly nschloe/pacopy).",
+        "",
+        "pacopy runs `euler_newton` with its defaults (stepsize0 = 0.5, max_newton_steps = 5, "
+        "stepsize_aggressiveness = 2, cos_alpha_min = 0.9, theta0 = 1: the same Euclidean "
+        "arclength in (x, λ) as ours) except newton_tol = 1e-10 (ours: `tol`) and "
+        "stepsize_max = 0.5 (ours: `ds_max`), and a `jacobian_solver` on the analytic "
+        "Jacobian (LAPACK gesv); it has no finite-difference mode. It builds a rich `Console` "
+        "in every corrector call, part of its cost (it cannot be switched off), as contique's "
+        "printing is part of contique's. Both stop (by a callback) at the first point past the "
+        "end of the range.",
         "",
         "Wall time per full branch (the solve only, not this script's summary of it): "
         "timeit-style, best of "
         f"{args.repeat} rounds of an autoranged loop, all tools in one process, rounds "
         "interleaved across tools so that load from other jobs hits all of them alike. "
         "Newton iterations per point are each tool's own count (ours: `stats`; contique: "
-        "`NewtonResult.niterations` of accepted steps only); residual evaluations per point "
+        "`NewtonResult.niterations` of accepted steps only; pacopy: the corrector iterations "
+        "of accepted steps); residual evaluations per point "
         "include finite-difference evaluations. A fold counts as located when its parameter is "
         "within 1e-12 (relative, or absolute below 1) of the exact value; the error column "
         "gives, for each exact fold in path order, the distance to the nearest estimate.",
@@ -569,16 +719,24 @@ def main(argv=None):
             f"| {r[0]} | {r[1]} | {r[2]} | {r[3]:.3f} | {r[4]} | {r[5]} | {r[6]} "
             f"| {r[7]} | {r[8]} | {r[9]} |"
         )
-    lines += ["", "Ratio of wall times, ours / contique (same run; < 1 means ours is faster):", ""]
-    if contique is None:
-        lines.append("- contique is not installed: no ratio.")
-    for name, deriv, ratio in ratios:
-        if not math.isnan(ratio):
-            lines.append(
-                f"- {name}, {deriv}: {ratio:.3f} (ours {1 / ratio:.1f}× faster)"
-                if ratio < 1
-                else f"- {name}, {deriv}: {ratio:.3f}"
-            )
+    for other, missing in (
+        ("contique", None if contique is not None else "contique is not installed: no ratio."),
+        ("pacopy", None if pacopy is not None else pacopy_note.replace("rows", "ratio")),
+    ):
+        lines += [
+            "",
+            f"Ratio of wall times, ours / {other} (same run; < 1 means ours is faster):",
+            "",
+        ]
+        if missing:
+            lines.append(f"- {missing}")
+        for tool, name, deriv, ratio in ratios:
+            if tool == other:
+                lines.append(
+                    f"- {name}, {deriv}: {ratio:.3f} (ours {1 / ratio:.1f}× faster)"
+                    if ratio < 1
+                    else f"- {name}, {deriv}: {ratio:.3f} ({other} {ratio:.1f}× faster)"
+                )
     total, parts = phases(PROBLEMS[0])
     lines += [
         "",
