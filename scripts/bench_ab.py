@@ -13,6 +13,12 @@ in alternating rounds of 100 branches, so load from other jobs on this shared ma
 both alike. Prints, per problem, each side's points, Newton iterations and folds, and the
 ratio of the best round times (NEW/BASE; < 1 means NEW is faster). Changes of a few per
 cent are only visible this way: separate runs drift by more than that.
+
+    python scripts/bench_ab.py BASE [NEW] --sparse N [--rounds 3]
+
+traces the sparse FD Bratu problem with N unknowns (as `scripts/bench_sparse.py`) by both
+sides instead, one trace a round, and reports steps, sparse LU factorizations, and the cost
+per step and per LU (a side that takes longer steps costs more per step, not per LU).
 """
 
 from __future__ import annotations
@@ -53,12 +59,21 @@ def main(argv=None) -> int:
     ap.add_argument("base")
     ap.add_argument("new", nargs="?", default=None)
     ap.add_argument("--rounds", type=int, default=11)
+    ap.add_argument(
+        "--sparse",
+        type=int,
+        metavar="N",
+        help="instead: the sparse FD Bratu problem with N unknowns (as scripts/bench_sparse.py), "
+        "one trace a round, with its steps, sparse LUs and the cost per step and per LU",
+    )
     args = ap.parse_args(argv)
     with tempfile.TemporaryDirectory() as tmp:
         sides = {
             "base": load_revision(args.base, Path(tmp), "continuation_ab_base"),
             "new": load_revision(args.new, Path(tmp), "continuation_ab_new"),
         }
+        if args.sparse:
+            return sparse_ab(sides, args.sparse, args.rounds)
         for pb in PROBLEMS:
             runs = {
                 side: (lambda m=m, pb=pb: run_ours(pb, True, api=m)) for side, m in sides.items()
@@ -82,6 +97,52 @@ def main(argv=None) -> int:
                 f"  best of {args.rounds}: base {b:.3f} ms, new {n:.3f} ms, "
                 f"ratio new/base {n / b:.3f}"
             )
+    return 0
+
+
+def sparse_ab(sides: dict, n: int, rounds: int) -> int:
+    """The sparse Bratu trace of ``scripts/bench_sparse.py`` by both sides, interleaved: the
+    best time of each, its steps, its sparse LU factorizations (counted by wrapping SuperLU)
+    and the cost per step and per LU."""
+    import scipy.sparse.linalg as spla
+
+    import cusp.examples as ex
+
+    case = ex.bratu(n, sparse=True)
+    splu = spla.splu
+    count = [0]
+
+    def counted(*a, **k):
+        count[0] += 1
+        return splu(*a, **k)
+
+    best: dict[str, tuple] = {}
+    spla.splu = counted
+    try:
+        for r in range(rounds):
+            for side in ("base", "new") if r % 2 == 0 else ("new", "base"):
+                count[0] = 0
+                t0 = time.perf_counter()
+                br = sides[side].trace(
+                    case.problem, case.u0, free="lam", bounds=case.bounds, max_steps=400
+                )
+                dt = time.perf_counter() - t0
+                if side not in best or dt < best[side][0]:
+                    folds = [sp.values["lam"] for sp in br.special_points if sp.kind == "fold"]
+                    best[side] = (dt, br.info["steps"], count[0], folds, br.status)
+    finally:
+        spla.splu = splu
+    for side, (dt, steps, lus, folds, status) in best.items():
+        print(
+            f"sparse Bratu N = {n} [{side}]: best {dt:.3f} s, {steps} steps, {lus} sparse LUs, "
+            f"{dt / steps * 1e3:.1f} ms per step, {dt / lus * 1e3:.1f} ms per LU, "
+            f"folds {[f'{f:.16g}' for f in folds]}, {status}"
+        )
+    b, nw = best["base"], best["new"]
+    print(
+        f"  ratio new/base: trace {nw[0] / b[0]:.3f}, per step "
+        f"{(nw[0] / nw[1]) / (b[0] / b[1]):.3f}, per LU {(nw[0] / nw[2]) / (b[0] / b[2]):.3f}"
+    )
     return 0
 
 

@@ -37,3 +37,22 @@ def test_bench_ab_compares_head_with_the_working_tree():
     assert sum("[new]" in line for line in lines) == 2
     assert all("0.384900179459750" in line for line in lines if line.startswith("cusp"))
     assert sum("ratio new/base" in line for line in lines) == 2
+
+
+@pytest.mark.skipif(not _in_git_checkout(), reason="needs a git checkout")
+def test_bench_ab_sparse_bratu_counts_steps_and_factorizations():
+    done = subprocess.run(
+        [sys.executable, "scripts/bench_ab.py", "HEAD", "--sparse", "99", "--rounds", "1"],
+        cwd=ROOT,
+        capture_output=True,
+        text=True,
+        timeout=300,
+    )
+    assert done.returncode == 0, done.stderr
+    lines = done.stdout.splitlines()
+    sides = [line for line in lines if line.startswith("sparse Bratu N = 99 [")]
+    assert len(sides) == 2 and all("sparse LUs" in line and "bound" in line for line in sides)
+    # one fold each, at the N = 99 fold of the FD Bratu problem: lam* = 3.513647903969307
+    # (cusp.examples.bratu.bratu_fd_fold(99): mpmath shooting at 40 digits), to 1e-14
+    assert all("3.5136479039693" in line for line in sides)
+    assert "ratio new/base: trace" in lines[-1] and "per LU" in lines[-1]
