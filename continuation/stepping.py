@@ -140,7 +140,7 @@ def advance(rules: StepRules, state: TracerState) -> Trial | Failure:
     last = state.last
     z, t, prev = last.z, last.t, last.prev
     z_prev = None if prev is None else prev.z
-    secant = _secant(o, system, z, z_prev)
+    secant, direction, row = _predictor(o, system, z, t, z_prev)
     if state.stalled >= _STALL_STEPS:
         # creeping at ds near ds_min (say, Newton with a Jacobian differenced across a
         # kink): try to pass the corner directly
@@ -150,8 +150,7 @@ def advance(rules: StepRules, state: TracerState) -> Trial | Failure:
         if state.stalled >= _STALL_LIMIT:
             # still creeping: a step of STALL_FACTOR·ds_min that the guards reject ends it
             ds = STALL_FACTOR * o.ds_min
-            row = t if system.unit_weights else system.weights * t
-            tried = _try(rules, system, z, t, ds, t, row, None)
+            tried = _try(rules, system, z, t, ds, direction, row, secant)
             if isinstance(tried, Trial):
                 return tried
             res, reason, _ = tried
@@ -160,8 +159,6 @@ def advance(rules: StepRules, state: TracerState) -> Trial | Failure:
         aimed = aim_at_bound(rules, state, z, t, state.ds)
         if aimed is not None:
             return aimed
-    direction = t if secant is None else secant
-    row = direction if system.unit_weights else system.weights * direction
     ds = state.ds
     rejected = 0
     kappa = math.inf  # the first contraction of the last step rejected for it
@@ -194,15 +191,24 @@ def advance(rules: StepRules, state: TracerState) -> Trial | Failure:
         rejected += 1
 
 
-def _secant(
-    o: ContinuationOptions, system: CurveSystem, z: np.ndarray, z_prev: np.ndarray | None
-) -> np.ndarray | None:
-    """The unit secant through the last two points for the secant predictor, else None."""
-    if o.predictor != "secant" or z_prev is None:
-        return None
-    d = z - z_prev
-    nd = wnorm(d, system.weights)
-    return d / nd if nd > 0 else None
+def _predictor(
+    o: ContinuationOptions,
+    system: CurveSystem,
+    z: np.ndarray,
+    t: np.ndarray,
+    z_prev: np.ndarray | None,
+) -> tuple[np.ndarray | None, np.ndarray, np.ndarray]:
+    """The step's predictor from ``z`` (unit tangent ``t``): the unit secant through the
+    last two points for the secant predictor (else None), the direction (the secant or
+    ``t``) and the corrector's border row (the direction times the arclength weights)."""
+    secant = None
+    if o.predictor == "secant" and z_prev is not None:
+        d = z - z_prev
+        nd = wnorm(d, system.weights)
+        if nd > 0:
+            secant = d / nd
+    direction = t if secant is None else secant
+    return secant, direction, direction if system.unit_weights else system.weights * direction
 
 
 def confirm_step(rules: StepRules, state: TracerState, trial: Trial) -> Trial | None:
@@ -224,9 +230,7 @@ def confirm_step(rules: StepRules, state: TracerState, trial: Trial) -> Trial | 
     W = system.weights
     last = state.last
     z, t = last.z, last.t
-    secant = _secant(o, system, z, None if last.prev is None else last.prev.z)
-    direction = t if secant is None else secant
-    row = direction if system.unit_weights else W * direction
+    secant, direction, row = _predictor(o, system, z, t, None if last.prev is None else last.prev.z)
     ds = trial.ds
     half = _try(rules, system, z, t, 0.5 * ds, direction, row, secant)
     if not isinstance(half, Trial):  # the half step fails where the whole one passed

@@ -401,7 +401,7 @@ class BranchPointTest(TestFunction):
         if t is None:
             return sdet
         jac = None
-        if 3 <= system.dim <= SPECTRUM_MAX_DIM:
+        if self.splits_on(system):  # its values carry spectra
             jac = system.jacobian(z)
             if type(jac) is not np.ndarray:
                 jac = None
@@ -415,7 +415,7 @@ class BranchPointTest(TestFunction):
         return SignWithSpectrum(sdet, m)
 
     def splits_on(self, system) -> bool:
-        return 3 <= system.dim <= SPECTRUM_MAX_DIM  # its values carry spectra
+        return 3 <= system.dim <= SPECTRUM_MAX_DIM  # (see SPECTRUM_MAX_DIM)
 
     def split_points(self, old, new, br_data) -> tuple[float, ...]:
         """Several eigenvalues of the bordered matrix [∂G/∂z; (W t)ᵀ] that change sign within

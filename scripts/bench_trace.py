@@ -207,17 +207,20 @@ def run_contique(pb, analytic, contique):
             if (res_.x[-1] >= lam1) if up else (res_.x[-1] <= lam1):
                 break
 
-    def summary():
-        return {
-            "points": len(lams),
-            "newton": newton,
-            "nfev": cnt["f"],
-            "folds": _bracketed_folds(np.asarray(lams)),
-            "located": "bracketed (extreme point)",
-            "ok": bool(len(lams)) and ((lams[-1] >= lam1) if up else (lams[-1] <= lam1)),
-        }
+    return lambda: _bracketed_summary(lams, newton, cnt["f"], lam1, up)
 
-    return summary
+
+def _bracketed_summary(lams, newton, nfev, lam1, up):
+    """The summary of a tool that does not locate folds (contique, pacopy): its parameter
+    values ``lams`` along the branch, folds bracketed where the parameter turns."""
+    return {
+        "points": len(lams),
+        "newton": newton,
+        "nfev": nfev,
+        "folds": _bracketed_folds(np.asarray(lams)),
+        "located": "bracketed (extreme point)",
+        "ok": bool(len(lams)) and ((lams[-1] >= lam1) if up else (lams[-1] <= lam1)),
+    }
 
 
 class _PacopyStop(Exception):
@@ -294,17 +297,7 @@ def run_pacopy(pb, pacopy):
     finally:
         module._newton_corrector = corrector
 
-    def summary():
-        return {
-            "points": len(lams),
-            "newton": newton,
-            "nfev": cnt["f"],
-            "folds": _bracketed_folds(np.asarray(lams)),
-            "located": "bracketed (extreme point)",
-            "ok": bool(len(lams)) and ((lams[-1] >= lam1) if up else (lams[-1] <= lam1)),
-        }
-
-    return summary
+    return lambda: _bracketed_summary(lams, newton, cnt["f"], lam1, up)
 
 
 def _import_pacopy():

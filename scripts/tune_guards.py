@@ -80,6 +80,26 @@ def _fmt(value: float) -> str:
     return "off" if math.isinf(value) else f"{value:g}"
 
 
+def _sweep(title: str, guard: str, values: list[float], run) -> list[str]:
+    """The report's table of one sweep of ``guard`` over ``values`` (``run(value)``: the
+    suite's result at that value), printed as it goes."""
+    lines = [
+        f"## {title}",
+        "",
+        "| value | failing | steps | rejected | time (s) | failing problems |",
+        "|---|---|---|---|---|---|",
+    ]
+    for value in values:
+        r = run(value)
+        fails = r["failures"]
+        lines.append(
+            f"| {_fmt(value)} | {len(fails)} | {r['steps']} | {r['rejected']} | "
+            f"{r['seconds']:.2f} | {', '.join(fails) or '-'} |"
+        )
+        print(title, _fmt(value), len(fails), r["steps"], sorted(fails), flush=True)
+    return [*lines, ""]
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--out", default=str(ROOT / "docs" / "benchmarks" / "guards.md"))
@@ -125,39 +145,21 @@ def main() -> None:
     print("all off", len(none["failures"]), none["steps"], sorted(none["failures"]), flush=True)
     if not args.quick:
         for guard, values in GRID.items():
-            lines += [
-                f"## `{guard}` alone (the other guards off)",
-                "",
-                "| value | failing | steps | rejected | time (s) | failing problems |",
-                "|---|---|---|---|---|---|",
-            ]
-            for value in values:
-                r = run_suite({**off, **_options(guard, value)})
-                fails = r["failures"]
-                lines.append(
-                    f"| {_fmt(value)} | {len(fails)} | {r['steps']} | {r['rejected']} | "
-                    f"{r['seconds']:.2f} | {', '.join(fails) or '-'} |"
-                )
-                print(
-                    "alone", guard, _fmt(value), len(fails), r["steps"], sorted(fails), flush=True
-                )
-            lines.append("")
+            lines += _sweep(
+                f"`{guard}` alone (the other guards off)",
+                guard,
+                values,
+                lambda value, guard=guard: run_suite({**off, **_options(guard, value)}),
+            )
         for guard, values in GRID.items():
-            lines += [
-                f"## `{guard}`",
-                "",
-                "| value | failing | steps | rejected | time (s) | failing problems |",
-                "|---|---|---|---|---|---|",
-            ]
-            for value in values:
-                r = base if value == getattr(DEFAULTS, guard) else run_suite(_options(guard, value))
-                fails = r["failures"]
-                lines.append(
-                    f"| {_fmt(value)} | {len(fails)} | {r['steps']} | {r['rejected']} | "
-                    f"{r['seconds']:.2f} | {', '.join(fails) or '-'} |"
-                )
-                print(guard, _fmt(value), len(fails), r["steps"], sorted(fails), flush=True)
-            lines.append("")
+            lines += _sweep(
+                f"`{guard}`",
+                guard,
+                values,
+                lambda value, guard=guard: (
+                    base if value == getattr(DEFAULTS, guard) else run_suite(_options(guard, value))
+                ),
+            )
     path = write_report(args.out, "\n".join(lines) + "\n")
     print(f"wrote {path}")
 

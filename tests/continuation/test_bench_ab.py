@@ -20,15 +20,19 @@ def _in_git_checkout() -> bool:
     return done.returncode == 0
 
 
-@pytest.mark.skipif(not _in_git_checkout(), reason="needs a git checkout")
-def test_bench_ab_compares_head_with_the_working_tree():
-    done = subprocess.run(
-        [sys.executable, "scripts/bench_ab.py", "HEAD", "--rounds", "1"],
+def _bench_ab(*args: str) -> subprocess.CompletedProcess:
+    return subprocess.run(
+        [sys.executable, "scripts/bench_ab.py", *args],
         cwd=ROOT,
         capture_output=True,
         text=True,
         timeout=300,
     )
+
+
+@pytest.mark.skipif(not _in_git_checkout(), reason="needs a git checkout")
+def test_bench_ab_compares_head_with_the_working_tree():
+    done = _bench_ab("HEAD", "--rounds", "1")
     assert done.returncode == 0, done.stderr
     lines = done.stdout.splitlines()
     # both sides trace both problems and locate both folds (cusp: b = ±2/(3√3) =
@@ -41,13 +45,7 @@ def test_bench_ab_compares_head_with_the_working_tree():
 
 @pytest.mark.skipif(not _in_git_checkout(), reason="needs a git checkout")
 def test_bench_ab_sparse_bratu_counts_steps_and_factorizations():
-    done = subprocess.run(
-        [sys.executable, "scripts/bench_ab.py", "HEAD", "--sparse", "99", "--rounds", "1"],
-        cwd=ROOT,
-        capture_output=True,
-        text=True,
-        timeout=300,
-    )
+    done = _bench_ab("HEAD", "--sparse", "99", "--rounds", "1")
     assert done.returncode == 0, done.stderr
     lines = done.stdout.splitlines()
     sides = [line for line in lines if line.startswith("sparse Bratu N = 99 [")]
