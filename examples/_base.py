@@ -142,3 +142,28 @@ def make_example(
         monitor=tuple(monitor),
         reference_points=references,
     )
+
+
+def one_unknown(name, residual, dfdx, dfdp, params, *, derivatives, x0, free, bounds, refs):
+    """An example with the one unknown ``x``: ``residual(x, p)``, its derivatives
+    ``dfdx(x, p)`` and ``dfdp(x, p, name)`` as scalars (see :func:`make_example`)."""
+
+    def jacobian(u, p):
+        return np.array([[dfdx(u[0], p)]])
+
+    def param_jacobian(u, p, which):
+        return np.array([dfdp(u[0], p, which)])
+
+    return make_example(
+        name,
+        lambda u, p: np.array([residual(u[0], p)]),
+        ["x"],
+        params,
+        jacobian,
+        param_jacobian,
+        derivatives=derivatives,
+        u0=[x0],
+        free=free,
+        bounds=bounds,
+        references=refs,
+    )

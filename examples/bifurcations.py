@@ -10,31 +10,7 @@ The plain transcritical x (p − x) and pitchfork x (p − x²), traced along x 
 
 from __future__ import annotations
 
-import numpy as np
-
-from ._base import DPS, Example, Reference, make_example
-
-
-def _one_unknown(name, residual, dfdx, dfdp, params, *, derivatives, x0, free, bounds, refs):
-    def jacobian(u, p):
-        return np.array([[dfdx(u[0], p)]])
-
-    def param_jacobian(u, p, which):
-        return np.array([dfdp(u[0], p, which)])
-
-    return make_example(
-        name,
-        lambda u, p: np.array([residual(u[0], p)]),
-        ["x"],
-        params,
-        jacobian,
-        param_jacobian,
-        derivatives=derivatives,
-        u0=[x0],
-        free=free,
-        bounds=bounds,
-        references=refs,
-    )
+from ._base import DPS, Example, Reference, one_unknown
 
 
 def subcritical_pitchfork(*, derivatives: str = "analytic") -> Example:
@@ -48,7 +24,7 @@ def subcritical_pitchfork(*, derivatives: str = "analytic") -> Example:
     x = 0, a branch point (exact). The free parameter turns there, but it is not a fold:
     [∂F/∂x, ∂F/∂p] = [p + 3x², x] vanishes.
     """
-    return _one_unknown(
+    return one_unknown(
         "subcritical pitchfork along its parabola",
         lambda x, p: x * (p["p"] + x**2),
         lambda x, p: p["p"] + 3 * x**2,
@@ -92,7 +68,7 @@ def imperfect_transcritical(eps: float = 5e-4, *, derivatives: str = "analytic")
             r = mp.sqrt(mp.mpf(eps))
             return (Reference("fold", {"x": float(-r), "p": float(-2 * r), "eps": eps}, ("p",)),)
 
-    return _one_unknown(
+    return one_unknown(
         "imperfect transcritical" + (" (arms passing)" if eps < 0 else ""),
         lambda x, p: x * (p["p"] - x) - p["eps"],
         lambda x, p: p["p"] - 2 * x,
@@ -126,7 +102,7 @@ def imperfect_pitchfork(eps: float = 2e-3, *, derivatives: str = "analytic") -> 
             x = mp.cbrt(mp.mpf(eps) / 2)
             return (Reference("fold", {"x": float(x), "p": float(-3 * x**2), "eps": eps}, ("p",)),)
 
-    return _one_unknown(
+    return one_unknown(
         "imperfect subcritical pitchfork",
         lambda x, p: x * (p["p"] + x**2) + p["eps"],
         lambda x, p: p["p"] + 3 * x**2,
@@ -149,7 +125,7 @@ def narrow_transcritical(kappa: float = 0.05, *, derivatives: str = "analytic") 
     leave along the other branch, whose tangent differs from the trivial branch's by only
     atan κ.
     """
-    return _one_unknown(
+    return one_unknown(
         "transcritical, narrow crossing",
         lambda x, p: x * (p["kappa"] * p["p"] - x),
         lambda x, p: p["kappa"] * p["p"] - 2 * x,

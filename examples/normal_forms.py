@@ -12,7 +12,7 @@ import functools
 import numpy as np
 from numpy.typing import ArrayLike
 
-from ._base import DPS, Example, Reference, make_example
+from ._base import DPS, Example, Reference, make_example, one_unknown
 
 # ---------------------------------------------------------------------------------------------
 # Cusp normal form x^3 - a x - b = 0
@@ -123,27 +123,17 @@ def transcritical(p: float = -1.0, *, derivatives: str = "analytic") -> Example:
     (not orthogonally) at the branch point x = p = 0 (exact).
     """
 
-    def residual(u, q):
-        return np.array([u[0] * (q["p"] - u[0])])
-
-    def jacobian(u, q):
-        return np.array([[q["p"] - 2.0 * u[0]]])
-
-    def param_jacobian(u, q, name):
-        return np.array([u[0]])
-
-    return make_example(
+    return one_unknown(
         "transcritical normal form",
-        residual,
-        ["x"],
+        lambda x, q: x * (q["p"] - x),
+        lambda x, q: q["p"] - 2.0 * x,
+        lambda x, q, name: x,
         {"p": p},
-        jacobian,
-        param_jacobian,
         derivatives=derivatives,
-        u0=[0.0],
+        x0=0.0,
         free="p",
         bounds={"p": (-1.0, 1.0)},
-        references=lambda: (Reference("branch_point", {"x": 0.0, "p": 0.0}, ("p",)),),
+        refs=lambda: (Reference("branch_point", {"x": 0.0, "p": 0.0}, ("p",)),),
     )
 
 
@@ -154,25 +144,15 @@ def pitchfork(p: float = -1.0, *, derivatives: str = "analytic") -> Example:
     p = x² meet at the branch point x = p = 0 (exact).
     """
 
-    def residual(u, q):
-        return np.array([u[0] * (q["p"] - u[0] ** 2)])
-
-    def jacobian(u, q):
-        return np.array([[q["p"] - 3.0 * u[0] ** 2]])
-
-    def param_jacobian(u, q, name):
-        return np.array([u[0]])
-
-    return make_example(
+    return one_unknown(
         "pitchfork normal form",
-        residual,
-        ["x"],
+        lambda x, q: x * (q["p"] - x**2),
+        lambda x, q: q["p"] - 3.0 * x**2,
+        lambda x, q, name: x,
         {"p": p},
-        jacobian,
-        param_jacobian,
         derivatives=derivatives,
-        u0=[0.0],
+        x0=0.0,
         free="p",
         bounds={"p": (-1.0, 1.0)},
-        references=lambda: (Reference("branch_point", {"x": 0.0, "p": 0.0}, ("p",)),),
+        refs=lambda: (Reference("branch_point", {"x": 0.0, "p": 0.0}, ("p",)),),
     )
