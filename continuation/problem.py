@@ -137,8 +137,21 @@ class Problem:
         return self._jacobian is not None
 
     def __repr__(self) -> str:
+        """The name, unknowns and parameters; long lists of unknowns (discretisations) are
+        shown by their first and last three names and their count.
+
+        >>> Problem(lambda u, p: u, unknowns=[f"u{i}" for i in range(1000)], params={})
+        <Problem: unknowns=['u0', 'u1', 'u2', ..., 'u997', 'u998', 'u999'] (1000), params={}>
+        """
         label = f" {self.name!r}" if self.name else ""
-        return f"<Problem{label}: unknowns={list(self.unknowns)}, params={self.params}>"
+        names = list(self.unknowns)
+        if len(names) > 8:
+            head = ", ".join(map(repr, names[:3]))
+            tail = ", ".join(map(repr, names[-3:]))
+            shown = f"[{head}, ..., {tail}] ({len(names)})"
+        else:
+            shown = str(names)
+        return f"<Problem{label}: unknowns={shown}, params={self.params}>"
 
     def with_params(self, **values: float) -> Problem:
         """A copy with some parameter values changed."""
