@@ -46,16 +46,10 @@ class NewtonResult:
         self.contraction, self.first_update = contraction, first_update
 
 
+#: the smallest update tolerance with differenced derivatives (they keep the updates from
+#: getting much smaller); the two update tolerances are √step_tol (the error left is then
+#: about step_tol) and step_tol itself (AUTO's test, see :func:`newton`)
 _FD_STEP_TOL = 1e-10
-
-
-def _update_tolerances(system: Any, z: np.ndarray, step_tol: float) -> tuple[Any, float, float]:
-    """The multipliers that make updates relative to the components' magnitudes, and the
-    two update tolerances: √step_tol (then the error left is about step_tol) and step_tol
-    itself (at least 1e-10 with differenced derivatives, which keep the updates from
-    getting much smaller)."""
-    rel = step_tol if system.derivatives_exact else max(step_tol, _FD_STEP_TOL)
-    return inverse_magnitudes(system.scales, z), math.sqrt(step_tol), rel
 
 
 def _full_step(bordered_jacobian: Any, z: np.ndarray, row: np.ndarray, rhs: np.ndarray):
@@ -72,10 +66,6 @@ def _full_step(bordered_jacobian: Any, z: np.ndarray, row: np.ndarray, rhs: np.n
         return a, lu, None, None, lu.solve(rhs), ""
     except SingularMatrixError:
         return a, None, None, None, None, "singular" if a is None else _singular_reason(a)
-
-
-def _wnorm(x: np.ndarray, weights: np.ndarray) -> float:
-    return math.sqrt(x.dot(weights * x))
 
 
 def _singular_reason(a) -> str:
@@ -142,16 +132,19 @@ def newton(
         return NewtonResult(z, False, 0, rn, None, "nonfinite")
     m = g.size
     rhs = np.empty(m + 1)
-    inv, sq_step_tol, rel_step_tol = _update_tolerances(system, z, step_tol)
-    bordered_jacobian = system.bordered_jacobian
-    residual = system.residual
-    row_dot = row.dot
+    inv = inverse_magnitudes(system.scales, z)
+    sq_step_tol = math.sqrt(step_tol)
+    rel_step_tol = step_tol if system.derivatives_exact else max(step_tol, _FD_STEP_TOL)
+    # the first update's weighted length is compared squared (no root on the common path)
+    max_first_sq = math.inf if max_first is None else max_first * max_first
+    weights = None if system.unit_weights else system.weights
+    bordered_jacobian, residual = system.bordered_jacobian, system.residual
     sn_prev = sn_first = math.inf
     lu: Any = None
     f: Any = None
     piv: Any = None
     reason, converged, chord, k, theta = "max_iterations", False, False, 0, 0.0
-    rhs[m] = row_dot(z) - c
+    rhs[m] = row.dot(z) - c
     for k in range(1, max_iter + 1):
         rhs[:m] = g
         if k == 2:
@@ -162,7 +155,7 @@ def newton(
             a, lu, f, piv, dz, why = _full_step(bordered_jacobian, z, row, rhs)
             if why:
                 return NewtonResult(z, False, k, rn, None, why)
-        if k == 1 and max_first is not None and _wnorm(dz, system.weights) > max_first:
+        if k == 1 and dz.dot(dz if weights is None else weights * dz) > max_first_sq:
             rn, reason = math.inf, "too_far"
             break
         z = z - dz
@@ -171,8 +164,7 @@ def newton(
         except SingularMatrixError:  # an augmented system's matrix, singular at the new z
             rn, reason = math.inf, "singular"
             break
-        rn_new = _norm(g)
-        sn = scaled_max(dz, inv)
+        rn_new, sn = _norm(g), scaled_max(dz, inv)
         if k == 1:
             sn_first = sn
         elif k == 2:

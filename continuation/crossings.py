@@ -40,19 +40,16 @@ def evaluate(
         # the sign of det [∂G/∂z; (W t_new)ᵀ] from the corrector's LU with border `row`
         # (Cramer: the two determinants differ by the factor row·t_new)
         sdet = res.lu.sign_det() * (1.0 if trial.rt > 0 else -1.0)
-    values = []
-    crossings: list[Crossing] = []
-    for tt, old in zip(tests, state.tests):
-        new = tt.value(system, z1, t1, sdet)
-        values.append(new)
-        # no crossing unless the sign changed or an end is exactly zero
-        if (
-            old is not None
-            and ((old < 0) != (new < 0) or new == 0.0 or old == 0.0)
-            and tt.crossed(old, new)
-        ):
-            crossings.append((tt, old, new, None))
-    return system, tuple(values), crossings
+    values = tuple([tt.value(system, z1, t1, sdet) for tt in tests])
+    # no crossing unless the sign changed or an end is exactly zero
+    crossings: list[Crossing] = [
+        (tt, old, new, None)
+        for tt, old, new in zip(tests, state.tests, values)
+        if old is not None
+        and ((old < 0) != (new < 0) or new == 0.0 or old == 0.0)
+        and tt.crossed(old, new)
+    ]
+    return system, values, crossings
 
 
 def splits(

@@ -370,7 +370,8 @@ def locate_fold(
         # stagnation accepted up to 1e-6: ill-conditioned systems (cond ~ N² for discretised
         # operators) and forward differences stall there; the fold's parameter is still
         # exact to second order, its state to the accuracy of the derivatives
-        k_ratio = abs(float(z[k])) * inverse_magnitudes(scales, z)[k]
+        zk = abs(float(z[k]))
+        k_ratio = zk / max(float(scales[k]), zk)
         if newton_done(
             it,
             size,
