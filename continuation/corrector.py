@@ -52,6 +52,12 @@ class NewtonResult:
 _FD_STEP_TOL = 1e-10
 
 
+def _floor_step_tol(system: Any, step_tol: float) -> float:
+    """The update tolerance of AUTO's test: ``step_tol``, at least :data:`_FD_STEP_TOL`
+    with differenced derivatives."""
+    return step_tol if system.derivatives_exact else max(step_tol, _FD_STEP_TOL)
+
+
 def _full_step(bordered_jacobian: Any, z: np.ndarray, row: np.ndarray, rhs: np.ndarray):
     """The Newton matrix at ``z``, factored and solved for ``rhs`` (dense: one LAPACK gesv):
     ``(matrix, sparse LU or None, dense factors, pivots, solution, "")``, or the reason it
@@ -134,7 +140,7 @@ def newton(
     rhs = np.empty(m + 1)
     inv = inverse_magnitudes(system.scales, z)
     sq_step_tol = math.sqrt(step_tol)
-    rel_step_tol = step_tol if system.derivatives_exact else max(step_tol, _FD_STEP_TOL)
+    rel_step_tol = _floor_step_tol(system, step_tol)
     # the first update's weighted length is compared squared (no root on the common path)
     max_first_sq = math.inf if max_first is None else max_first * max_first
     weights = None if system.unit_weights else system.weights
@@ -221,6 +227,7 @@ def damped_newton(
         return NewtonResult(z, False, 0, float("inf"), None, "nonfinite")
     m = g.size
     rhs = np.empty(m + 1)
+    floor_tol = _floor_step_tol(system, step_tol)
 
     def merit(zz, gg):
         return float(gg @ gg + (row @ zz - c) ** 2)
@@ -237,7 +244,6 @@ def damped_newton(
         rhs[m] = c - row @ z
         dz = lu.solve(rhs)
         inv = inverse_magnitudes(system.scales, z)
-        floor_tol = step_tol if system.derivatives_exact else max(step_tol, _FD_STEP_TOL)
         if scaled_max(dz, inv) <= floor_tol and _norm(g) <= max(
             tol, system.residual_floor(a[:-1], z)
         ):

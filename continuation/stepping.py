@@ -238,8 +238,10 @@ def confirm_step(rules: StepRules, state: TracerState, trial: Trial) -> Trial | 
     delta = wnorm(z1 - (z + ds * direction), W)
     br = Bracket(system, z, t, z1, trial.t, W, o)
 
-    def on_arc(zh: np.ndarray) -> bool:
-        return wnorm(zh - br.guess(br.sigma(zh) / br.h), W) <= 0.1 * delta + 1e-9 * ds
+    def off_arc(zh: np.ndarray) -> float:
+        return wnorm(zh - br.guess(br.sigma(zh) / br.h), W)
+
+    limit = 0.1 * delta + 1e-9 * ds
 
     # First the half-step point alone, corrected only as far as the comparison needs: to
     # 1e-3·δ (an update that small, relative to the components' magnitudes, moves the point
@@ -252,20 +254,20 @@ def confirm_step(rules: StepRules, state: TracerState, trial: Trial) -> Trial | 
             system, z_half, row, row.dot(z_half), tol=math.inf, step_tol=loose * loose,
             max_iter=o.max_newton_iterations, contract=True, max_first=ds,
         )  # fmt: skip
-        if res.converged and on_arc(res.z):
+        if res.converged and off_arc(res.z) <= limit:
             return None
     # else the half step as a step of its own: the step to take instead if it is off the arc
     half = _try(rules, system, z, t, 0.5 * ds, direction, row, secant)
     if not isinstance(half, Trial):  # the half step fails where the whole one passed
         shorter = advance(rules, state._replace(ds=max(0.25 * ds, o.ds_min)))
         return shorter._replace(rejected=trial.rejected + 1) if isinstance(shorter, Trial) else None
-    zh = half.res.z
-    if on_arc(zh):
+    off = off_arc(half.res.z)
+    if off <= limit:
         return None
     logger.info(
         "a step of %g whose half step is %.3g off its arc (predictor distance %.3g): a jump "
         "to another branch, retaken as the half step",
-        ds, wnorm(zh - br.guess(br.sigma(zh) / br.h), W), delta,
+        ds, off, delta,
     )  # fmt: skip
     return half._replace(rejected=trial.rejected + 1)
 
