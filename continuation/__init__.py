@@ -17,7 +17,8 @@ into an underdetermined ``G(z) = 0`` and owns the test functions
 (:class:`~cusp.continuation.testfunctions.TestFunction`) whose sign changes mark its special
 points; the :class:`Tracer` steps along the curve through immutable
 :class:`~cusp.continuation.state.TracerState` records; :func:`trace` and :func:`fold_curve`
-are the entry points, returning a :class:`Branch`.
+and :func:`locus` (loci of located points, or of a chain of
+corners across the legs of a loading program) are the entry points, returning a :class:`Branch`.
 """
 
 from .branch import Branch, SpecialPoint
@@ -34,6 +35,7 @@ from .errors import (
 )
 from .events import Event
 from .foldcurve import fold_curve
+from .locus import ChainPoint, PointChain, locus, point_locus
 from .options import ContinuationOptions
 from .problem import ContinuationProblem, Problem
 from .resample import points_at
@@ -44,6 +46,7 @@ from .tracer import Tracer, trace
 
 __all__ = [
     "Branch",
+    "ChainPoint",
     "BranchSystem",
     "ContinuationError",
     "ContinuationOptions",
@@ -55,6 +58,7 @@ __all__ = [
     "JacobianCheck",
     "NonFiniteResidualError",
     "OptionsError",
+    "PointChain",
     "Problem",
     "ProblemDefinitionError",
     "SingularMatrixError",
@@ -65,6 +69,8 @@ __all__ = [
     "TracerState",
     "check_jacobian",
     "fold_curve",
+    "locus",
+    "point_locus",
     "points_at",
     "from_sympy",
     "trace",

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Any
 
 import numpy as np
@@ -122,3 +122,60 @@ class Branch:
         from .plotting import plot_branch
 
         return plot_branch(self, x, y, ax=ax, special=special, **kwargs)
+
+
+def join_halves(
+    backward: Branch, forward: Branch, *, start_kind: str | None = None, start_label: str = ""
+) -> Branch:
+    """One curve from the two halves traced from the same start (``backward`` reversed, then
+    ``forward``): the start, mid-curve now, is recorded as a special point of ``start_kind``
+    (a fold curve's starting fold) or, if None, not at all. ``info``: ``direction`` "both",
+    ``start_index`` and each half's status."""
+    nb = len(backward)
+    columns = {
+        key: np.concatenate([backward[key][::-1], forward[key][1:]]) for key in forward.keys()
+    }
+    s = np.concatenate([-backward.s[::-1], forward.s[1:]])
+    tangents = np.vstack([-backward.tangents[::-1], forward.tangents[1:]])
+    specials = []
+    for sp_ in backward.special_points:
+        if not (sp_.kind == "endpoint" and sp_.index == 0):
+            specials.append(_reindex(sp_, nb - 1 - sp_.index, -sp_.s, -sp_.tangent))
+    for sp_ in forward.special_points:
+        moved = _reindex(sp_, nb - 1 + sp_.index, sp_.s, sp_.tangent)
+        if sp_.kind == "endpoint" and sp_.index == 0:  # the start, mid-curve now
+            if start_kind is None:
+                continue
+            moved = replace(
+                moved, kind=start_kind, status="converged", label=start_label, s=0.0,
+                details={"start": True}, scales=None,
+            )  # fmt: skip
+        specials.append(moved)
+    specials.sort(key=lambda q: q.index)
+    stats = {
+        k: np.concatenate([backward.stats[k][::-1], forward.stats[k][1:]]) for k in forward.stats
+    }
+    ok = backward.success and forward.success
+    status = forward.status if ok or not forward.success else backward.status
+    message = f"direction -1: {backward.message}; direction +1: {forward.message}"
+    info = {
+        "direction": "both",
+        "start_index": nb - 1,
+        "status_minus": backward.status,
+        "status_plus": forward.status,
+    }
+    return Branch(
+        columns,
+        variables=forward.variables,
+        s=s,
+        tangents=tangents,
+        special_points=specials,
+        status=status,
+        message=message,
+        stats=stats,
+        info=info,
+    )
+
+
+def _reindex(sp_: SpecialPoint, index: int, s: float, tangent) -> SpecialPoint:
+    return replace(sp_, index=index, s=s, tangent=tangent, scales=None)

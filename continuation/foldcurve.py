@@ -34,7 +34,7 @@ from typing import Any
 import numpy as np
 import scipy.sparse as sp
 
-from .branch import Branch, SpecialPoint
+from .branch import Branch, SpecialPoint, join_halves
 from .errors import ProblemDefinitionError, SingularMatrixError
 from .linalg import (
     bordered,
@@ -476,7 +476,7 @@ def fold_curve(
         br = halves[0][1]
         br.info.update(direction=halves[0][0], start_index=0)
         return br
-    return _join(halves[1][1], halves[0][1])
+    return join_halves(halves[1][1], halves[0][1], start_kind="fold", start_label="start (fold)")
 
 
 def _fold_setup(
@@ -514,74 +514,6 @@ def _fold_setup(
             f"was it traced with free={wrt!r}? Pass free=({wrt!r}, second parameter)"
         )
     return p1, p2, names_y.index(wrt), params
-
-
-def _join(backward: Branch, forward: Branch) -> Branch:
-    """One branch from the reversed backward half and the forward half (sharing the start)."""
-    nb = len(backward)
-    columns = {}
-    for key in forward.keys():
-        columns[key] = np.concatenate([backward[key][::-1], forward[key][1:]])
-    s = np.concatenate([-backward.s[::-1], forward.s[1:]])
-    tangents = np.vstack([-backward.tangents[::-1], forward.tangents[1:]])
-    specials = []
-    for sp_ in backward.special_points:
-        if sp_.kind == "endpoint" and sp_.index == 0:
-            continue
-        specials.append(_reindex(sp_, nb - 1 - sp_.index, -sp_.s, -sp_.tangent))
-    for sp_ in forward.special_points:
-        moved = _reindex(sp_, nb - 1 + sp_.index, sp_.s, sp_.tangent)
-        if sp_.kind == "endpoint" and sp_.index == 0:  # the starting fold, mid-curve now
-            moved = SpecialPoint(
-                kind="fold",
-                index=moved.index,
-                values=moved.values,
-                tangent=moved.tangent,
-                status="converged",
-                label="start (fold)",
-                s=0.0,
-                details={"start": True},
-            )
-        specials.append(moved)
-    specials.sort(key=lambda q: q.index)
-    stats = {
-        k: np.concatenate([backward.stats[k][::-1], forward.stats[k][1:]]) for k in forward.stats
-    }
-    ok = backward.success and forward.success
-    status = forward.status if ok or not forward.success else backward.status
-    message = f"direction -1: {backward.message}; direction +1: {forward.message}"
-    info = {
-        "direction": "both",
-        "start_index": nb - 1,
-        "status_minus": backward.status,
-        "status_plus": forward.status,
-    }
-    return Branch(
-        columns,
-        variables=forward.variables,
-        s=s,
-        tangents=tangents,
-        special_points=specials,
-        status=status,
-        message=message,
-        stats=stats,
-        info=info,
-    )
-
-
-def _reindex(sp_: SpecialPoint, index: int, s: float, tangent) -> SpecialPoint:
-    return SpecialPoint(
-        kind=sp_.kind,
-        index=index,
-        values=sp_.values,
-        tangent=tangent,
-        status=sp_.status,
-        label=sp_.label,
-        with_respect_to=sp_.with_respect_to,
-        s=s,
-        interval=sp_.interval,
-        details=sp_.details,
-    )
 
 
 __all__ = ["Codim2Test", "CuspTest", "FoldSystem", "fold_curve"]
