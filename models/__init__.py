@@ -24,6 +24,8 @@ _EXPORTS = {
     "FlatPlane": "flat",
     "ContactLoss": "contact_loss",
     "ContactLossResult": "contact_loss",
+    "Loci": "manifold",
+    "point_loci": "manifold",
     "ContactLevels": "protocol",
     "PathBody": "protocol",
     "Parameter": "registry",
