@@ -227,12 +227,18 @@ class BranchSystem(CurveSystem):
 
     # residual and bordered_jacobian are the corrector's inner loop: the parameter dict is
     # built inline and the dense case checked first (for the tiny systems of most problems
-    # the wrappers cost more than the user's functions)
+    # the wrappers cost more than the user's functions). An ArithmeticError raised by the
+    # user's functions (ZeroDivisionError, OverflowError: math on floats at a trial point
+    # outside where they are defined) reads as a non-finite value, which the corrector
+    # rejects like any other (the step is shortened; at the start it is a typed error)
 
     def residual(self, z):
         p = dict(self.params)
         p[self.free] = z[-1]
-        r = self._residual(z[:-1], p)
+        try:
+            r = self._residual(z[:-1], p)
+        except ArithmeticError:  # a division by zero or overflow at a trial point: as NaN
+            return np.full(self.n, np.nan)
         if type(r) is not np.ndarray or r.dtype != float:
             r = as_vector(r)
         if r.shape != self._shapes[1]:
@@ -246,8 +252,11 @@ class BranchSystem(CurveSystem):
         u = z[:-1]
         p = dict(self.params)
         p[self.free] = z[-1]
-        j = self._jacobian(u, p)
-        fp = self._param_jacobian(u, p, self.free)
+        try:
+            j = self._jacobian(u, p)
+            fp = self._param_jacobian(u, p, self.free)
+        except ArithmeticError:  # as for the residual: a matrix the corrector finds non-finite
+            j, fp = np.full(self._shapes[0], np.nan), np.full(self.n, np.nan)
         if type(fp) is not np.ndarray or fp.dtype != float:
             fp = as_vector(fp)
         if type(j) is not np.ndarray or j.dtype != float:

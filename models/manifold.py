@@ -36,6 +36,8 @@ __all__ = ["LOCUS_PARAMETERS", "Loci", "point_loci"]
 LOCUS_PARAMETERS = {"mu": ("mu", ""), "reduced_normal_load": ("n_B", "N")}
 #: where the locus of C stops: g_C = C_G_MAX·g_A (C's slip diverges at the C boundary)
 C_G_MAX = 100.0
+#: the bounds of a locus that are events of the path
+_BOUND_EVENTS = {"B.t": "F'_T = 0", "D.q": "D disappears", "A.q": "A slides"}
 
 
 @dataclass(frozen=True)
@@ -114,6 +116,10 @@ def point_loci(
     res = model.run(options)
     o = options or ContinuationOptions(ds=0.02, ds_max=0.1)
     bounds = {free: (lo / scale, hi / scale), "B.t": (0.0, math.inf)}
+    if math.isfinite(model.levels.slip_limit(model.levels.p0)):
+        # a body that slides as a whole (a sphere): A's stick zone must not vanish, and D
+        # ceases to exist where its stick zone does (the locus ends there)
+        bounds.update({"A.q": (0.0, math.inf), "D.q": (0.0, math.inf)})
     chain, start, names = _chain(model, res, with_c=False)
     mu0, ia = model.mu0, chain.unknowns.index("A.t")
     # F_A = μF'_N: t_A·μ0 = μ·n_B (t = F_T/(μ0 F_N0), n = F_N/F_N0)
@@ -125,7 +131,8 @@ def point_loci(
         # C's slip grows without bound towards the C boundary: its locus stops at C_G_MAX·g_A
         chain_c, start_c, names_c = _chain(model, res, with_c=True)
         bounds_c = {**bounds, "C.g": (-math.inf, C_G_MAX)}
-        br_c = locus(chain_c, start_c, free=free, bounds=bounds_c, options=o)
+        # (or earlier, where the body's levels stop resolving C: kept as far as it went)
+        br_c = locus(chain_c, start_c, free=free, bounds=bounds_c, options=o, throw=False)
         c_loci = _physical_loci(parameter, free, scale, model.scales, br_c, names_c)
     return Loci(parameter, loci[0], loci[1], br, names, c_loci)
 
@@ -147,6 +154,6 @@ def _physical_loci(parameter, free, scale, s, br: Branch, names):
     for sp in br.special_points:
         if sp.kind == "event":
             events.append({"event": sp.label, **cols(sp.values, float)})
-        elif sp.kind == "endpoint" and sp.with_respect_to == "B.t":  # the bound B.t = 0
-            events.append({"event": "F'_T = 0", **cols(sp.values, float)})
+        elif sp.kind == "endpoint" and sp.with_respect_to in _BOUND_EVENTS:
+            events.append({"event": _BOUND_EVENTS[sp.with_respect_to], **cols(sp.values, float)})
     return columns, events
