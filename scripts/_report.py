@@ -28,7 +28,7 @@ def write_report(path, text: str) -> Path:
 
 def save_figure(fig, path, **savefig_kw) -> Path:
     """Save a matplotlib figure atomically, in the format of ``path``'s suffix, as the same
-    bytes on every run (:func:`cusp.cusp.app.figures.figure_bytes`)."""
+    bytes on every run (:func:`cusp.app.figures.figure_bytes`)."""
     from cusp.app.figures import figure_bytes
 
     path = Path(path)
