@@ -34,7 +34,7 @@ from typing import Any
 import numpy as np
 import scipy.sparse as sp
 
-from .branch import Branch, SpecialPoint, join_halves
+from .branch import Branch, SpecialPoint
 from .errors import ProblemDefinitionError, SingularMatrixError
 from .linalg import (
     bordered,
@@ -54,9 +54,10 @@ from .locate import (
 )
 from .options import ContinuationOptions
 from .problem import as_problem, has_exact_jacobian
+from .state import TracerState
 from .system import CurveSystem, state_weights
 from .testfunctions import TestFunction
-from .tracer import Tracer
+from .tracer import Tracer, trace_directions
 
 _EPS = np.finfo(float).eps
 
@@ -107,7 +108,10 @@ class FoldSystem(CurveSystem):
         return p
 
     def f(self, z):
-        return self.problem.residual(z[: self.n], self._p(z))
+        try:
+            return self.problem.residual(z[: self.n], self._p(z))
+        except ArithmeticError:  # at a trial point: as non-finite, as for a branch (system.py)
+            return np.full(self.n, np.nan)
 
     def df(self, z):
         """``∂F/∂(u, p1, p2)``: n × (n + 2), dense or CSR."""
@@ -455,8 +459,8 @@ def fold_curve(
         dtype=float,
     )
     system = FoldSystem.through(problem, p1, p2, k, params, options.state_weight, z0)
-    halves = []
-    for d in (1, -1) if direction == "both" else (direction,):
+
+    def begin(d: int) -> tuple[Tracer, TracerState]:
         tracer = Tracer.for_system(
             system,
             options=options,
@@ -468,15 +472,9 @@ def fold_curve(
             direction=d,
             throw=throw,
         )
-        state = tracer.init_at(z0, start_label="start (fold)", sizes=fold_point.scales)
-        while not tracer.done(state):
-            state = tracer.step(state)
-        halves.append((d, tracer.result(state)))
-    if len(halves) == 1:
-        br = halves[0][1]
-        br.info.update(direction=halves[0][0], start_index=0)
-        return br
-    return join_halves(halves[1][1], halves[0][1], start_kind="fold", start_label="start (fold)")
+        return tracer, tracer.init_at(z0, start_label="start (fold)", sizes=fold_point.scales)
+
+    return trace_directions(begin, direction, start_kind="fold", start_label="start (fold)")
 
 
 def _fold_setup(

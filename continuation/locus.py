@@ -30,12 +30,13 @@ from typing import Any
 
 import numpy as np
 
-from .branch import Branch, SpecialPoint, join_halves
+from .branch import Branch, SpecialPoint
 from .errors import ProblemDefinitionError
 from .foldcurve import fold_curve
 from .options import ContinuationOptions
 from .problem import as_problem, has_exact_jacobian
-from .tracer import Tracer
+from .state import TracerState
+from .tracer import Tracer, trace_directions
 
 #: what a condition holds a variable at: a number, a parameter of the chain (by name), or
 #: the value of a variable at another point of the chain (``(point, variable)``)
@@ -82,6 +83,24 @@ class PointChain:
         self.has_jacobian = all(has_exact_jacobian(leg) for leg in self._legs)
         self.name = "chain " + "-".join(names)
         self._check_references()
+        # per point, what its evaluation needs: the column of its first unknown, its number of
+        # unknowns, its linked parameters' columns, its condition's column and target (a
+        # number, a parameter's name or, if linked, another point's column), and whether the
+        # target is linked
+        self._layout = [
+            (
+                self._col[f"{pt.name}.{vs[0]}"],
+                len(vs) - 1,
+                {key: self._column(ref) for key, ref in pt.links.items()},
+                self._column((pt.name, pt.at[0])),
+                pt.at[1] if not isinstance(pt.at[1], tuple) else self._column(pt.at[1]),
+                isinstance(pt.at[1], tuple),
+            )
+            for pt, vs in zip(self.points, self._vars)
+        ]
+
+    def _column(self, ref: tuple[str, str]) -> int:
+        return self._col[f"{ref[0]}.{ref[1]}"]
 
     def _zip(self):
         return zip(self.points, self._legs)
@@ -129,29 +148,29 @@ class PointChain:
 
     # ---------------------------------------------------------------- evaluation
     def _leg_args(self, i: int, z: np.ndarray, p: Mapping[str, float]):
-        """Point ``i``'s unknowns, its parameter values and the column of its first unknown."""
+        """Point ``i``'s unknowns and its parameter values."""
+        c0, n, links = self._layout[i][:3]
         pt, leg = self.points[i], self._legs[i]
-        c0 = self._col[f"{pt.name}.{self._vars[i][0]}"]
-        n = len(leg.unknowns)
         q = {k: p[k] if k in p else v for k, v in leg.params.items()}
         q[pt.control] = float(z[c0 + n])
-        for key, (other, var) in pt.links.items():
-            q[key] = float(z[self._col[f"{other}.{var}"]])
-        return z[c0 : c0 + n], q, c0
+        for key, col in links.items():
+            q[key] = float(z[col])
+        return z[c0 : c0 + n], q
 
-    def _target(self, target: Target, z, p) -> float:
-        if isinstance(target, tuple):
-            return float(z[self._col[f"{target[0]}.{target[1]}"]])
+    def _target(self, i: int, z, p) -> float:
+        """The value point ``i``'s condition holds its variable at."""
+        target, linked = self._layout[i][4:]
+        if linked:
+            return float(z[target])
         return float(p[target]) if isinstance(target, str) else float(target)
 
     def residual(self, u, p) -> np.ndarray:
         z = np.asarray(u, dtype=float)
         out: list[Any] = []
-        for i, pt in enumerate(self.points):
-            ui, q, c0 = self._leg_args(i, z, p)
+        for i in range(len(self.points)):
+            ui, q = self._leg_args(i, z, p)
             out.append(np.asarray(self._legs[i].residual(ui, q), dtype=float))
-            var, target = pt.at
-            out.append([z[self._col[f"{pt.name}.{var}"]] - self._target(target, z, p)])
+            out.append([z[self._layout[i][3]] - self._target(i, z, p)])
         return np.concatenate(out)
 
     def jacobian(self, u, p) -> np.ndarray:
@@ -161,35 +180,34 @@ class PointChain:
         row = 0
         for i, pt in enumerate(self.points):
             leg = self._legs[i]
-            ui, q, c0 = self._leg_args(i, z, p)
-            n = ui.size
+            c0, n, links, col, target, linked = self._layout[i]
+            ui, q = self._leg_args(i, z, p)
             block = leg.jacobian(ui, q)
             jac[row : row + n, c0 : c0 + n] = (
                 block.toarray() if hasattr(block, "toarray") else block
             )
             jac[row : row + n, c0 + n] = leg.param_jacobian(ui, q, pt.control)
-            for key, (other, var) in pt.links.items():
-                jac[row : row + n, self._col[f"{other}.{var}"]] += leg.param_jacobian(ui, q, key)
-            var, target = pt.at
-            jac[row + n, self._col[f"{pt.name}.{var}"]] += 1.0
-            if isinstance(target, tuple):
-                jac[row + n, self._col[f"{target[0]}.{target[1]}"]] -= 1.0
+            for key, lc in links.items():
+                jac[row : row + n, lc] += leg.param_jacobian(ui, q, key)
+            jac[row + n, col] += 1.0
+            if linked:
+                jac[row + n, int(target)] -= 1.0
             row += n + 1
         return jac
 
     def param_jacobian(self, u, p, name: str) -> np.ndarray:
         z = np.asarray(u, dtype=float)
-        col = np.zeros(z.size)
+        out = np.zeros(z.size)
         row = 0
         for i, pt in enumerate(self.points):
-            ui, q, c0 = self._leg_args(i, z, p)
-            n = ui.size
+            n = self._layout[i][1]
             if name in self._legs[i].params and name != pt.control and name not in pt.links:
-                col[row : row + n] = self._legs[i].param_jacobian(ui, q, name)
+                ui, q = self._leg_args(i, z, p)
+                out[row : row + n] = self._legs[i].param_jacobian(ui, q, name)
             if pt.at[1] == name:
-                col[row + n] = -1.0
+                out[row + n] = -1.0
             row += n + 1
-        return col
+        return out
 
     def start(self, values: Mapping[str, Mapping[str, float]]) -> np.ndarray:
         """The chain's unknowns from each point's values (``{point: {variable: value}}``)."""
@@ -235,19 +253,12 @@ def locus(
     if direction not in ("both", 1, -1):
         raise ProblemDefinitionError(f"direction must be 'both', +1 or -1, got {direction!r}")
     u0 = chain.start(start)
-    halves: list[Branch] = []
-    for d in (1, -1) if direction == "both" else (int(direction),):
+
+    def begin(d: int) -> tuple[Tracer, TracerState]:
         tracer = Tracer(chain, free=free, direction=d, options=options, **kwargs)
-        state = tracer.init(u0)
-        while not tracer.done(state):
-            state = tracer.step(state)
-        halves.append(tracer.result(state))
-        first = halves[0].point(0)  # the corrected start, for the second half
-        u0 = np.array([first[name] for name in chain.unknowns])
-    if len(halves) == 1:
-        halves[0].info.update(direction=direction, start_index=0)
-        return halves[0]
-    return join_halves(halves[1], halves[0])
+        return tracer, tracer.init(u0)
+
+    return trace_directions(begin, direction)
 
 
 def point_locus(

@@ -30,12 +30,12 @@ from __future__ import annotations
 import logging
 import math
 import warnings
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from typing import Any
 
 import numpy as np
 
-from .branch import Branch, SpecialPoint
+from .branch import Branch, SpecialPoint, join_halves
 from .corrector import correct
 from .crossings import corner_folds, evaluate, locate_crossings, splits
 from .errors import (
@@ -533,4 +533,27 @@ def trace(problem: Any, u0: Any, *, free: str, **kwargs: Any) -> Branch:
     return tracer.result(state)
 
 
-__all__ = ["Tracer", "TracerState", "trace"]
+def trace_directions(
+    begin: Callable[[int], tuple[Tracer, TracerState]],
+    direction: str | int,
+    *,
+    start_kind: str | None = None,
+    start_label: str = "",
+) -> Branch:
+    """Trace a curve from one start in ``direction`` (+1 or −1) or ``"both"``: ``begin(d)``
+    gives the tracer and its initial state for direction ``d``. Both halves are joined at the
+    start (:func:`~.branch.join_halves`, which records it as ``start_kind``); one half gets
+    ``info`` ``direction`` and ``start_index`` 0."""
+    halves = []
+    for d in (1, -1) if direction == "both" else (int(direction),):
+        tracer, state = begin(d)
+        while not tracer.done(state):
+            state = tracer.step(state)
+        halves.append(tracer.result(state))
+    if len(halves) == 1:
+        halves[0].info.update(direction=direction, start_index=0)
+        return halves[0]
+    return join_halves(halves[1], halves[0], start_kind=start_kind, start_label=start_label)
+
+
+__all__ = ["Tracer", "TracerState", "trace", "trace_directions"]

@@ -32,8 +32,8 @@ from .errors import ModelParameterError
 
 __all__ = ["LOCUS_PARAMETERS", "Loci", "point_loci"]
 
-#: the parameters a locus can be traced in: name -> (chain parameter, its unit)
-LOCUS_PARAMETERS = {"mu": ("mu", ""), "reduced_normal_load": ("n_B", "N")}
+#: the parameters a locus can be traced in: name -> the chain's parameter (μ; F'_N/F_N0)
+LOCUS_PARAMETERS = {"mu": "mu", "reduced_normal_load": "n_B"}
 #: where the locus of C stops: g_C = C_G_MAX·g_A (C's slip diverges at the C boundary)
 C_G_MAX = 100.0
 #: the bounds of a locus that are events of the path
@@ -100,7 +100,7 @@ def point_loci(
         raise ModelParameterError(
             f"parameter must be one of {sorted(LOCUS_PARAMETERS)}, got {parameter!r}"
         )
-    free, _unit = LOCUS_PARAMETERS[parameter]
+    free = LOCUS_PARAMETERS[parameter]
     scale = 1.0 if free == "mu" else model.F_N0
     here = model.mu0 if free == "mu" else model.F_Np
     lo, hi = (
