@@ -38,6 +38,13 @@ def _closed(key, mu, F_Np):
 
 
 CLOSED = verification.contact_loss_path()
+EVENTS = verification.manifold_events()
+
+
+def _event(key, mu, F_Np):
+    S = verification.SYMBOLS
+    syms = (S["sigma"], S["mu"], S["lambda"], S["F_N0"], S["g_A"], S["Fp_N"])
+    return float(verification.exact_value(EVENTS[key], syms, (SIGMA, mu, LAM, F_N0, G_A, F_Np)))
 
 
 def _check_rows(cols, mus, fnps, keys, rtol=1e-10):
@@ -84,8 +91,8 @@ def test_mu_locus_follows_the_closed_forms_and_locates_its_events():
     _check_energies(cols, mu, fnp)
     events = {e["event"]: e for e in loci.events}
     assert len(loci.events) == len(events) == 2  # each located once
-    mu_c = G_A / (LAM * math.log(F_N0 / (F_N0 - F_NP)))
-    mu_0 = G_A / (LAM * math.log(F_N0 / F_NP))
+    mu_c = _event("C boundary, mu", MU, F_NP)  # g_A/(λ ln(F_N0/ΔF_N))
+    mu_0 = _event("F'_T = 0, mu", MU, F_NP)  # g_A/(λ ln(F_N0/F'_N))
     assert events["C boundary"]["mu"] == pytest.approx(mu_c, rel=1e-10)
     assert events["F'_T = 0"]["mu"] == pytest.approx(mu_0, rel=1e-10)
     assert mu[-1] == pytest.approx(mu_0, rel=1e-10)  # the locus ends there
@@ -125,10 +132,10 @@ def test_reduced_load_locus_follows_the_closed_forms():
     assert fnp[-1] == pytest.approx(990.0, rel=1e-14)
     _check_rows(cols, mus, fnp, {"g_B": "g_B", "F_B": "F_B", "F_D": "F_D"})
     _check_energies(cols, mus, fnp)
-    F_A = _closed("F_A", MU, F_NP)
     events = {e["event"]: e for e in loci.events}
-    assert events["F'_T = 0"]["reduced_normal_load"] == pytest.approx(F_N0 - F_A / MU, rel=1e-10)
-    assert events["C boundary"]["reduced_normal_load"] == pytest.approx(F_A / MU, rel=1e-10)
+    for name in ("F'_T = 0", "C boundary"):  # F_N0 − F_A/μ and F_A/μ
+        want = _event(f"{name}, F'_N", MU, F_NP)
+        assert events[name]["reduced_normal_load"] == pytest.approx(want, rel=1e-10)
 
 
 def test_extremes_tiny_mu_and_tiny_reductions():
