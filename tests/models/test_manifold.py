@@ -117,7 +117,7 @@ def test_c_is_reported_where_it_exists_and_is_resolved():
     assert has_c.sum() >= 10
     assert np.all(margin[has_c] >= C_MARGIN * (1.0 - 1e-6))
     assert np.all(has_c[margin > 1e-5]) and not np.any(has_c[margin < 0])
-    assert any("C is not reported beyond" in m for m in loci.messages)
+    assert any("C is not reported from" in m for m in loci.messages)
     c_rows = {k: v[has_c] for k, v in cols.items()}
     _check_rows(c_rows, c_rows["mu"], np.full(has_c.sum(), F_NP), {"g_C": "g_C", "F_D": "F_D"})
 
