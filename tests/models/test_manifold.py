@@ -231,3 +231,72 @@ def test_sphere_mu_locus_agrees_with_single_runs_and_mpmath():
         return oracles.sphere_path(mu=mu, **SPHERE, **kw)
 
     _against_single_runs(lambda mu: Sphere(mu=mu, **SPHERE), loci, rows, 1000.0, 2.0, oracle)
+
+
+def _against_single_loads(make_model, loci, rows):
+    """Rows of an F'_N-locus against single runs at their load (1e-9)."""
+    cols = loci.columns
+    for i in rows:
+        F_Np = float(cols["reduced_normal_load"][i])
+        res = make_model(F_Np).run()
+        for x in "ABCD":
+            if res.points[x] is None or not np.isfinite(cols[f"g_{x}"][i]):
+                continue
+            for col, key in ((f"g_{x}", "g_T"), (f"F_{x}", "F_T"), (f"A_SL_{x}", "A_SL")):
+                assert cols[col][i] == pytest.approx(res.points[x][key], rel=1e-9), (col, F_Np)
+        for kind, col in ENERGIES.items():
+            if np.isfinite(cols[col][i]):
+                assert cols[col][i] == pytest.approx(res.energy[kind], rel=1e-9), (col, F_Np)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("body", ["gaussian", "sphere"])
+def test_reduced_load_loci_agree_with_single_runs(body):
+    if body == "gaussian":
+        surface, g_A = GaussianRoughSurface(mu=0.1, **GAUSS), 0.1
+        want = {"C boundary", "F'_T = 0"}
+    else:
+        # (here F_A/μ lies below the floor F_N0 − F_A/μ: C exists down to F'_T = 0)
+        surface, g_A = Sphere(mu=0.1, **SPHERE), 2.0
+        want = {"F'_T = 0"}
+
+    def make(F_Np):
+        return ContactLoss(surface, 1000.0, g_A, F_Np)
+
+    loci = point_loci(make(850.0), "reduced_normal_load", (100.0, 999.0))
+    events = {e["event"]: e for e in loci.events}
+    assert want <= set(events)
+    assert set(events) == want
+    if "C boundary" in events:  # F_A = μF'_N
+        ev = events["C boundary"]
+        assert ev["F_A"] == pytest.approx(0.1 * ev["reduced_normal_load"], rel=1e-10)
+    assert abs(events["F'_T = 0"]["F_B"]) <= 1e-10 * events["F'_T = 0"]["F_A"]
+    n = len(loci.columns["mu"])
+    has_c = np.flatnonzero(np.isfinite(loci.columns["g_C"]))
+    _against_single_loads(make, loci, [2, int(has_c[0]), int(has_c[len(has_c) // 2]), n - 2])
+
+
+@pytest.mark.slow
+def test_general_density_loci_reproduce_the_exponential_ones():
+    # the quadrature-based adapter on an exponential density (support z > 0), same load
+    # scale: its loci are those of the closed-form surface (1e-9)
+    from cusp.models import GeneralRoughSurface, HeightDensity
+
+    scale = dict(E=0.2, radius=10.0, density=0.01, nominal_area=1e6)
+    heights = HeightDensity(
+        lambda z: np.where(np.asarray(z) >= 0, np.exp(-np.asarray(z) / SIGMA) / SIGMA, 0.0),
+        (0.0, math.inf),
+        scale=SIGMA,
+    )
+    general = GeneralRoughSurface(heights, NU, MU, sigma=SIGMA, **scale)
+    exact = ExponentialRoughSurface(SIGMA, NU, MU, **scale)
+    mus = [0.09, 0.11]  # (the general adapter integrates the density at every level: short)
+    cols = [
+        point_loci(ContactLoss(s, F_N0, G_A, F_NP), "mu", (0.09, 0.11), at=mus).columns
+        for s in (general, exact)
+    ]
+    for mu in mus:
+        i, j = (int(np.argmin(np.abs(c["mu"] - mu))) for c in cols)
+        for key in LOCI_UNITS:
+            a, b = cols[0][key][i], cols[1][key][j]
+            assert (math.isnan(a) and math.isnan(b)) or a == pytest.approx(b, rel=1e-9), key
