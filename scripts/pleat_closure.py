@@ -436,7 +436,7 @@ def figure(results: dict, path: Path) -> None:
     dd = np.array([1e-12, 1e-1])
     for p, ls in ((1.0, ":"), (1.5, "-."), (2.0, ":")):
         ax.loglog(dd, 0.3 * dd**p, ls, color="0.5", lw=0.8)
-        ax.annotate(f"∝ d^{p:g}", (dd[0], 0.3 * dd[0] ** p), fontsize=8, color="0.4")
+        ax.annotate(rf"$\propto d^{{{p:g}}}$", (dd[0], 0.3 * dd[0] ** p), fontsize=9, color="0.4")
     ax.axvspan(*FIT_RANGE, color="0.93", zorder=0)
     ax.set(
         xlabel="d = ΔF_N / F_N0",
@@ -446,7 +446,7 @@ def figure(results: dict, path: Path) -> None:
     mm = np.array([1e-4, 1e-1])
     for p in (1.0, 2.0):
         bx.loglog(mm, 3.0 * mm**p, ":", color="0.5", lw=0.8)
-        bx.annotate(f"∝ μ^{p:g}", (mm[0], 3.0 * mm[0] ** p), fontsize=8, color="0.4")
+        bx.annotate(rf"$\propto \mu^{{{p:g}}}$", (mm[0], 3.0 * mm[0] ** p), fontsize=9, color="0.4")
     bx.set(
         xlabel="μ",
         ylabel="width, energy (scaled by the μ0 = 0.1 scales)",
@@ -497,7 +497,8 @@ def report(results: dict, series: dict, seconds: float) -> str:
         *closure_table(results),
         "## μ → 0 at fixed F'_N",
         "",
-        "Fits over the rows with μ ≤ 0.01 (error ≤ the trust level):",
+        "Fits over the rows with μ ≤ 0.01 (error ≤ the trust level; none for the sphere,",
+        "which at g_A = 2 µm loses D, then A, well above μ = 0.01):",
         "",
         *fit_table(results, "in μ", "mu_sweep"),
     ]
