@@ -42,7 +42,7 @@ import numpy as np
 
 from cusp.app.run import bundled_scene
 from cusp.app.scene import load_scene
-from cusp.continuation import ContinuationError
+from cusp.continuation import ChainPoint, ContinuationError, PointChain
 from cusp.models import ContactLoss, ModelParameterError
 from cusp.models.manifold import point_loci
 from cusp.models.registry import build_body
@@ -220,20 +220,51 @@ def _mu_slides(case: dict) -> float | None:
 
 
 def closure_slopes(case: dict) -> dict[str, float]:
-    """Slopes of the loci at the closure, d/dd at d = 0 of g_A − g_B [µm], F_A − F_B and
-    F_A − F_D [N], and of g_A (0: A does not move), from the tangent of the locus in F'_N
-    traced through F'_N = F_N0 (n_B = F'_N/F_N0 = 1, where B = D = A)."""
+    """The loci of A, B and D at the closure (n_B = F'_N/F_N0 = 1, where B = D = A).
+
+    The locus in F'_N (:func:`point_loci`) is traced from F'_N = 0.999 F_N0 through
+    F'_N = F_N0; ``gap`` is the largest difference between B, D and A at its end (0 if the
+    locus closes there). Its slopes at d = 0 (d/dd of g_A − g_B [µm], F_A − F_B, F_A − F_D
+    [N], and of g_A) are those of the same chain of points (A: g_T = g_A on OA; B: F_N = F'_N
+    on AB with A's stick level; D: g_T = g_A on BC at B's load) by the implicit function
+    theorem at the closure point, −J⁻¹ ∂R/∂n_B with J the chain's Jacobian: exact, where the
+    tangent the tracer stores at a bound-hit end carries an O(h²) error of the last step."""
     F_N0 = case["F_N0"]
     body = build_body(case["model"], **case["params"])
     model = ContactLoss(body, F_N0, case["g_A"], 0.999 * F_N0)
     loci = point_loci(model, "reduced_normal_load", (0.99 * F_N0, F_N0))
-    br = loci.branch
-    i = int(np.argmax(br["n_B"]))
-    tan = dict(zip(br.variables, br.tangents[i]))
-    s = model.scales  # g = g_T/g_A, t = F_T/(μ0 F_N0); d = 1 − n_B
-    rate = {k: tan[k] / tan["n_B"] for k in ("A.g", "B.g", "B.t", "D.t")}
+    end = loci.branch.point(int(np.argmax(loci.branch["n_B"])))
+    at_a = {v: end[f"A.{v}"] for v in ("g", "t", "n", "A_SL", "p", "q")}
+    s = model.scales
+    chain = PointChain(
+        [
+            ChainPoint("A", model.problem("OA", start=1.0), "g", ("g", 1.0)),
+            ChainPoint(
+                "B",
+                model.problem("AB", start=1.0, constant=at_a["q"]),
+                "n",
+                ("n", "n_B"),
+                links={"q_A": ("A", "q")},
+            ),
+            ChainPoint(
+                "D",
+                model.problem("BC", start=1.0, constant=1.0),
+                "g",
+                ("g", 1.0),
+                links={"n_B": ("B", "n")},
+            ),
+        ],
+        {"mu": model.mu0, "n_B": 1.0},
+    )
+    u = chain.start({"A": at_a, "B": at_a, "D": at_a})
+    du = np.linalg.solve(
+        chain.jacobian(u, chain.params), -chain.param_jacobian(u, chain.params, "n_B")
+    )
+    rate = dict(zip(chain.unknowns, du))  # d/dn_B, and d = 1 − n_B
     return {
-        "n_B": float(br["n_B"][i]),
+        "n_B": end["n_B"],
+        "gap": max(abs(end[f"{x}.{v}"] - end[f"A.{v}"]) for x in "BD" for v in ("g", "t")),
+        "residual": float(np.max(np.abs(chain.residual(u, chain.params)))),
         "dg": rate["B.g"] * s["g"],
         "dF": rate["B.t"] * s["t"],
         "drop": rate["D.t"] * s["t"],
@@ -335,18 +366,19 @@ def closure_table(results: dict) -> list[str]:
     """Slopes at the closure (the locus tangent) against value/d at the smallest fitted d,
     and the triangle ratios of the energies."""
     lines = [
-        "| body | d(g_A)/dd | d(g_A − g_B)/dd at d = 0 [µm] (locus) | (g_A − g_B)/d [µm] "
-        "(runs) | d(F_A − F_B)/dd [N] (locus) | (F_A − F_B)/d [N] (runs) | "
-        "d(F_A − F_D)/dd [N] (locus) | (F_A − F_D)/d [N] (runs) | ABD/(½·Δg·ΔF_D) | "
+        "| body | locus end: max abs(B, D − A) | d(g_A)/dd | d(g_A − g_B)/dd at d = 0 [µm] | "
+        "(g_A − g_B)/d [µm] (runs) | d(F_A − F_B)/dd [N] | (F_A − F_B)/d [N] (runs) | "
+        "d(F_A − F_D)/dd [N] | (F_A − F_D)/d [N] (runs) | ABD/(½·Δg·ΔF_D) | "
         "ABC/(½·(Δg + Δg_C)·ΔF_D) |",
-        "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|",
+        "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|",
     ]
     for label, res in results.items():
         sl, sw = res["slopes"], res["sweep"]
         tri = triangles(sw)
         lines.append(
-            f"| {label} | {sl['A.g']:.1e} | {sl['dg']:.10g} | {smallest_ratio(sw, 'dg', 1):.10g}"
-            f" | {sl['dF']:.10g} | {smallest_ratio(sw, 'dF', 1):.10g} | {sl['drop']:.10g} | "
+            f"| {label} | {sl['gap']:.1e} | {sl['A.g']:.1e} | {sl['dg']:.10g} | "
+            f"{smallest_ratio(sw, 'dg', 1):.10g} | {sl['dF']:.10g} | "
+            f"{smallest_ratio(sw, 'dF', 1):.10g} | {sl['drop']:.10g} | "
             f"{smallest_ratio(sw, 'drop', 1):.10g} | {tri[0]:.8f} | {tri[1]:.8f} |"
         )
     return lines + [""]

@@ -130,11 +130,13 @@ def test_energies_are_the_areas_of_straight_triangles(runs):
 
 
 def test_locus_of_b_crosses_the_point_a_at_a_finite_angle(script, case):
-    # traced through F'_N = F_N0, where B = D = A; the tangents there are the first
-    # coefficients of SERIES: d(g_A − g_B)/dd = λμ, d(F_A − F_B)/dd = μF_N0,
-    # d(F_A − F_D)/dd = μF_N0(1 − e^{−x_A}); A does not move with F'_N
+    # the locus in F'_N, traced through F'_N = F_N0, ends with B = D = A; the slopes there
+    # (implicit function theorem on the chain of A, B, D) are the first coefficients of
+    # SERIES: d(g_A − g_B)/dd = λμ, d(F_A − F_B)/dd = μF_N0, d(F_A − F_D)/dd =
+    # μF_N0(1 − e^{−x_A}), all non-zero; A does not move with F'_N
     slopes = script.closure_slopes(case)
     assert slopes["n_B"] == 1.0
+    assert slopes["gap"] <= 1e-13 and slopes["residual"] <= 1e-14
     assert slopes["A.g"] == 0.0
     for key in ("dg", "dF", "drop"):
-        assert slopes[key] == pytest.approx(SERIES[key][1], rel=1e-9), key
+        assert slopes[key] == pytest.approx(SERIES[key][1], rel=1e-14), key
