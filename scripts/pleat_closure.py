@@ -233,7 +233,8 @@ def closure_slopes(case: dict) -> dict[str, float]:
     body = build_body(case["model"], **case["params"])
     model = ContactLoss(body, F_N0, case["g_A"], 0.999 * F_N0)
     loci = point_loci(model, "reduced_normal_load", (0.99 * F_N0, F_N0))
-    end = loci.branch.point(int(np.argmax(loci.branch["n_B"])))
+    main = loci.branches["A-B-D"]
+    end = main.point(int(np.argmax(main["n_B"])))
     at_a = {v: end[f"A.{v}"] for v in ("g", "t", "n", "A_SL", "p", "q")}
     s = model.scales
     chain = PointChain(
