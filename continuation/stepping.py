@@ -510,10 +510,11 @@ def aim_at_bound(
     determinant."""
     o = rules.options
     W = state.system.weights
+    tests = state.tests
+    # within reach: the component moves by at most ds/√w_k along the unit tangent
+    reach = _AIM_REACH * ds
     for i, tt in rules.bound_tests:
-        old = state.tests[i]
-        # within reach: the component moves by at most ds/√w_k along the unit tangent
-        reach = _AIM_REACH * ds
+        old = tests[i]
         if old is None or old == 0.0 or abs(old) * math.sqrt(W[tt.k]) > reach:
             continue
         k = tt.k

@@ -352,7 +352,9 @@ class Tracer:
             # 2. accept: the system valid beyond the new point (the step size is set in 5.)
             # 3. evaluate the test functions; those whose change counts are crossings
             system, values, crossings = evaluate(self.tests, self._has_bp, state, trial)
-            if trial.corner or trial.aimed is not None or not any(c[0].confirm for c in crossings):
+            if not crossings or trial.corner or trial.aimed is not None:
+                break
+            if not any(c[0].confirm for c in crossings):
                 break
             # a test of the curve's geometry changed sign: confirm the step first
             shorter = confirm_step(self._rules, state, trial)
