@@ -74,11 +74,12 @@ def _singular_reason(a) -> str:
 
 
 def newton(
-    system, z0: np.ndarray, row: np.ndarray, c: float, *, tol: float, step_tol: float,
+    system, z0: np.ndarray, row: np.ndarray, c: float | None, *, tol: float, step_tol: float,
     max_iter: int, g0: np.ndarray | None = None, strict: bool = False, contract: bool = False,
     max_first: float | None = None,
 ) -> NewtonResult:  # fmt: skip
-    """Solve ``G(z) = 0``, ``row·z = c`` by Newton's method from ``z0``.
+    """Solve ``G(z) = 0``, ``row·z = c`` by Newton's method from ``z0`` (``c`` None: the
+    hyperplane through ``z0``, ``c = row·z0``).
 
     Converged when the max-norm of ``G`` is ≤ ``tol`` and the last update is
     ≤ ``sqrt(step_tol)·(1 + |z|)``: under Newton's quadratic convergence the error left is
@@ -135,7 +136,7 @@ def newton(
     f: Any = None
     piv: Any = None
     reason, converged, chord, k, theta = "max_iterations", False, False, 0, 0.0
-    rhs[m] = row.dot(z) - c
+    rhs[m] = 0.0 if c is None else row.dot(z) - c  # (None: z0 lies on the hyperplane)
     for k in range(1, max_iter + 1):
         rhs[:m] = g
         if k == 2:

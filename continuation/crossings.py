@@ -71,8 +71,9 @@ def splits(
     replaced: set[TestFunction] = set()
     out: list[Crossing] = []
     data = None
+    tests = state.tests
     for i, tt in split_tests:
-        old, new = state.tests[i], values[i]
+        old, new = tests[i], values[i]
         if old is None or old == 0.0 or new == 0.0:
             continue
         if data is None:

@@ -140,7 +140,10 @@ def advance(rules: StepRules, state: TracerState) -> Trial | Failure:
     last = state.last
     z, t, prev = last.z, last.t, last.prev
     z_prev = None if prev is None else prev.z
-    secant, direction, row = _predictor(o, system, z, t, z_prev)
+    if o.predictor == "tangent":  # (_predictor, inline on the common path)
+        secant, direction, row = None, t, t if system.unit_weights else system.weights * t
+    else:
+        secant, direction, row = _predictor(o, system, z, t, z_prev)
     if state.stalled >= _STALL_STEPS:
         # creeping at ds near ds_min (say, Newton with a Jacobian differenced across a
         # kink): try to pass the corner directly
@@ -288,13 +291,13 @@ def _try(
     W = system.weights
     unit_w = system.unit_weights
     z_pred = z + ds * direction
-    # above ds_min a wandering Newton gives up early (the step is halved anyway)
-    c = row.dot(z_pred)
+    # above ds_min a wandering Newton gives up early (the step is halved anyway); the
+    # hyperplane is the one through the predictor
     res = newton(
         system,
         z_pred,
         row,
-        c,
+        None,
         tol=o.tol,
         step_tol=o.step_tol,
         max_iter=o.max_newton_iterations,
@@ -307,7 +310,7 @@ def _try(
             system,
             z_pred,
             row,
-            c,
+            row.dot(z_pred),
             tol=o.tol,
             step_tol=o.step_tol,
             max_iter=5 * o.max_newton_iterations,
