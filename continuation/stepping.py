@@ -214,7 +214,9 @@ def _predictor(
     return secant, direction, direction if system.unit_weights else system.weights * direction
 
 
-def confirm_step(rules: StepRules, state: TracerState, trial: Trial) -> Trial | None:
+def confirm_step(
+    rules: StepRules, state: TracerState, trial: Trial, br: Bracket | None = None
+) -> Trial | None:
     """Confirm a step across which a test function changed sign, before anything is located
     in it: None if the half step from the same point lies on the step's cubic Hermite arc,
     else the step to take instead (the half step, or a shorter one if the half step is
@@ -229,7 +231,8 @@ def confirm_step(rules: StepRules, state: TracerState, trial: Trial) -> Trial | 
     half step is within ``δ/10`` of the arc (on a circle turning 30° in the step, the arc is
     off by δ/160). The half step is first corrected only to 1e-3·δ, which is all the
     comparison needs; only when that point is off the arc (or its corrector fails) is the
-    half step taken as a step of its own, the one to take instead."""
+    half step taken as a step of its own, the one to take instead. ``br``: the step's
+    bracket, if the caller made it."""
     o = rules.options
     system = state.system
     W = system.weights
@@ -239,7 +242,8 @@ def confirm_step(rules: StepRules, state: TracerState, trial: Trial) -> Trial | 
     ds = trial.ds
     z1 = trial.res.z
     delta = wnorm(z1 - (z + ds * direction), W)
-    br = Bracket(system, z, t, z1, trial.t, W, o)
+    if br is None:
+        br = Bracket(system, z, t, z1, trial.t, W, o)
 
     def off_arc(zh: np.ndarray) -> float:
         return wnorm(zh - br.guess(br.sigma(zh) / br.h), W)

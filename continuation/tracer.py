@@ -37,7 +37,7 @@ import numpy as np
 
 from .branch import Branch, SpecialPoint, join_halves
 from .corrector import correct
-from .crossings import corner_folds, evaluate, locate_crossings, splits
+from .crossings import corner_folds, evaluate, locate_crossings, splits, step_bracket
 from .errors import (
     ConvergenceError,
     MaxStepsWarning,
@@ -348,6 +348,7 @@ class Tracer:
         trial = advance(self._rules, state)
         if isinstance(trial, Failure):
             return self._fail(state, trial)
+        confirmed = None  # the step's bracket, if it was confirmed
         while True:
             # 2. accept: the system valid beyond the new point (the step size is set in 5.)
             # 3. evaluate the test functions; those whose change counts are crossings
@@ -357,10 +358,13 @@ class Tracer:
             if not any(c[0].confirm for c in crossings):
                 break
             # a test of the curve's geometry changed sign: confirm the step first
-            shorter = confirm_step(self._rules, state, trial)
+            confirmed = step_bracket(self.options, state.system, state.last, trial)
+            shorter = confirm_step(self._rules, state, trial, confirmed)
             if shorter is None:
                 break
-            trial = shorter
+            trial, confirmed = shorter, None
+        if system is not state.system:  # (refreshed: the bracket is on the new system)
+            confirmed = None
         # 4. locate the crossings inside the step (a corner's folds are only bracketed)
         special = None
         if trial.corner:
@@ -370,7 +374,9 @@ class Tracer:
             if replaced:
                 crossings = [c for c in crossings if c[0] not in replaced] + parts
         located = (
-            locate_crossings(self.options, state, system, trial, crossings) if crossings else ()
+            locate_crossings(self.options, state, system, trial, crossings, confirmed)
+            if crossings
+            else ()
         )
         # 5. insert the located points, adapt the step size, terminate
         return self._finish(state, system, trial, values, special, located)
