@@ -8,7 +8,7 @@ from typing import Any
 import numpy as np
 
 from .errors import SingularMatrixError
-from .linalg import DenseLU, dense_solve, factor, getrs, inverse_magnitudes, scaled_max
+from .linalg import DenseLU, _gesv, _getrs, factor, inverse_magnitudes, scaled_max
 from .linalg import max_abs as _norm
 
 
@@ -58,20 +58,14 @@ def _floor_step_tol(system: Any, step_tol: float) -> float:
     return step_tol if system.derivatives_exact else max(step_tol, _FD_STEP_TOL)
 
 
-def _full_step(bordered_jacobian: Any, z: np.ndarray, row: np.ndarray, rhs: np.ndarray):
-    """The Newton matrix at ``z``, factored and solved for ``rhs`` (dense: one LAPACK gesv):
-    ``(matrix, sparse LU or None, dense factors, pivots, solution, "")``, or the reason it
-    failed in the last place (an augmented system may find its own matrix singular)."""
-    a = None
+def _sparse_step(a: Any, rhs: np.ndarray) -> tuple[Any, Any, str]:
+    """A sparse Newton matrix factored and solved for ``rhs``: ``(LU, solution, "")``, or the
+    reason it failed last."""
     try:
-        a = bordered_jacobian(z, row)
-        if type(a) is np.ndarray:
-            f, piv, dz = dense_solve(a, rhs)
-            return a, None, f, piv, dz, ""
         lu = factor(a)
-        return a, lu, None, None, lu.solve(rhs), ""
     except SingularMatrixError:
-        return a, None, None, None, None, "singular" if a is None else _singular_reason(a)
+        return None, None, _singular_reason(a)
+    return lu, lu.solve(rhs), ""
 
 
 def _singular_reason(a) -> str:
@@ -80,20 +74,12 @@ def _singular_reason(a) -> str:
 
 
 def newton(
-    system,
-    z0: np.ndarray,
-    row: np.ndarray,
-    c: float,
-    *,
-    tol: float,
-    step_tol: float,
-    max_iter: int,
-    g0: np.ndarray | None = None,
-    strict: bool = False,
-    contract: bool = False,
+    system, z0: np.ndarray, row: np.ndarray, c: float | None, *, tol: float, step_tol: float,
+    max_iter: int, g0: np.ndarray | None = None, strict: bool = False, contract: bool = False,
     max_first: float | None = None,
-) -> NewtonResult:
-    """Solve ``G(z) = 0``, ``row·z = c`` by Newton's method from ``z0``.
+) -> NewtonResult:  # fmt: skip
+    """Solve ``G(z) = 0``, ``row·z = c`` by Newton's method from ``z0`` (``c`` None: the
+    hyperplane through ``z0``, ``c = row·z0``).
 
     Converged when the max-norm of ``G`` is ≤ ``tol`` and the last update is
     ≤ ``sqrt(step_tol)·(1 + |z|)``: under Newton's quadratic convergence the error left is
@@ -150,17 +136,26 @@ def newton(
     f: Any = None
     piv: Any = None
     reason, converged, chord, k, theta = "max_iterations", False, False, 0, 0.0
-    rhs[m] = row.dot(z) - c
+    rhs[m] = 0.0 if c is None else row.dot(z) - c  # (None: z0 lies on the hyperplane)
     for k in range(1, max_iter + 1):
         rhs[:m] = g
         if k == 2:
             rhs[m] = 0.0
         if chord:  # a simplified step with the last factorization (see above)
-            dz = getrs(f, piv, rhs) if f is not None else lu.solve(rhs)
+            dz = _getrs(f, piv, rhs)[0] if f is not None else lu.solve(rhs)
         else:
-            a, lu, f, piv, dz, why = _full_step(bordered_jacobian, z, row, rhs)
-            if why:
-                return NewtonResult(z, False, k, rn, None, why)
+            try:
+                a = bordered_jacobian(z, row)
+            except SingularMatrixError:  # an augmented system's own matrix
+                return NewtonResult(z, False, k, rn, None, "singular")
+            if type(a) is np.ndarray:  # dense: one LAPACK gesv (see dense_solve)
+                f, piv, dz, info = _gesv(a, rhs)
+                if info > 0 or not math.isfinite(f[-1, -1]):
+                    return NewtonResult(z, False, k, rn, None, _singular_reason(a))
+            else:
+                lu, dz, why = _sparse_step(a, rhs)
+                if why:
+                    return NewtonResult(z, False, k, rn, None, why)
         if k == 1 and dz.dot(dz if weights is None else weights * dz) > max_first_sq:
             rn, reason = math.inf, "too_far"
             break

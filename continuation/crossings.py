@@ -12,7 +12,7 @@ import numpy as np
 
 from .locate import Bracket, Located, tangent_at
 from .options import ContinuationOptions
-from .state import TracerState
+from .state import Point, TracerState
 from .stepping import Trial, wnorm
 from .system import CurveSystem
 from .testfunctions import Record, TestFunction
@@ -71,8 +71,9 @@ def splits(
     replaced: set[TestFunction] = set()
     out: list[Crossing] = []
     data = None
+    tests = state.tests
     for i, tt in split_tests:
-        old, new = state.tests[i], values[i]
+        old, new = tests[i], values[i]
         if old is None or old == 0.0 or new == 0.0:
             continue
         if data is None:
@@ -153,19 +154,27 @@ def _part_data(system: CurveSystem, a: tuple, b: tuple) -> tuple:
     return (za, ta, zb, tb, float(wta.dot(zb - za)), float(wta.dot(tb)))
 
 
+def step_bracket(
+    options: ContinuationOptions, system: CurveSystem, last: Point, trial: Trial
+) -> Bracket:
+    """The :class:`~.locate.Bracket` of the step from the point ``last`` to the trial's."""
+    return Bracket(system, last.z, last.t, trial.res.z, trial.t, system.weights, options)
+
+
 def locate_crossings(
     options: ContinuationOptions,
     state: TracerState,
     system: CurveSystem,
     trial: Trial,
     crossings: list[Crossing],
+    br: Bracket | None = None,
 ) -> list[tuple[TestFunction, Located, Bracket | None]]:
     """Each crossing located inside the step (or the part of it that holds it), in the
-    order of travel, with the bracket it was located in (None for the step's own end)."""
+    order of travel, with the bracket it was located in (None for the step's own end).
+    ``br``: the step's bracket on ``system``, if it was made already."""
     last = state.last
     z1 = trial.res.z
     W = system.weights
-    br = None
     found = []
     for tt, old, new, part in crossings:
         where: Bracket | None
@@ -186,7 +195,7 @@ def locate_crossings(
             loc = loc._replace(sigma=loc.sigma + part[4])
         else:
             if br is None:
-                br = Bracket(system, last.z, last.t, z1, trial.t, W, options)
+                br = step_bracket(options, system, last, trial)
             loc, where = tt.locate(br, old, new), br
         found.append((loc.sigma, tt, loc, where))
     direction = math.copysign(1.0, trial.h if br is None else br.h)

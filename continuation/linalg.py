@@ -75,7 +75,7 @@ class DenseLU:
         return self
 
     def solve(self, b: np.ndarray, trans: bool = False) -> np.ndarray:
-        return getrs(self.lu, self.piv, b, trans)
+        return _getrs(self.lu, self.piv, b, trans=1 if trans else 0)[0]
 
     def sign_det(self) -> float:
         if self.n <= 16:
@@ -206,6 +206,10 @@ def scaled_max(x: np.ndarray, inverse: Any) -> float:
     an update relative to the components' magnitudes (see :func:`inverse_magnitudes`)."""
     if type(inverse) is list:
         vals = x.tolist()
+        if len(vals) == 2:  # spelled out for scalar problems (state and parameter)
+            a, b = abs(vals[0]) * inverse[0], abs(vals[1]) * inverse[1]
+            m = a if a >= b else b
+            return m if m < math.inf and a == a and b == b else math.nan
         m = 0.0
         for v, w in zip(vals, inverse):
             a = abs(v) * w

@@ -65,15 +65,15 @@ class Bracket:
 
     def __post_init__(self) -> None:
         self.row = self.weights * self.t_a
-        self.h = float(self.row @ (self.z_b - self.z_a))
+        self.h = float(self.row.dot(self.z_b - self.z_a))
         # the interpolant is parametrised by σ, not by arclength: its end derivatives are
         # dz/dσ = t/(row·t) (t_b is tilted by the step's turn, up to max_angle)
-        self.d_a = self.t_a / float(self.row @ self.t_a)
-        cos_b = float(self.row @ self.t_b)
+        self.d_a = self.t_a / float(self.row.dot(self.t_a))
+        cos_b = float(self.row.dot(self.t_b))
         self.d_b = self.t_b / cos_b if cos_b > 0.1 else self.t_b
 
     def sigma(self, z: np.ndarray) -> float:
-        return float(self.row @ (z - self.z_a))
+        return float(self.row.dot(z - self.z_a))
 
     def _hermite(self, coefficients) -> np.ndarray:
         """``c0·z_a + c1·h·d_a + c2·z_b + c3·h·d_b`` (one product with the stacked data; a
@@ -149,7 +149,7 @@ class Bracket:
         o = self.options
         theta = sigma / self.h if self.h != 0 else 0.0
         z0 = self.guess(theta) if start is None else start
-        c = self.row @ self.z_a + sigma
+        c = self.row.dot(self.z_a) + sigma
         return correct(self.system, z0, self.row, c, o, budget=2, strict=strict)
 
     def polish(self, z: np.ndarray, sigma: float) -> np.ndarray:

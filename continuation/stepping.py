@@ -140,7 +140,10 @@ def advance(rules: StepRules, state: TracerState) -> Trial | Failure:
     last = state.last
     z, t, prev = last.z, last.t, last.prev
     z_prev = None if prev is None else prev.z
-    secant, direction, row = _predictor(o, system, z, t, z_prev)
+    if o.predictor == "tangent":  # (_predictor, inline on the common path)
+        secant, direction, row = None, t, t if system.unit_weights else system.weights * t
+    else:
+        secant, direction, row = _predictor(o, system, z, t, z_prev)
     if state.stalled >= _STALL_STEPS:
         # creeping at ds near ds_min (say, Newton with a Jacobian differenced across a
         # kink): try to pass the corner directly
@@ -211,7 +214,9 @@ def _predictor(
     return secant, direction, direction if system.unit_weights else system.weights * direction
 
 
-def confirm_step(rules: StepRules, state: TracerState, trial: Trial) -> Trial | None:
+def confirm_step(
+    rules: StepRules, state: TracerState, trial: Trial, br: Bracket | None = None
+) -> Trial | None:
     """Confirm a step across which a test function changed sign, before anything is located
     in it: None if the half step from the same point lies on the step's cubic Hermite arc,
     else the step to take instead (the half step, or a shorter one if the half step is
@@ -226,7 +231,8 @@ def confirm_step(rules: StepRules, state: TracerState, trial: Trial) -> Trial | 
     half step is within ``δ/10`` of the arc (on a circle turning 30° in the step, the arc is
     off by δ/160). The half step is first corrected only to 1e-3·δ, which is all the
     comparison needs; only when that point is off the arc (or its corrector fails) is the
-    half step taken as a step of its own, the one to take instead."""
+    half step taken as a step of its own, the one to take instead. ``br``: the step's
+    bracket, if the caller made it."""
     o = rules.options
     system = state.system
     W = system.weights
@@ -236,7 +242,8 @@ def confirm_step(rules: StepRules, state: TracerState, trial: Trial) -> Trial | 
     ds = trial.ds
     z1 = trial.res.z
     delta = wnorm(z1 - (z + ds * direction), W)
-    br = Bracket(system, z, t, z1, trial.t, W, o)
+    if br is None:
+        br = Bracket(system, z, t, z1, trial.t, W, o)
 
     def off_arc(zh: np.ndarray) -> float:
         return wnorm(zh - br.guess(br.sigma(zh) / br.h), W)
@@ -288,13 +295,13 @@ def _try(
     W = system.weights
     unit_w = system.unit_weights
     z_pred = z + ds * direction
-    # above ds_min a wandering Newton gives up early (the step is halved anyway)
-    c = row.dot(z_pred)
+    # above ds_min a wandering Newton gives up early (the step is halved anyway); the
+    # hyperplane is the one through the predictor
     res = newton(
         system,
         z_pred,
         row,
-        c,
+        None,
         tol=o.tol,
         step_tol=o.step_tol,
         max_iter=o.max_newton_iterations,
@@ -307,7 +314,7 @@ def _try(
             system,
             z_pred,
             row,
-            c,
+            row.dot(z_pred),
             tol=o.tol,
             step_tol=o.step_tol,
             max_iter=5 * o.max_newton_iterations,
@@ -510,10 +517,11 @@ def aim_at_bound(
     determinant."""
     o = rules.options
     W = state.system.weights
+    tests = state.tests
+    # within reach: the component moves by at most ds/√w_k along the unit tangent
+    reach = _AIM_REACH * ds
     for i, tt in rules.bound_tests:
-        old = state.tests[i]
-        # within reach: the component moves by at most ds/√w_k along the unit tangent
-        reach = _AIM_REACH * ds
+        old = tests[i]
         if old is None or old == 0.0 or abs(old) * math.sqrt(W[tt.k]) > reach:
             continue
         k = tt.k

@@ -37,7 +37,7 @@ import numpy as np
 
 from .branch import Branch, SpecialPoint, join_halves
 from .corrector import correct
-from .crossings import corner_folds, evaluate, locate_crossings, splits
+from .crossings import corner_folds, evaluate, locate_crossings, splits, step_bracket
 from .errors import (
     ConvergenceError,
     MaxStepsWarning,
@@ -352,17 +352,23 @@ class Tracer:
         trial = advance(self._rules, state)
         if isinstance(trial, Failure):
             return self._fail(state, trial)
+        confirmed = None  # the step's bracket, if it was confirmed
         while True:
             # 2. accept: the system valid beyond the new point (the step size is set in 5.)
             # 3. evaluate the test functions; those whose change counts are crossings
             system, values, crossings = evaluate(self.tests, self._has_bp, state, trial)
-            if trial.corner or trial.aimed is not None or not any(c[0].confirm for c in crossings):
+            if not crossings or trial.corner or trial.aimed is not None:
+                break
+            if not any(c[0].confirm for c in crossings):
                 break
             # a test of the curve's geometry changed sign: confirm the step first
-            shorter = confirm_step(self._rules, state, trial)
+            confirmed = step_bracket(self.options, state.system, state.last, trial)
+            shorter = confirm_step(self._rules, state, trial, confirmed)
             if shorter is None:
                 break
-            trial = shorter
+            trial, confirmed = shorter, None
+        if system is not state.system:  # (refreshed: the bracket is on the new system)
+            confirmed = None
         # 4. locate the crossings inside the step (a corner's folds are only bracketed)
         special = None
         if trial.corner:
@@ -372,7 +378,9 @@ class Tracer:
             if replaced:
                 crossings = [c for c in crossings if c[0] not in replaced] + parts
         located = (
-            locate_crossings(self.options, state, system, trial, crossings) if crossings else ()
+            locate_crossings(self.options, state, system, trial, crossings, confirmed)
+            if crossings
+            else ()
         )
         # 5. insert the located points, adapt the step size, terminate
         return self._finish(state, system, trial, values, special, located)
