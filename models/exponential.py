@@ -99,7 +99,25 @@ class ExponentialRoughSurface(RoughSurface):
     def force_ratio(self, g_T, normal_load=None, *, separation=None):
         """F̂_T = 1 − exp(−g_T/(μλ))  (Eq 9); independent of the load."""
         _check_unused_load(normal_load, separation)
-        return -np.expm1(-self.stick_threshold(g_T) / self.sigma)
+        with np.errstate(over="ignore"):  # x = g_T/(μλ) beyond the float range: F̂_T = 1
+            return -np.expm1(-self.stick_threshold(g_T) / self.sigma)
+
+    def tangential_force(self, g_T, F_N):
+        """F_T = μF_N(1 − e^{−x}), x = g_T/(μλ) [N] (Eq 9), as F_N (g_T/λ)(1 − e^{−x})/x: the
+        same number, but finite and exact where x underflows (a huge μλ)."""
+        F_N = check_finite_array("F_N", F_N, unit="N")
+        if np.any(F_N <= 0.0):
+            raise ModelParameterError(f"F_N must be > 0 [N], got {F_N!r}")
+        g_T = check_finite_array("g_T", g_T, lower=0.0, unit="µm")
+        # (the branch np.where does not take may overflow or be inf·0: masked, not used)
+        with np.errstate(over="ignore", under="ignore", invalid="ignore"):
+            slope = (g_T / self.sigma) * self._sigma_over_lam  # g_T/λ = μx (0 at g_T = 0)
+            x = slope / self.mu
+            small = x < 1e-8
+            ratio = np.where(small, 1.0 - 0.5 * x, -np.expm1(-x) / np.where(small, 1.0, x))
+            big = np.isinf(x) | (x > 1e8)  # (1 − e^{−x})/x ⋅ μx = μ: F_T = μF_N
+            out = np.where(big, self.mu * F_N, F_N * slope * ratio)
+        return out[()] if out.ndim == 0 else out
 
     def stick_gap(self, FT_hat, normal_load=None, *, separation=None):
         """g_N0 = −σ* log(1 − F̂_T)  [µm] (inverse of Eq 9); inf at F̂_T = 1."""

@@ -148,6 +148,9 @@ class RoughSurface:
         self.mu = check_positive("mu", mu)
         #: λ = σ* (2 − ν) / [2 (1 − ν)]  [µm]  (Eq 4)
         self.lam = self.sigma * (2.0 - self.nu) / (2.0 * (1.0 - self.nu))
+        # σ*/λ = 2(1 − ν)/(2 − ν), of order one: g_N0 = g_T (σ*/λ)/μ without forming μλ,
+        # which underflows for tiny σ* and μ
+        self._sigma_over_lam = 2.0 * (1.0 - self.nu) / (2.0 - self.nu)
         given = {"E": E, "radius": radius, "density": density, "nominal_area": nominal_area}
         units = {"E": "N/µm²", "radius": "µm", "density": "1/µm²", "nominal_area": "µm²"}
         for key, value in given.items():
@@ -298,7 +301,7 @@ class RoughSurface:
     def stick_threshold(self, g_T):
         """g_N0 = 2 (1 − ν) g_T / [μ (2 − ν)] = g_T σ*/(μ λ)  [µm] (Eq 5)."""
         g_T = check_finite_array("g_T", g_T, lower=0.0, unit="µm")
-        return g_T * (self.sigma / (self.mu * self.lam))
+        return g_T * self._sigma_over_lam / self.mu
 
     def _d_of(self, normal_load=None, separation=None):
         if (normal_load is None) == (separation is None):
@@ -350,7 +353,7 @@ class RoughSurface:
             )
         sep = self.separation(F_N) if self.load_dependent else None
         g = self.stick_gap(ratio, separation=sep) if sep is not None else self.stick_gap(ratio)
-        return g * (self.mu * self.lam / self.sigma)
+        return g * self.mu / self._sigma_over_lam
 
     def stick_gap(self, FT_hat, normal_load=None, *, separation=None):
         """g_N0 [µm] at which F̂_T is reached (inverse of :meth:`force_ratio` in g_N0)."""
