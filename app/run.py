@@ -1,7 +1,8 @@
 """``cusp run [SCENE] [--out DIR] [--no-plots]``: trace the contact-loss path of a scene.
 
-Writes ``DIR/summary.json``, ``DIR/branch.csv`` and, unless ``--no-plots``, the scene's
-figures as PNG and SVG. Everything is computed and rendered in memory first, then written to
+``SCENE`` is a scene file or the name of a bundled scene (``fig8``; none: ``fig6``). Writes
+``DIR/summary.json``, ``DIR/branch.csv`` and, unless ``--no-plots``, the scene's figures as
+PNG and SVG. Everything is computed and rendered in memory first, then written to
 a staging directory beside ``DIR`` and moved into place, so a failure leaves no partial
 output. Exit status: 0 success, 2 bad scene (one line on stderr naming the field), 1 a
 numerical failure (one line).
@@ -27,7 +28,16 @@ from typing import Any
 
 from .scene import Scene, SceneError, load_scene
 
-__all__ = ["run_scene", "SceneRun", "summary", "branch_csv", "write_outputs", "DEFAULT_SCENE"]
+__all__ = [
+    "run_scene",
+    "SceneRun",
+    "summary",
+    "branch_csv",
+    "write_outputs",
+    "DEFAULT_SCENE",
+    "bundled_names",
+    "resolve_scene",
+]
 
 #: the scene ``cusp run`` runs without an argument (the paper's Fig 6)
 DEFAULT_SCENE = "fig6.toml"
@@ -43,7 +53,8 @@ def add_arguments(parser) -> None:
         "scene",
         nargs="?",
         default=None,
-        help=f"scene file (TOML); default: the bundled {DEFAULT_SCENE} (the paper's Fig 6)",
+        help="scene file (TOML) or the name of a bundled scene (fig6, fig8, ...); default: "
+        f"the bundled {DEFAULT_SCENE} (the paper's Fig 6)",
     )
     parser.add_argument(
         "--out",
@@ -60,6 +71,35 @@ def bundled_scene(name: str = DEFAULT_SCENE) -> Path:
     from importlib import resources
 
     return Path(str(resources.files("cusp.scenes") / name))
+
+
+def bundled_names() -> list[str]:
+    """The names of the bundled scenes (``fig6``, ...), sorted."""
+    from importlib import resources
+
+    files = resources.files("cusp.scenes").iterdir()
+    return sorted(f.name[: -len(".toml")] for f in files if f.name.endswith(".toml"))
+
+
+def resolve_scene(arg: str | None) -> tuple[Path, str | None]:
+    """The scene file ``cusp run ARG`` reads, and how messages name it (None: as given): an
+    existing file, else a bundled scene by name (``fig8`` or ``fig8.toml``; also when a
+    directory of that name is in the way, e.g. an earlier ``--out fig8``)."""
+    if arg is None:
+        return bundled_scene(), f"scenes/{DEFAULT_SCENE} (bundled)"
+    path = Path(arg)
+    if path.is_file():
+        return path, None
+    names = bundled_names()
+    name = arg.removesuffix(".toml")
+    if name in names:
+        return bundled_scene(f"{name}.toml"), f"scenes/{name}.toml (bundled)"
+    if path.exists():  # a directory, say: load_scene names the problem
+        return path, None
+    raise SceneError(
+        f"{arg}: no such scene file, nor a bundled scene of that name; allowed: a scene file "
+        f"(TOML) or a bundled scene: {', '.join(names)}"
+    )
 
 
 @dataclass
@@ -241,10 +281,9 @@ def main(args) -> int:
     from cusp.models.contact_loss import PathError
 
     t_start = time.perf_counter()
-    bundled = args.scene is None
-    path = bundled_scene() if bundled else Path(args.scene)
     try:
-        scene = load_scene(path, source=f"scenes/{DEFAULT_SCENE} (bundled)" if bundled else None)
+        path, source = resolve_scene(args.scene)
+        scene = load_scene(path, source=source)
         run, figures = run_scene(scene, plots=not args.no_plots)
     except SceneError as exc:
         print(f"cusp run: error: {exc}", file=sys.stderr)
