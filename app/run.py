@@ -26,11 +26,13 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
+from .cases import Case, build_body, make_model, solver_options
 from .scene import Scene, SceneError, load_scene
 
 __all__ = [
     "run_scene",
     "SceneRun",
+    "Case",
     "summary",
     "branch_csv",
     "write_outputs",
@@ -104,56 +106,22 @@ def resolve_scene(arg: str | None) -> tuple[Path, str | None]:
 
 @dataclass
 class SceneRun:
-    """The computed cases of a scene: ``cases`` is a list of (F'_N [N], ContactLossResult);
-    ``timing`` holds the compute and render wall times [s]."""
+    """The computed cases of a scene (:class:`Case`, one per listed μ or F'_N); ``timing``
+    holds the compute and render wall times [s]."""
 
     scene: Scene
-    cases: list
+    cases: list[Case]
     timing: dict[str, float]
-
-
-def build_body(scene: Scene) -> Any:
-    """The body a scene describes, built by its entry in :mod:`cusp.models.registry` (which
-    imports only that body's module)."""
-    from cusp.models import registry
-    from cusp.models.protocol import require_path_body
-
-    params = dict(scene.surface)
-    model = params.pop("model")
-    try:
-        return require_path_body(registry.build_body(model, **params))
-    except ValueError as exc:
-        raise SceneError(f"{scene.source}: [surface] {exc}") from None
 
 
 def run_scene(scene: Scene, *, plots: bool = True) -> tuple[SceneRun, dict]:
     """Trace every case of a scene; returns the run and the rendered figures (bytes)."""
-    from cusp.models.contact_loss import DEFAULT_OPTIONS, ContactLoss
-    from cusp.models.errors import ModelParameterError, NoComplianceLawError
-
     t0 = time.perf_counter()
-    body = build_body(scene)
-    options = DEFAULT_OPTIONS
-    if scene.solver:
-        try:
-            options = options.replace(**scene.solver)
-        except ValueError as exc:
-            raise SceneError(f"{scene.source}: [solver] {exc}") from None
+    options = solver_options(scene)
     cases = []
-    for load in scene.reduced_normal_loads:
-        try:
-            model = ContactLoss(
-                body,
-                scene.loading["normal_load"],
-                scene.loading["max_slip"],
-                load,
-                area_reading=scene.options["area_reading"],
-            )
-        except ModelParameterError as exc:
-            raise SceneError(f"{scene.source}: [loading] {exc}") from None
-        except NoComplianceLawError as exc:  # a registered body without a path or a refusal
-            raise SceneError(f"{scene.source}: [surface] {exc}") from None
-        cases.append((load, model.run(options)))
+    for mu, load in scene.cases:
+        model = make_model(scene, build_body(scene, mu), load)
+        cases.append(Case(model.mu0, load, model.run(options)))
     t1 = time.perf_counter()
     figures = {}
     if plots and scene.figures:
@@ -164,9 +132,10 @@ def run_scene(scene: Scene, *, plots: bool = True) -> tuple[SceneRun, dict]:
     return SceneRun(scene, cases, {"compute_s": t1 - t0, "render_s": t2 - t1}), figures
 
 
-def _case_summary(load: float, res) -> dict[str, Any]:
+def _case_summary(mu: float, load: float, res) -> dict[str, Any]:
     energy = dict(res.energy)
     return {
+        "mu": {"value": mu, "unit": ""},
         "reduced_normal_load": {"value": load, "unit": "N"},
         "points": res.points,
         "energy": {**energy, "unit": _UNITS["energy"], "error_estimate": dict(res.energy_error)},
@@ -182,10 +151,10 @@ def summary(run: SceneRun) -> dict[str, Any]:
     import numpy
     import scipy
 
-    cases = [_case_summary(load, res) for load, res in run.cases]
+    cases = [_case_summary(*case) for case in run.cases]
     first = cases[0]
-    level_names = run.cases[0][1].level_names
-    return {
+    level_names = run.cases[0].result.level_names
+    out = {
         "scene": run.scene.echo(),
         "points": first["points"],
         "energy": first["energy"],
@@ -206,6 +175,7 @@ def summary(run: SceneRun) -> dict[str, Any]:
             "cusp": _version(),
         },
     }
+    return out
 
 
 def _version() -> str:
@@ -220,10 +190,11 @@ def _version() -> str:
 def branch_csv(run: SceneRun) -> str:
     """The traced branches as CSV: one row per traced point, all cases and legs."""
     buf = io.StringIO()
-    first = run.cases[0][1]
+    first = run.cases[0].result
     p_name, q_name = first.level_names
     cols = [
         "case",
+        "mu",
         "reduced_normal_load",
         "leg",
         "point",
@@ -236,7 +207,7 @@ def branch_csv(run: SceneRun) -> str:
     ]
     w = csv.writer(buf, lineterminator="\n")
     w.writerow(cols)
-    for i, (load, res) in enumerate(run.cases):
+    for i, (mu, load, res) in enumerate(run.cases):
         labels = {row: key for key, row in res.point_rows.items()}
         for leg in res.legs:
             path = res.path(leg)
@@ -244,10 +215,11 @@ def branch_csv(run: SceneRun) -> str:
                 w.writerow(
                     [
                         i,
+                        repr(mu),
                         repr(load),
                         leg,
                         labels.get((leg, j), ""),
-                        *(repr(float(path[c][j])) for c in cols[4:]),
+                        *(repr(float(path[c][j])) for c in cols[5:]),
                     ]
                 )
     return buf.getvalue()
@@ -318,8 +290,8 @@ def _report(run: SceneRun, out: Path, files: list[str], total: float) -> None:
         f"scene {sc.name} ({sc.source}): {sc.surface['model']}, F_N0 = "
         f"{sc.loading['normal_load']:g} N, g_A = {sc.loading['max_slip']:g} µm"
     )
-    for load, res in run.cases:
-        print(f"  F'_N = {load:g} N")
+    for mu, load, res in run.cases:
+        print(f"  mu = {mu:g}, F'_N = {load:g} N")
         for key in "OABCD":
             pt = res.points[key]
             if pt is None:

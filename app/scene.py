@@ -16,7 +16,8 @@ Schema (units in brackets)::
                                   #  (the built-in bodies) | any registered body
     sigma = 2.0                   # composite rms roughness σ* [µm]        (rough-*)
     nu = 0.3                      # Poisson ratio, in (-1, 0.5]
-    mu = 0.1                      # friction coefficient, > 0
+    mu = 0.1                      # friction coefficient, > 0; or a list: one case per
+                                  #  value (Fig 9's panels)
     E = 0.2                       # Young's modulus [N/µm²]   (rough-gaussian, rough-weibull,
     radius = 10.0                 # ρ* or R [µm]               sphere; optional all-or-none
     density = 0.01                # summits η [1/µm²]          for rough-exponential)
@@ -28,6 +29,7 @@ Schema (units in brackets)::
     normal_load = 1000.0          # F_N0 [N]
     max_slip = 0.34               # g_A [µm]
     reduced_normal_load = 850.0   # F'_N [N], or a list for several reductions (Fig 8)
+                                  #  (mu and reduced_normal_load are not both lists)
 
     [options]
     area_reading = "printed"      # Eq 32 as printed, or "consistent"
@@ -38,6 +40,7 @@ Schema (units in brackets)::
 
     [output]
     figures = ["force-slip", "force-slip-detail", "force-area"]
+                                  # default; also "fig9" (one panel per case)
 
 The ``[surface]`` part is read from the body registry (:mod:`cusp.models.registry`): the
 model names, each body's parameters with unit and allowed range, which are required and
@@ -45,6 +48,9 @@ which form an all-or-none group (the load scale of the exponential surface). A b
 registered with :func:`cusp.models.registry.register_body` is a model here at once. The
 cylinder and flat planes are registered but refused, with the registry's reason: the paper
 gives them no compliance law, so they have no load–displacement path.
+
+The cases of a scene are every listed μ with every listed F'_N; as at most one of the two
+is a list, that is one case per listed value.
 """
 
 from __future__ import annotations
@@ -64,7 +70,9 @@ except ModuleNotFoundError:  # Python 3.10
 __all__ = ["Scene", "SceneError", "load_scene", "parse_scene", "FIGURES"]
 
 #: figure names a scene may ask for
-FIGURES = ("force-slip", "force-slip-detail", "force-area")
+FIGURES = ("force-slip", "force-slip-detail", "force-area", "fig9")
+#: the figures of a scene without [output]
+DEFAULT_FIGURES = ("force-slip", "force-slip-detail", "force-area")
 
 #: the numbers of [loading] and [solver] (those of [surface] come from the body registry)
 _NUMBERS: dict[str, Parameter] = {
@@ -103,8 +111,8 @@ class SceneError(ValueError):
 @dataclass(frozen=True)
 class Scene:
     """A checked scene. ``surface``, ``loading``, ``options``, ``solver``, ``output`` are
-    plain dicts of the values given (numbers as floats); ``reduced_normal_loads`` is always
-    a tuple."""
+    plain dicts of the values given (numbers as floats; ``surface["mu"]`` a float or a
+    list, as given); ``reduced_normal_loads`` and ``mus`` are always tuples."""
 
     source: str
     name: str
@@ -120,6 +128,18 @@ class Scene:
     @property
     def reduced_normal_loads(self) -> tuple[float, ...]:
         return tuple(self.loading["reduced_normal_load"])
+
+    @property
+    def mus(self) -> tuple[float | None, ...]:
+        """The listed friction coefficients ((None,) for a body without ``mu``)."""
+        mu = self.surface.get("mu")
+        return tuple(mu) if isinstance(mu, list) else (mu,)
+
+    @property
+    def cases(self) -> tuple[tuple[float | None, float], ...]:
+        """(μ, F'_N) of each case: every listed μ with every listed F'_N (at most one of
+        them is a list)."""
+        return tuple((mu, load) for mu in self.mus for load in self.reduced_normal_loads)
 
     def echo(self) -> dict[str, Any]:
         """The scene as given, with units: ``{section: {key: {"value", "unit"}}}``."""
@@ -182,13 +202,13 @@ def parse_scene(text: str, *, source: str = "<scene>", default_name: str = "scen
     if reading not in ("printed", "consistent"):
         chk.fail(f"[options] area_reading = {reading!r}", "'printed' or 'consistent'")
     solver = {k: chk.number("solver", k, v) for k, v in data.get("solver", {}).items()}
-
-    figs = data.get("output", {}).get("figures", list(FIGURES))
-    if not isinstance(figs, list) or not all(isinstance(f, str) for f in figs):
-        chk.fail(f"[output] figures = {figs!r}", f"a list of names from {_list(FIGURES)}")
-    for f in figs:
-        if f not in FIGURES:
-            chk.fail(f"[output] figures contains {f!r}", f"names from {_list(FIGURES)}")
+    if isinstance(surface.get("mu"), list) and len(loading["reduced_normal_load"]) > 1:
+        chk.fail(
+            f"[surface] mu = {surface['mu']!r} and [loading] reduced_normal_load = "
+            f"{loading['reduced_normal_load']!r} are both lists",
+            "a list in one of them only (one case per listed value)",
+        )
+    figs = _check_figures(chk, data.get("output", {}))
     return Scene(
         source=source,
         name=name,
@@ -200,6 +220,17 @@ def parse_scene(text: str, *, source: str = "<scene>", default_name: str = "scen
         figures=tuple(dict.fromkeys(figs)),
         surface_units=surface_units,
     )
+
+
+def _check_figures(chk: _Checker, output: dict[str, Any]) -> list[str]:
+    """[output] figures: known names."""
+    figs = output.get("figures", list(DEFAULT_FIGURES))
+    if not isinstance(figs, list) or not all(isinstance(f, str) for f in figs):
+        chk.fail(f"[output] figures = {figs!r}", f"a list of names from {_list(FIGURES)}")
+    for f in figs:
+        if f not in FIGURES:
+            chk.fail(f"[output] figures contains {f!r}", f"names from {_list(FIGURES)}")
+    return figs
 
 
 def _check_sections(chk: _Checker, data: dict[str, Any]) -> None:
@@ -257,6 +288,9 @@ def _check_surface(chk: _Checker, surf_in: dict[str, Any]) -> tuple[dict[str, An
                 f"[surface] missing key {key!r} for model {model!r}",
                 f"{model} needs {_list(required)}",
             )
+        if key == "mu" and isinstance(surf_in[key], list):
+            surface[key] = chk.numbers("surface", key, surf_in[key], params[key])
+            continue
         surface[key] = chk.number("surface", key, surf_in[key], params[key])
     given = [k for k in optional if k in surf_in]
     if given and len(given) != len(optional):
@@ -283,9 +317,7 @@ def _check_loading(chk: _Checker, load_in: dict[str, Any]) -> dict[str, Any]:
     loading["max_slip"] = chk.number("loading", "max_slip", load_in["max_slip"])
     red = load_in["reduced_normal_load"]
     reds = red if isinstance(red, list) else [red]
-    if not reds:
-        chk.fail("[loading] reduced_normal_load = []", "a number or a non-empty list of numbers")
-    loading["reduced_normal_load"] = [chk.number("loading", "reduced_normal_load", v) for v in reds]
+    loading["reduced_normal_load"] = chk.numbers("loading", "reduced_normal_load", reds)
     for v in loading["reduced_normal_load"]:
         if v >= loading["normal_load"]:
             chk.fail(
@@ -322,6 +354,14 @@ class _Checker:
             u = f" [{spec.unit}]" if spec.unit else ""
             self.fail(f"[{section}] {key} = {value!r}{u}", spec.allowed())
         return float(value)
+
+    def numbers(
+        self, section: str, key: str, values: list, spec: Parameter | None = None
+    ) -> list[float]:
+        """A non-empty list of numbers, each as :meth:`number`."""
+        if not values:
+            self.fail(f"[{section}] {key} = []", "a number or a non-empty list of numbers")
+        return [self.number(section, key, v, spec) for v in values]
 
 
 def _list(items) -> str:
