@@ -246,7 +246,11 @@ class Tracer:
             )
         bounds = [t for t in self.tests if isinstance(t, BoundTest)]
         given = self._scales
-        provisional, settled = typical_sizes(z0, given, bounds, inherited=inherited)
+        # (a component at rounding level, −1e-32 for an exact 0, must not set the size the
+        # start is corrected with: it is recognised by the Jacobian here too)
+        provisional, settled = typical_sizes(
+            z0, given, bounds, jacobian=lambda: system.jacobian(z0), inherited=inherited
+        )
         system = system.with_scales(provisional)
         if tangent is None:
             z0, t0, sdet, residual, iters = self._correct_start(system, z0, g0)

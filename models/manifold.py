@@ -14,88 +14,119 @@ by repeating single runs. Along it two events are located exactly:
 * ``"F'_T = 0"``: B reaches zero tangential force, the deepest admissible reduction (the
   locus ends there).
 
-Units as in :mod:`cusp.models.contact_loss`: µm, N.
+C's slip grows without bound towards the C boundary, so C is carried by a second chain
+(A, B, C, D), started where C exists and stopped where F_A = (1 − :data:`C_MARGIN`)·μF'_N
+(closer, rounding decides whether C exists at all); the rows of
+the locus are that chain's where it runs and the first chain's beyond. At every row the
+released energies are integrated on the legs between the points
+(:mod:`cusp.models._loci_energy`).
+
+Units as in :mod:`cusp.models.contact_loss`: µm, N, N·µm.
 """
 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
 
-from cusp.continuation import Branch, ChainPoint, ContinuationOptions, Event, PointChain, locus
+from cusp.continuation import (
+    Branch,
+    ChainPoint,
+    ContinuationOptions,
+    Event,
+    PointChain,
+    locus,
+    points_at,
+    trace,
+)
 
-from .contact_loss import ContactLoss, ContactLossResult
+from ._loci_energy import energies
+from .contact_loss import ContactLoss
 from .errors import ModelParameterError
 
-__all__ = ["LOCUS_PARAMETERS", "Loci", "point_loci"]
+__all__ = ["CSV_COLUMNS", "LOCI_UNITS", "LOCUS_PARAMETERS", "Loci", "point_loci", "trace_loci"]
 
 #: the parameters a locus can be traced in: name -> the chain's parameter (μ; F'_N/F_N0)
 LOCUS_PARAMETERS = {"mu": "mu", "reduced_normal_load": "n_B"}
-#: where the locus of C stops: g_C = C_G_MAX·g_A (C's slip diverges at the C boundary)
-C_G_MAX = 100.0
+#: the locus of C stops where F_A = (1 − C_MARGIN)·μF'_N: C's slip diverges at the C boundary,
+#: and its sensitivity to rounding grows like 1/margin (at 1e-6, C is resolved to ~1e-10)
+C_MARGIN = 1e-6
+#: an energy whose error estimate exceeds this (relative) is left out (NaN)
+ENERGY_RTOL = 1e-8
+#: the columns of a locus table (``loci.csv``), the last naming the event of an event row
+CSV_COLUMNS = (
+    "mu", "reduced_normal_load", "g_A", "F_A", "g_B", "F_B", "g_C", "F_C", "g_D", "F_D",
+    "A_SL_A", "A_SL_B", "snap_back_energy", "snap_through_energy", "event",
+)  # fmt: skip
+#: the unit of every column of :attr:`Loci.columns`
+LOCI_UNITS = {
+    "mu": "",
+    "reduced_normal_load": "N",
+    **{f"g_{x}": "µm" for x in "ABCD"},
+    **{f"F_{x}": "N" for x in "ABCD"},
+    **{f"A_SL_{x}": "" for x in "ABCD"},
+    "snap_back_energy": "N·µm",
+    "snap_through_energy": "N·µm",
+    "snap_back_error": "N·µm",
+    "snap_through_error": "N·µm",
+}
 #: the bounds of a locus that are events of the path
 _BOUND_EVENTS = {"B.t": "F'_T = 0", "D.q": "D disappears", "A.q": "A slides"}
+_DEFAULT = ContinuationOptions(ds=0.02, ds_max=0.1)
 
 
 @dataclass(frozen=True)
 class Loci:
     """The loci of the points of the path (:func:`point_loci`).
 
-    ``parameter``: ``"mu"`` or ``"reduced_normal_load"``; ``columns``: physical columns
-    along the locus, in the order of the parameter: the parameter, then ``g_X``, ``F_X``,
-    ``A_SL_X`` for each traced point X (µm, N); ``events``: the located events, each
-    ``{"event", parameter, and the columns there}``; ``branch``: the traced (nondimensional)
-    locus of the chain; ``c_locus``: the columns and events of the locus of A, B, D and C
-    (while C exists, up to g_C = :data:`C_G_MAX`·g_A), None if there is no C at the model's
-    own parameters."""
+    ``parameter``: ``"mu"`` or ``"reduced_normal_load"``. ``columns``: every key of
+    :data:`LOCI_UNITS` (µm, N, N·µm), one entry per traced row in the order of the
+    parameter, NaN where a point does not exist or is not resolved there (C within
+    :data:`C_MARGIN` of the C boundary); the energies come with their error estimates
+    (``*_error``). ``events``: the located events, each ``{"event": name, **columns}``.
+    ``messages``: how each locus ended. ``branches``: the traced (nondimensional) loci of
+    the chains, ``"A-B-D"`` and, where C exists, ``"A-B-C-D"``; ``rows``: the rows of
+    ``columns`` as those chains' variables (``"A.q"``, ``"mu"``, ``"n_B"``, ...)."""
 
     parameter: str
     columns: dict[str, np.ndarray]
     events: list[dict[str, Any]]
-    branch: Branch
-    points: tuple[str, ...]
-    c_locus: tuple[dict[str, np.ndarray], list[dict[str, Any]]] | None = None
+    messages: list[str]
+    branches: dict[str, Branch] = field(default_factory=dict)
+    rows: list[dict[str, float]] = field(default_factory=list, repr=False)
+
+    def start_at(self, i: int) -> dict[str, dict[str, float]]:
+        """Row ``i``'s points as the ``start`` of :func:`trace_loci` (with its ``mu`` and
+        ``n_B`` in :attr:`rows`)."""
+        row = self.rows[i]
+        out: dict[str, dict[str, float]] = {}
+        for key, value in row.items():
+            point, _, var = key.partition(".")
+            if var and math.isfinite(value):
+                out.setdefault(point, {})[var] = value
+        return out
 
 
-def _chain(
-    model: ContactLoss, res: ContactLossResult, with_c: bool
-) -> tuple[PointChain, dict, tuple]:
-    """The chain of A, B, D (where D exists) and, ``with_c``, C, and its start."""
-    raw = {name: res.legs[leg].point(row) for name, (leg, row) in res.point_rows.items()}
-    n_B = model.F_Np / model.F_N0
-    A, B = raw["A"], raw["B"]
+def _chain(model: ContactLoss, params: dict[str, float], q_A: float, names: str) -> PointChain:
+    """The chain of the points ``names`` (A, B, then D and/or C) of the path."""
     oa = model.problem("OA", start=1.0)
-    ab = model.problem("AB", start=n_B, constant=A["q"])
-    bc = model.problem("BC", start=1.0, constant=n_B)
-    points = [
-        ChainPoint("A", oa, "g", ("g", 1.0)),
-        ChainPoint("B", ab, "n", ("n", "n_B"), links={"q_A": ("A", "q")}),
-    ]
-    start = {"A": A, "B": B}
-    if "D" in raw:
-        points.append(ChainPoint("D", bc, "g", ("g", 1.0), links={"n_B": ("B", "n")}))
-        start["D"] = raw["D"]
-    if with_c:
-        points.append(ChainPoint("C", bc, "g", ("t", ("A", "t")), links={"n_B": ("B", "n")}))
-        start["C"] = raw["C"]
-    chain = PointChain(points, {"mu": model.mu0, "n_B": n_B})
-    return chain, start, tuple(pt.name for pt in points)
+    ab = model.problem("AB", start=params["n_B"], constant=q_A)
+    bc = model.problem("BC", start=1.0, constant=params["n_B"])
+    points = {
+        "A": ChainPoint("A", oa, "g", ("g", 1.0)),
+        "B": ChainPoint("B", ab, "n", ("n", "n_B"), links={"q_A": ("A", "q")}),
+        "D": ChainPoint("D", bc, "g", ("g", 1.0), links={"n_B": ("B", "n")}),
+        "C": ChainPoint("C", bc, "g", ("t", ("A", "t")), links={"n_B": ("B", "n")}),
+    }
+    return PointChain([points[x] for x in names], params)
 
 
-def point_loci(
-    model: ContactLoss,
-    parameter: str = "mu",
-    span: tuple[float, float] | None = None,
-    *,
-    options: ContinuationOptions | None = None,
-) -> Loci:
-    """The loci of A, B, D (and C while it exists) as ``parameter`` (``"mu"`` or
-    ``"reduced_normal_load"`` [N]) runs over ``span`` (default: μ over (μ/100, 100μ), F'_N
-    over (F'_N/100, F_N0)), from the model's own path; the locus ends early where B
-    reaches F'_T = 0 or C ceases to exist (both located, in ``events``)."""
+def _span(model: ContactLoss, parameter: str, span) -> tuple[str, float, float, float]:
+    """The chain's parameter, its scale and the span (nondimensional)."""
     if parameter not in LOCUS_PARAMETERS:
         raise ModelParameterError(
             f"parameter must be one of {sorted(LOCUS_PARAMETERS)}, got {parameter!r}"
@@ -103,57 +134,227 @@ def point_loci(
     free = LOCUS_PARAMETERS[parameter]
     scale = 1.0 if free == "mu" else model.F_N0
     here = model.mu0 if free == "mu" else model.F_Np
-    lo, hi = (
-        span
-        if span is not None
-        else ((here / 100, 100 * here) if free == "mu" else (here / 100, model.F_N0))
-    )
-    if not (0.0 < lo <= here <= hi) or (free == "n_B" and hi > model.F_N0):
+    if span is None:
+        span = (here / 100, 100 * here) if free == "mu" else (here / 100, model.F_N0)
+    try:
+        lo, hi = (float(x) for x in span)
+    except (TypeError, ValueError):
+        raise ModelParameterError(
+            f"span of {parameter} must be two numbers, got {span!r}"
+        ) from None
+    if not (0.0 < lo <= here <= hi < math.inf) or (free == "n_B" and hi > model.F_N0):
         raise ModelParameterError(
             f"span of {parameter} must hold the model's value {here!r} and lie in (0, "
             f"{'inf' if free == 'mu' else model.F_N0!r}], got {span!r}"
         )
+    return free, scale, lo / scale, hi / scale
+
+
+def point_loci(
+    model: ContactLoss,
+    parameter: str = "mu",
+    span: tuple[float, float] | None = None,
+    *,
+    at: Sequence[float] | np.ndarray = (),
+    options: ContinuationOptions | None = None,
+) -> Loci:
+    """The loci of A, B, D and C, and of the released energies, as ``parameter`` (``"mu"``
+    or ``"reduced_normal_load"`` [N]) runs over ``span`` (default: μ over (μ/100, 100μ),
+    F'_N over (F'_N/100, F_N0)), from the model's own path; each locus ends early where B
+    reaches F'_T = 0, D disappears or A's stick zone vanishes (located, in ``events``, with
+    the C boundary). A locus that stops for another reason (the levels of the body no longer
+    resolve a point) is kept as far as it went, and ``messages`` says so. ``at``: values of
+    the parameter that must be rows of the loci (located exactly, as targets)."""
+    free, scale, lo, hi = _span(model, parameter, span)
     res = model.run(options)
-    o = options or ContinuationOptions(ds=0.02, ds_max=0.1)
-    bounds = {free: (lo / scale, hi / scale), "B.t": (0.0, math.inf)}
+    start = {name: res.legs[leg].point(row) for name, (leg, row) in res.point_rows.items()}
+    start.pop("O", None)
+    params = {"mu": model.mu0, "n_B": model.F_Np / model.F_N0}
+    return trace_loci(model, parameter, (lo * scale, hi * scale), start, params, at, options)
+
+
+def trace_loci(
+    model: ContactLoss,
+    parameter: str,
+    span: tuple[float, float],
+    start: Mapping[str, Mapping[str, float]],
+    params: Mapping[str, float],
+    at: Sequence[float] | np.ndarray = (),
+    options: ContinuationOptions | None = None,
+) -> Loci:
+    """:func:`point_loci` from given points: ``start`` holds each of A, B and D (if it
+    exists) and C (if it exists) as ``{point: {variable: value}}`` (the nondimensional
+    variables of the legs, as the rows of :attr:`Loci.rows`), at ``params`` (``mu`` and
+    ``n_B`` = F'_N/F_N0); ``span`` in the units of ``parameter``."""
+    free = LOCUS_PARAMETERS[parameter]
+    scale = 1.0 if free == "mu" else model.F_N0
+    lo, hi = span[0] / scale, span[1] / scale
+    o = options or _DEFAULT
+    bounds = {free: (lo, hi), "B.t": (0.0, math.inf)}
     if math.isfinite(model.levels.slip_limit(model.levels.p0)):
         # a body that slides as a whole (a sphere): A's stick zone must not vanish, and D
         # ceases to exist where its stick zone does (the locus ends there)
         bounds.update({"A.q": (0.0, math.inf), "D.q": (0.0, math.inf)})
-    chain, start, names = _chain(model, res, with_c=False)
+    kw: dict[str, Any] = {"bounds": bounds, "options": o, "throw": False}
+    if len(at):
+        kw["targets"] = {free: [float(v) / scale for v in at]}
+    params = dict(params)
+    names = "ABD" if "D" in start else "AB"
+    chain = _chain(model, params, start["A"]["q"], names)
     mu0, ia = model.mu0, chain.unknowns.index("A.t")
     # F_A = μF'_N: t_A·μ0 = μ·n_B (t = F_T/(μ0 F_N0), n = F_N/F_N0)
     boundary = Event(lambda u, p: u[ia] * mu0 - p["mu"] * p["n_B"], label="C boundary")
-    br = locus(chain, start, free=free, bounds=bounds, events=[boundary], options=o)
-    loci = _physical_loci(parameter, free, scale, model.scales, br, names)
-    c_loci = None
-    if res.points["C"] is not None:
-        # C's slip grows without bound towards the C boundary: its locus stops at C_G_MAX·g_A
-        chain_c, start_c, names_c = _chain(model, res, with_c=True)
-        bounds_c = {**bounds, "C.g": (-math.inf, C_G_MAX)}
-        # (or earlier, where the body's levels stop resolving C: kept as far as it went)
-        br_c = locus(chain_c, start_c, free=free, bounds=bounds_c, options=o, throw=False)
-        c_loci = _physical_loci(parameter, free, scale, model.scales, br_c, names_c)
-    return Loci(parameter, loci[0], loci[1], br, names, c_loci)
+    main = locus(chain, {x: start[x] for x in names}, free=free, events=[boundary], **kw)
+    branches = {"-".join(names): main}
+    chains = {"-".join(names): chain}
+    seed = _c_seed(model, start, params, main, o)
+    if seed is not None and "D" in start:
+        chain_c = _chain(model, seed[1], seed[0]["A"]["q"], "ABCD")
+        ic = chain_c.unknowns.index("A.t")
+        near = Event(
+            lambda u, p: 1.0 - u[ic] * mu0 / (p["mu"] * p["n_B"]) - C_MARGIN,
+            direction=-1,
+            label="C unresolved",
+            terminal=True,
+        )
+        branches["A-B-C-D"] = locus(chain_c, seed[0], free=free, events=[near], **kw)
+        chains["A-B-C-D"] = chain_c
+    return _assemble(model, parameter, free, scale, branches, chains)
 
 
-def _physical_loci(parameter, free, scale, s, br: Branch, names):
-    """Physical columns along a locus (sorted by the parameter) and its located events."""
-    order = np.argsort(br[free], kind="stable")
+def _c_seed(model, start, params, main: Branch, o):
+    """Where the chain with C starts: the given C, or (if there is none) C traced on the
+    reloading leg at the row of the first locus farthest inside the region where C exists;
+    None where C exists nowhere along it. Returns (start values, chain parameters)."""
+    if "C" in start and "D" in start:
+        return {x: start[x] for x in "ABCD"}, dict(params)
+    margin = main["mu"] * main["n_B"] - main["A.t"] * model.mu0  # > 0 where C exists
+    if not np.any(margin > 0.0):
+        return None
+    i = int(np.argmax(margin / (main["mu"] * main["n_B"])))
+    row = main.point(i)
+    params = {"mu": row["mu"], "n_B": row["n_B"]}
+    pt = {x: {k[2:]: v for k, v in row.items() if k.startswith(x + ".")} for x in "ABD"}
+    prob = model.problem("BC", start=pt["B"]["g"], constant=params["n_B"], mu=params["mu"])
+    bounds = {"t": (-math.inf, pt["A"]["t"])}
+    if math.isfinite(model.levels.slip_limit(pt["B"]["p"])):
+        bounds["q"] = (0.0, math.inf)
+    u0 = [pt["B"][v] for v in prob.unknowns]
+    bc = trace(prob, u0, free="g", bounds=bounds, options=o, throw=False)
+    if bc.status != "bound" or bc.special("endpoint")[-1].with_respect_to != "t":
+        return None
+    cols = points_at(prob, bc, "t", [pt["A"]["t"]], options=o)
+    pt["C"] = {k: float(v[0]) for k, v in cols.items()}
+    return pt, params
 
-    def cols(row: Any, take) -> dict[str, Any]:  # a Branch, or one point's values
-        out = {parameter: take(row[free]) * scale}
-        for x in names:
-            out[f"g_{x}"] = take(row[f"{x}.g"]) * s["g"]
-            out[f"F_{x}"] = take(row[f"{x}.t"]) * s["t"]
-            out[f"A_SL_{x}"] = take(row[f"{x}.A_SL"])
-        return out
 
-    columns = cols(br, lambda c: np.asarray(c)[order])
-    events = []
+def _assemble(model: ContactLoss, parameter: str, free: str, scale: float, branches, chains):
+    """The rows of the loci (the chain with C where it ran, the other beyond), polished to
+    rounding, their physical columns and energies, the events and how each locus ended."""
+    main = branches[next(iter(branches))]
+    with_c = branches.get("A-B-C-D")
+    rows: list[dict[str, float]] = []
+    events: list[dict[str, Any]] = []
+    messages = [f"locus of {name}: {br.message}" for name, br in branches.items()]
+    inside = (math.inf, -math.inf)
+    if with_c is not None and len(with_c) > 1:
+        # (widened by rounding: both loci end at a common bound, F'_T = 0, located twice)
+        ends = float(np.min(with_c[free])), float(np.max(with_c[free]))
+        inside = (ends[0] * (1.0 - 1e-9), ends[1] * (1.0 + 1e-9))
+        rows += [_polish(chains["A-B-C-D"], with_c.point(i)) for i in range(len(with_c))]
+        events += [_polish(chains["A-B-C-D"], ev) for ev in _events(with_c)]
+        for sp in with_c.special("event", label="C unresolved"):
+            messages.append(
+                f"C is not reported beyond {parameter} = {sp.values[free] * scale!r}, where "
+                f"F_A = (1 - {C_MARGIN:g}) mu F'_N: closer to the C boundary rounding decides "
+                "whether C exists"
+            )
+    first = chains[next(iter(chains))]
+    rows += [
+        _polish(first, main.point(i))
+        for i in range(len(main))
+        if not inside[0] <= main[free][i] <= inside[1]
+    ]
+    located = [(ev["event"], ev[free]) for ev in events]
+    events += [
+        _polish(first, ev)
+        for ev in _events(main)
+        if not inside[0] <= ev[free] <= inside[1]
+        and not any(n == ev["event"] and abs(v - ev[free]) <= 1e-9 * abs(v) for n, v in located)
+    ]
+    rows.sort(key=lambda r: r[free])
+    events.sort(key=lambda r: r[free])
+    tol = 64.0 * float(np.finfo(float).eps)  # the rows' error, relative, once polished
+    table = [_physical(model, row, tol, messages) for row in rows]
+    columns = {key: np.array([r[key] for r in table]) for key in LOCI_UNITS}
+    event_rows = [
+        {"event": ev.pop("event"), **_physical(model, ev, tol, messages)} for ev in events
+    ]
+    return Loci(parameter, columns, event_rows, messages, dict(branches), rows)
+
+
+def _polish(chain: PointChain, row: dict[str, Any]) -> dict[str, Any]:
+    """A row of a locus Newton-polished to rounding at its parameters: the tracer accepts
+    points to its update tolerance, and the released energies (areas between legs that meet
+    at B) are sensitive to the frozen stick level to ~1e3 times that."""
+    p = {k: row[k] for k in chain.params}
+    u = np.array([row[k] for k in chain.unknowns])
+    for _ in range(4):
+        r = chain.residual(u, p)
+        try:
+            du = np.linalg.solve(chain.jacobian(u, p), -r)
+        except np.linalg.LinAlgError:
+            break
+        if not np.all(np.isfinite(du)):
+            break
+        u = u + du
+        if np.all(np.abs(du) <= 4.0 * np.finfo(float).eps * np.maximum(np.abs(u), 1.0)):
+            break
+    return {**row, **dict(zip(chain.unknowns, map(float, u)))}
+
+
+def _events(br: Branch) -> list[dict[str, Any]]:
+    """The located events of a locus and its ends at bounds that are events of the path."""
+    out = []
     for sp in br.special_points:
-        if sp.kind == "event":
-            events.append({"event": sp.label, **cols(sp.values, float)})
+        if sp.kind == "event" and sp.label != "C unresolved":
+            out.append({"event": sp.label, **sp.values})
         elif sp.kind == "endpoint" and sp.with_respect_to in _BOUND_EVENTS:
-            events.append({"event": _BOUND_EVENTS[sp.with_respect_to], **cols(sp.values, float)})
-    return columns, events
+            out.append({"event": _BOUND_EVENTS[sp.with_respect_to], **sp.values})
+    return out
+
+
+def _physical(
+    model: ContactLoss, row: dict[str, float], tol: float, messages: list[str]
+) -> dict[str, float]:
+    """One row of a locus in physical units (NaN for a point the row does not carry), with
+    the released energies at it (NaN where not resolved to :data:`ENERGY_RTOL`)."""
+    sg, st = model.scales["g"], model.scales["t"]
+    out = {"mu": row["mu"], "reduced_normal_load": row["n_B"] * model.F_N0}
+    for x in "ABCD":
+        out[f"g_{x}"] = row.get(f"{x}.g", math.nan) * sg
+        out[f"F_{x}"] = row.get(f"{x}.t", math.nan) * st
+        out[f"A_SL_{x}"] = row.get(f"{x}.A_SL", math.nan)
+    e = energies(model.levels, row, row["mu"], model.mu0, model.g_A, "C.q" in row, tol)
+    for kind in ("snap_back", "snap_through"):
+        value, error = e[kind] * st * sg, e[f"{kind}_error"] * st * sg
+        if error > ENERGY_RTOL * abs(value):
+            note = (
+                f"{kind} energies below {ENERGY_RTOL:g} relative accuracy are left empty (an "
+                f"area much smaller than F_T times the slip it spans, e.g. a tiny reduction): "
+                f"first at mu = {row['mu']!r}, F'_N = {out['reduced_normal_load']!r} N"
+            )
+            if not any(m.startswith(note[:40]) for m in messages):
+                messages.append(note)
+            value = math.nan
+        out[f"{kind}_energy"], out[f"{kind}_error"] = value, error
+    if ("D.q" in row and math.isnan(e["snap_back"])) or (
+        "C.q" in row and math.isnan(e["snap_through"])
+    ):
+        note = (
+            f"energies not resolved at mu = {row['mu']!r}, F'_N = "
+            f"{out['reduced_normal_load']!r} N (left empty)"
+        )
+        if note not in messages:
+            messages.append(note)
+    return out

@@ -1,0 +1,174 @@
+"""Released energies at a point of a locus, from the levels of its points A, B, C, D.
+
+On the legs AB and BC one level is constant: the stick level q = q_A on AB (the frozen stick
+zone) and the contact level p = p_B on BC (F_N = F'_N), so each leg is an explicit curve in
+its other level (module docstring of :mod:`cusp.models.contact_loss`, nondimensional):
+
+* AB: n = exp ℓ(p), t = (μ/μ0) n F̂_T(p, q_A), g = (μ/g_A) s(p, q_A);
+* BC: n = n_B,       t = (μ/μ0) n_B F̂_T(p_B, q), g = (μ/g_A) s(p_B, q).
+
+The areas are integrals in g of the gap between two such curves, ABD = ∫_{g_B}^{g_A}
+(F_AB − F_BC) dg and ABC − ABD = ∫_{g_A}^{g_C} (F_A − F_BC) dg, by Gauss–Legendre with the
+nodes doubled until two rules agree; at each node the level is found from g by safeguarded
+Newton inside the bracket the leg's end points give (g is monotone along each leg). No
+continuation problem is solved here: the locus supplies the end points, exact, and the legs
+between them are explicit. The gap is evaluated as a difference, so its rounding error
+(≈ ε·F·Δg, which dominates for very small reductions where the area shrinks like ΔF_N²) is
+added to the reported error estimate.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable, Mapping
+
+import numpy as np
+
+#: two Gauss-Legendre rules agreeing to this (relative) end the doubling
+QUAD_RTOL = 1e-13
+_MAX_NODES = 512
+_EPS = np.finfo(float).eps
+_RULES: dict[int, tuple[np.ndarray, np.ndarray]] = {}
+
+
+def _rule(n: int) -> tuple[np.ndarray, np.ndarray]:
+    if n not in _RULES:
+        _RULES[n] = np.polynomial.legendre.leggauss(n)
+    return _RULES[n]
+
+
+def _invert(fun: Callable[[float], tuple[float, float]], target: float, lo: float, hi: float):
+    """The level x in [lo, hi] (either order) with fun(x)[0] = target, fun monotone there and
+    the target inside; safeguarded Newton (bisection when a step leaves the bracket)."""
+    f_lo, f_hi = fun(lo)[0] - target, fun(hi)[0] - target
+    if f_lo == 0.0:
+        return lo
+    if f_hi == 0.0:
+        return hi
+    if f_lo * f_hi > 0.0:
+        # the target at an end of the bracket but off it by rounding, or g not monotone
+        near = min((abs(f_lo), lo), (abs(f_hi), hi))
+        if near[0] <= 64.0 * _EPS * max(abs(target), 1.0):
+            return near[1]
+        raise ArithmeticError("the slip is not monotone along the leg")
+    x = lo + (hi - lo) * f_lo / (f_lo - f_hi)
+    for _ in range(100):
+        f, df = fun(x)
+        f -= target
+        if f == 0.0:
+            return x
+        if (f < 0.0) == (f_lo < 0.0):
+            lo, f_lo = x, f
+        else:
+            hi = x
+        step = f / df if df != 0.0 else math.inf
+        new = x - step
+        if not (min(lo, hi) < new < max(lo, hi)):
+            new = 0.5 * (lo + hi)
+        if abs(new - x) <= 4.0 * _EPS * max(abs(x), abs(new)) or new in (lo, hi):
+            return new
+        x = new
+    return x
+
+
+def _gauss(f: Callable[[np.ndarray], np.ndarray], a: float, b: float, floor: float):
+    """∫_a^b f by Gauss–Legendre, nodes doubled from 8 until two rules agree to
+    QUAD_RTOL·|value| or to ``floor`` (the rounding level of the integrand); returns the value
+    and an error estimate (the last difference plus the floor)."""
+    if a == b:
+        return 0.0, 0.0
+    prev = None
+    n = 8
+    while True:
+        x, w = _rule(n)
+        val = 0.5 * (b - a) * float(w @ f(0.5 * (b - a) * x + 0.5 * (a + b)))
+        if prev is not None:
+            diff = abs(val - prev)
+            if diff <= max(QUAD_RTOL * abs(val), floor) or n >= _MAX_NODES:
+                return val, diff + floor
+        prev = val
+        n *= 2
+
+
+class LegCurves:
+    """The legs AB and BC of one point of a locus (``row``: the chain's values, nondimensional
+    ``{"A.q", "B.p", ...}``; ``mu``; ``mu0``, ``g_A``: the model's)."""
+
+    def __init__(self, levels, row: Mapping[str, float], mu: float, mu0: float, g_A: float):
+        self.L = levels
+        self.m = mu / g_A
+        self.k = mu / mu0
+        self.qA, self.pA, self.pB, self.nB = row["A.q"], row["A.p"], row["B.p"], row["B.n"]
+        self.row = row
+
+    def g_ab(self, p: float) -> tuple[float, float]:
+        s, ds, _ = self.L.slip(p, self.qA)
+        return self.m * s, self.m * ds
+
+    def g_bc(self, q: float) -> tuple[float, float]:
+        s, _, ds = self.L.slip(self.pB, q)
+        return self.m * s, self.m * ds
+
+    def t_ab(self, g: float) -> float:
+        p = _invert(self.g_ab, g, self.pA, self.pB)
+        return (
+            self.k * math.exp(self.L.log_normal_load(p)[0]) * self.L.tangential_ratio(p, self.qA)[0]
+        )
+
+    def t_bc(self, g: float, q_end: float) -> float:
+        q = _invert(self.g_bc, g, self.row["B.q"], q_end)
+        return self.k * self.nB * self.L.tangential_ratio(self.pB, q)[0]
+
+
+def energies(
+    levels,
+    row: Mapping[str, float],
+    mu: float,
+    mu0: float,
+    g_A: float,
+    has_c: bool,
+    state_tol: float,
+) -> dict[str, float]:
+    """Snap-back (area ABD) and snap-through (area ABC) energies, nondimensional (times
+    μ0 F_N0 g_A for N·µm), with error estimates (``*_error``); NaN where D or C is missing
+    from ``row`` or the levels do not resolve the legs.
+
+    The estimate adds to the quadrature's the rounding of the gap and the effect of the
+    points' own error (``state_tol``, relative: the tolerance they were converged to), both
+    of order F·Δg: an area much smaller than F·Δg (a tiny reduction) is resolved only to
+    their ratio."""
+    out = dict.fromkeys(
+        ("snap_back", "snap_through", "snap_back_error", "snap_through_error"), math.nan
+    )
+    if "D.q" not in row or not math.isfinite(row["D.q"]):
+        return out
+    legs = LegCurves(levels, row, mu, mu0, g_A)
+    g_B, t_A, t_B = row["B.g"], row["A.t"], row["B.t"]
+    q_D = row["D.q"]
+    try:
+        floor = 64.0 * _EPS * (abs(t_A) + abs(t_B)) * abs(1.0 - g_B)
+        # the levels carry their rounding, relative to their own size (large far in a tail)
+        size = max(1.0, abs(row["A.q"]), abs(row["B.p"]))
+        state = state_tol * size * (abs(t_A) + abs(t_B)) * abs(1.0 - g_B)
+
+        def gap(gs):
+            return np.array([legs.t_ab(g) - legs.t_bc(g, q_D) for g in gs])
+
+        abd, abd_err = _gauss(gap, g_B, 1.0, floor)
+        abd_err += state
+        out["snap_back"], out["snap_back_error"] = abd, abd_err
+        if has_c and math.isfinite(row.get("C.q", math.nan)):
+            g_C, q_C = row["C.g"], row["C.q"]
+            floor_c = 64.0 * _EPS * abs(t_A) * abs(g_C - 1.0)
+
+            def rest(gs):
+                return np.array([t_A - legs.t_bc(g, q_C) for g in gs])
+
+            extra, extra_err = _gauss(rest, 1.0, g_C, floor_c)
+            out["snap_through"] = abd + extra
+            out["snap_through_error"] = (
+                abd_err + extra_err + state_tol * size * abs(t_A) * (g_C - 1.0)
+            )
+    except (ArithmeticError, ValueError):
+        pass  # left NaN: the levels do not resolve this leg (the caller says so)
+    return out

@@ -1,0 +1,198 @@
+"""The regime map of the contact-loss path over the friction coefficient μ and the reduced
+normal load F'_N: which landings exist after the reduction, the boundaries between the
+regimes traced as curves, and the released energies over the plane.
+
+Regimes (at fixed F_N0 and g_A):
+
+* ``"snap-back and snap-through"``: D and C exist (F_A < μF'_N);
+* ``"snap-back, gross sliding under force control"``: D exists, C does not (F_A ≥ μF'_N);
+* ``"gross sliding under both controls"``: neither (a body that slides as a whole, such as a
+  sphere, when g_A exceeds the slip at which it slides under F'_N);
+* ``"inadmissible"``: F'_N < F_N0 − F_A/μ, a reduction so deep that F'_T would be negative.
+
+The boundaries: ``"C boundary"`` F'_N = F_A(μ)/μ and ``"F'_T = 0"`` F'_N = F_N0 − F_A(μ)/μ
+follow from the locus of A in μ (A does not depend on F'_N), traced by continuation along the
+shallowest reduction of the map (the "spine"); ``"D disappears"`` (a sphere) is located on
+each locus in F'_N. The energies are the loci in F'_N, one per μ of the grid, started from
+the spine's rows at those μ and evaluated at the loads of the grid (targets of the loci).
+
+Units: µm, N, N·µm.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass
+
+import numpy as np
+
+from cusp.continuation import ChainPoint, ContinuationOptions, PointChain, locus
+
+from .contact_loss import ContactLoss
+from .errors import ModelParameterError
+from .manifold import point_loci, trace_loci
+
+__all__ = ["REGIMES", "RegimeMap", "regime_map"]
+
+#: the regimes, in the order of their codes in :attr:`RegimeMap.regimes`
+REGIMES = (
+    "snap-back and snap-through",
+    "snap-back, gross sliding under force control",
+    "gross sliding under both controls",
+    "inadmissible",
+)
+
+
+@dataclass(frozen=True)
+class RegimeMap:
+    """The regime map (:func:`regime_map`).
+
+    ``mu`` (m,), ``loads`` (k,): the grid [-, N]. ``snap_back``, ``snap_through`` (k, m):
+    the energies [N·µm], NaN where the point does not exist, is not resolved (see the loci)
+    or lies above the spine (ΔF_N < 1e-3·F_N0). ``regimes`` (k, m): index into
+    :data:`REGIMES` (−1 at a μ the spine did not reach).
+    ``boundaries``: name -> (μ, F'_N) arrays, each a curve between regimes. ``messages``:
+    what the loci said about where they ended."""
+
+    mu: np.ndarray
+    loads: np.ndarray
+    snap_back: np.ndarray
+    snap_through: np.ndarray
+    regimes: np.ndarray
+    boundaries: dict[str, tuple[np.ndarray, np.ndarray]]
+    messages: list[str]
+
+
+def regime_map(
+    model: ContactLoss,
+    mu_span: tuple[float, float],
+    load_span: tuple[float, float],
+    *,
+    mus: int | Sequence[float] = 24,
+    loads: int | Sequence[float] = 40,
+    options: ContinuationOptions | None = None,
+) -> RegimeMap:
+    """The regime map of ``model``'s body at its F_N0 and g_A over ``mu_span`` × ``load_span``
+    (F'_N in N, up to F_N0). ``mus``, ``loads``: the grid (numbers of points spaced evenly,
+    μ logarithmically, or the values). The model's own μ must lie in ``mu_span``."""
+    lo, hi = (float(x) for x in load_span)
+    if not 0.0 < lo < hi <= model.F_N0:
+        raise ModelParameterError(
+            f"load_span must be two increasing loads in (0, F_N0 = {model.F_N0!r}] N, got "
+            f"{load_span!r}"
+        )
+    mu_grid = _grid(mus, mu_span, log=True, name="mus")
+    load_grid = _grid(loads, (lo, hi), log=False, name="loads")
+    # the spine: the shallowest reduction of the map, admissible over the widest range of μ
+    # (not shallower than 1e-3·F_N0: as ΔF_N → 0 the legs AB and BC shrink to A, and the
+    # loci in F'_N started there are ill-conditioned)
+    top = min(hi, model.F_N0 * (1.0 - 1e-3))
+    spine_model = ContactLoss(
+        model.body, model.F_N0, model.g_A, top, area_reading=model.area_reading
+    )
+    spine = point_loci(spine_model, "mu", mu_span, at=mu_grid, options=options)
+    messages = [f"spine (F'_N = {top!r} N): {m}" for m in spine.messages]
+    mu_s = spine.columns["mu"]
+    F_A = spine.columns["F_A"]
+    boundaries = {
+        "C boundary": (mu_s, F_A / mu_s),
+        "F'_T = 0": (mu_s, model.F_N0 - F_A / mu_s),
+    }
+    shape = (load_grid.size, mu_grid.size)
+    back, through = np.full(shape, math.nan), np.full(shape, math.nan)
+    d_gone: list[tuple[float, float]] = []
+    for j, mu in enumerate(mu_grid):
+        i = _row_at(mu_s, mu)
+        if i is None:
+            continue
+        row = spine.rows[i]
+        loci = trace_loci(
+            spine_model,
+            "reduced_normal_load",
+            (lo, top),
+            spine.start_at(i),
+            {"mu": row["mu"], "n_B": row["n_B"]},
+            at=load_grid,
+            options=options,
+        )
+        cols = loci.columns
+        for k, load in enumerate(load_grid):
+            r = _row_at(cols["reduced_normal_load"], load)
+            if r is not None:
+                back[k, j] = cols["snap_back_energy"][r]
+                through[k, j] = cols["snap_through_energy"][r]
+        gone = [ev["reduced_normal_load"] for ev in loci.events if ev["event"] == "D disappears"]
+        if gone:
+            d_gone.append((float(mu), max(gone)))
+    d_curve = _d_boundary(spine_model, spine, mu_span, (lo, top), options)
+    if d_curve is not None:
+        boundaries["D disappears"] = d_curve
+    regimes = _classify(spine_model, mu_grid, load_grid, mu_s, F_A, dict(d_gone))
+    return RegimeMap(mu_grid, load_grid, back, through, regimes, boundaries, messages)
+
+
+def _d_boundary(model: ContactLoss, spine, mu_span, load_span, options):
+    """Where D disappears (a body that slides as a whole): the point of the reloading leg at
+    g_T = g_A whose stick zone has just vanished (q = 0), its load F'_N free, continued in μ
+    from where the spine's locus of D ended; None if it did not end there."""
+    ends = [
+        sp for br in spine.branches.values() for sp in br.special("endpoint", with_respect_to="D.q")
+    ]
+    if not ends:
+        return None
+    v = ends[0].values
+    bc = model.problem("BC", start=1.0, constant=v["n_B"], mu=v["mu"])
+    point = ChainPoint("D", bc, "n_B", ("q", 0.0))
+    chain = PointChain([point], {"g": 1.0, "mu": v["mu"]})
+    start = {"D": {k: v[f"D.{k}"] for k in ("t", "n", "A_SL", "p", "q")} | {"n_B": v["n_B"]}}
+    bounds = {
+        "mu": tuple(float(x) for x in mu_span),
+        "D.n_B": (load_span[0] / model.F_N0, 1.0),
+    }
+    o = options or ContinuationOptions(ds=0.02, ds_max=0.1)
+    br = locus(chain, start, free="mu", bounds=bounds, options=o, throw=False)
+    return np.asarray(br["mu"]), np.asarray(br["D.n_B"]) * model.F_N0
+
+
+def _grid(spec, span, *, log: bool, name: str) -> np.ndarray:
+    a, b = (float(x) for x in span)
+    if isinstance(spec, int | np.integer):
+        if spec < 2:
+            raise ModelParameterError(f"{name} must be at least 2 points, got {spec!r}")
+        return np.geomspace(a, b, int(spec)) if log else np.linspace(a, b, int(spec))
+    values = np.asarray(spec, dtype=float)
+    if values.ndim != 1 or values.size < 2 or not np.all(np.diff(values) > 0):
+        raise ModelParameterError(f"{name} must be increasing values, got {spec!r}")
+    if values[0] < a or values[-1] > b:
+        raise ModelParameterError(f"{name} must lie in {span!r}, got {spec!r}")
+    return values
+
+
+def _row_at(column: np.ndarray, value: float) -> int | None:
+    """The row of a locus at a target value (located to rounding), None if not reached."""
+    if column.size == 0:
+        return None
+    i = int(np.argmin(np.abs(column - value)))
+    return i if abs(column[i] - value) <= 1e-9 * abs(value) else None
+
+
+def _classify(model, mu_grid, load_grid, mu_s, F_A, d_gone: dict[float, float]) -> np.ndarray:
+    """The regime at each node of the grid, from F_A(μ) on the spine and the load below which
+    D does not exist (``d_gone``, by μ; a sphere)."""
+    out = np.full((load_grid.size, mu_grid.size), -1, dtype=int)
+    for j, mu in enumerate(mu_grid):
+        i = _row_at(mu_s, mu)
+        if i is None:
+            continue
+        f_a, d_load = F_A[i], d_gone.get(float(mu), -math.inf)
+        for k, load in enumerate(load_grid):
+            if load < model.F_N0 - f_a / mu:
+                out[k, j] = 3
+            elif load < d_load:
+                out[k, j] = 2  # no D, hence no C: the reloading leg slides before g_A
+            elif f_a < mu * load:
+                out[k, j] = 0
+            else:
+                out[k, j] = 1
+    return out
