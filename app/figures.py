@@ -9,6 +9,7 @@
 * ``fig9``: one panel per case, F_T against g_T (Fig 9 (a) and (b): a low and a high μ),
   each with the snap-back and snap-through.
 
+The figures of the loci of a ``[manifold]`` scene are drawn by :mod:`cusp.app.manifold_figures`.
 
 Matplotlib is imported here only (never by the solver or the models), with the Agg canvas
 and no pyplot state; SVG output carries no date and a fixed hash salt, so a scene renders to

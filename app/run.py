@@ -1,7 +1,8 @@
 """``cusp run [SCENE] [--out DIR] [--no-plots]``: trace the contact-loss path of a scene.
 
-``SCENE`` is a scene file or the name of a bundled scene (``fig8``; none: ``fig6``). Writes
-``DIR/summary.json``, ``DIR/branch.csv`` and, unless ``--no-plots``, the scene's figures as
+``SCENE`` is a scene file or the name of a bundled scene (``fig9``; none: ``fig6``). Writes
+``DIR/summary.json``, ``DIR/branch.csv``, for a scene with a ``[manifold]`` section
+``DIR/loci.csv`` (:mod:`cusp.app.loci`) and, unless ``--no-plots``, the scene's figures as
 PNG and SVG. Everything is computed and rendered in memory first, then written to
 a staging directory beside ``DIR`` and moved into place, so a failure leaves no partial
 output. Exit status: 0 success, 2 bad scene (one line on stderr naming the field), 1 a
@@ -27,7 +28,7 @@ from pathlib import Path
 from typing import Any
 
 from .cases import Case, build_body, make_model, solver_options
-from .scene import Scene, SceneError, load_scene
+from .scene import MANIFOLD_FIGURES, Scene, SceneError, load_scene
 
 __all__ = [
     "run_scene",
@@ -106,30 +107,45 @@ def resolve_scene(arg: str | None) -> tuple[Path, str | None]:
 
 @dataclass
 class SceneRun:
-    """The computed cases of a scene (:class:`Case`, one per listed μ or F'_N); ``timing``
+    """The computed cases of a scene (:class:`Case`, one per listed μ or F'_N), the loci of
+    a ``[manifold]`` scene (a :class:`cusp.models.manifold.Loci`, else None); ``timing``
     holds the compute and render wall times [s]."""
 
     scene: Scene
     cases: list[Case]
     timing: dict[str, float]
+    loci: Any = None
 
 
 def run_scene(scene: Scene, *, plots: bool = True) -> tuple[SceneRun, dict]:
-    """Trace every case of a scene; returns the run and the rendered figures (bytes)."""
+    """Trace every case of a scene (and the loci of a [manifold] scene); returns the run and
+    the rendered figures (bytes)."""
     t0 = time.perf_counter()
     options = solver_options(scene)
     cases = []
     for mu, load in scene.cases:
         model = make_model(scene, build_body(scene, mu), load)
         cases.append(Case(model.mu0, load, model.run(options)))
+    loci = None
+    if scene.manifold is not None:
+        from .loci import trace_loci
+
+        loci = trace_loci(scene)
     t1 = time.perf_counter()
+    run = SceneRun(scene, cases, {}, loci)
     figures = {}
-    if plots and scene.figures:
+    path_figures = [f for f in scene.figures if f not in MANIFOLD_FIGURES]
+    loci_figures = [f for f in scene.figures if f in MANIFOLD_FIGURES]
+    if plots and path_figures:
         from .figures import render
 
-        figures = render(cases, scene.figures, title=scene.title)
-    t2 = time.perf_counter()
-    return SceneRun(scene, cases, {"compute_s": t1 - t0, "render_s": t2 - t1}), figures
+        figures = render(cases, path_figures, title=scene.title)
+    if plots and loci_figures:
+        from .manifold_figures import render_manifold
+
+        figures.update(render_manifold(run, loci_figures))
+    run.timing = {"compute_s": t1 - t0, "render_s": time.perf_counter() - t1}
+    return run, figures
 
 
 def _case_summary(mu: float, load: float, res) -> dict[str, Any]:
@@ -175,6 +191,10 @@ def summary(run: SceneRun) -> dict[str, Any]:
             "cusp": _version(),
         },
     }
+    if run.loci is not None:
+        from .loci import manifold_summary
+
+        out["manifold"] = manifold_summary(run.scene, run.loci)
     return out
 
 
@@ -270,6 +290,10 @@ def main(args) -> int:
         ).encode(),
         "branch.csv": branch_csv(run).encode(),
     }
+    if run.loci is not None:
+        from .loci import loci_csv
+
+        files["loci.csv"] = loci_csv(run.loci).encode()
     for name, blobs in figures.items():
         for fmt, data in blobs.items():
             files[f"{name}.{fmt}"] = data
@@ -307,6 +331,10 @@ def _report(run: SceneRun, out: Path, files: list[str], total: float) -> None:
             print(f"    energy {kind}: {text}")
         for msg in res.messages:
             print(f"    note: {msg}")
+    if run.loci is not None:
+        from .loci import report
+
+        report(run.scene, run.loci)
     t = run.timing
     print(
         f"compute {t['compute_s'] * 1e3:.1f} ms, figures {t['render_s'] * 1e3:.1f} ms, "

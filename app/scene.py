@@ -38,9 +38,15 @@ Schema (units in brackets)::
     ds_max = 0.05                 # largest continuation step (nondimensional)
     tol = 1e-10                   # Newton residual tolerance
 
+    [manifold]                    # optional: the loci of A, B, C, D (Fig 9)
+    parameter = "mu"              # "mu" or "reduced_normal_load"
+    range = [0.01, 1.0]           # [low, high], 0 < low < high (F'_N: high <= normal_load),
+                                  #  holding the scene's value (the first listed, for a list)
+
     [output]
     figures = ["force-slip", "force-slip-detail", "force-area"]
-                                  # default; also "fig9" (one panel per case)
+                                  # default; with [manifold]: fig9, manifold-surface,
+                                  #  loci-control-planes, loci-energies, regime-map
 
 The ``[surface]`` part is read from the body registry (:mod:`cusp.models.registry`): the
 model names, each body's parameters with unit and allowed range, which are required and
@@ -50,11 +56,13 @@ cylinder and flat planes are registered but refused, with the registry's reason:
 gives them no compliance law, so they have no load–displacement path.
 
 The cases of a scene are every listed μ with every listed F'_N; as at most one of the two
-is a list, that is one case per listed value.
+is a list, that is one case per listed value. A ``[manifold]`` scene traces, besides its
+cases, the loci from the case of the first listed value that lies in ``range``.
 """
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, NoReturn
@@ -67,12 +75,17 @@ try:
 except ModuleNotFoundError:  # Python 3.10
     import tomli as tomllib
 
-__all__ = ["Scene", "SceneError", "load_scene", "parse_scene", "FIGURES"]
+__all__ = ["Scene", "SceneError", "load_scene", "parse_scene", "FIGURES", "MANIFOLD_FIGURES"]
 
+#: figure names that draw the loci, for a scene with a [manifold] section only
+MANIFOLD_FIGURES = ("manifold-surface", "loci-control-planes", "loci-energies", "regime-map")
 #: figure names a scene may ask for
-FIGURES = ("force-slip", "force-slip-detail", "force-area", "fig9")
-#: the figures of a scene without [output]
+FIGURES = ("force-slip", "force-slip-detail", "force-area", "fig9", *MANIFOLD_FIGURES)
+#: the figures of a scene without [output] (without, with a [manifold] section)
 DEFAULT_FIGURES = ("force-slip", "force-slip-detail", "force-area")
+DEFAULT_MANIFOLD_FIGURES = ("fig9", *MANIFOLD_FIGURES)
+#: the parameters a [manifold] locus can be traced in, and their units
+MANIFOLD_PARAMETERS = {"mu": "", "reduced_normal_load": "N"}
 
 #: the numbers of [loading] and [solver] (those of [surface] come from the body registry)
 _NUMBERS: dict[str, Parameter] = {
@@ -92,6 +105,7 @@ _SECTIONS = {
     "options": {"area_reading"},
     "solver": {"ds_max", "tol"},
     "output": {"figures"},
+    "manifold": {"parameter", "range"},
 }
 _REQUIRED_SECTIONS = ("surface", "loading")
 
@@ -112,7 +126,9 @@ class SceneError(ValueError):
 class Scene:
     """A checked scene. ``surface``, ``loading``, ``options``, ``solver``, ``output`` are
     plain dicts of the values given (numbers as floats; ``surface["mu"]`` a float or a
-    list, as given); ``reduced_normal_loads`` and ``mus`` are always tuples."""
+    list, as given); ``reduced_normal_loads`` and ``mus`` are always tuples. ``manifold``:
+    None, or ``{"parameter", "range": (low, high), "start": (μ, F'_N)}`` (the case the loci
+    start from)."""
 
     source: str
     name: str
@@ -124,6 +140,7 @@ class Scene:
     figures: tuple[str, ...]
     #: units of the [surface] numbers, from the body's registry entry
     surface_units: dict[str, str] = field(default_factory=dict)
+    manifold: dict[str, Any] | None = None
 
     @property
     def reduced_normal_loads(self) -> tuple[float, ...]:
@@ -149,6 +166,12 @@ class Scene:
             units = self.surface_units if section == "surface" else UNITS
             out[section] = {
                 k: ({"value": v, "unit": units[k]} if k in units else v) for k, v in block.items()
+            }
+        if self.manifold is not None:
+            unit = MANIFOLD_PARAMETERS[self.manifold["parameter"]]
+            out["manifold"] = {
+                "parameter": self.manifold["parameter"],
+                "range": {"value": list(self.manifold["range"]), "unit": unit},
             }
         out["output"] = {"figures": list(self.figures)}
         return out
@@ -208,7 +231,10 @@ def parse_scene(text: str, *, source: str = "<scene>", default_name: str = "scen
             f"{loading['reduced_normal_load']!r} are both lists",
             "a list in one of them only (one case per listed value)",
         )
-    figs = _check_figures(chk, data.get("output", {}))
+    manifold = None
+    if "manifold" in data:
+        manifold = _check_manifold(chk, data["manifold"], surface, loading)
+    figs = _check_figures(chk, data.get("output", {}), manifold is not None)
     return Scene(
         source=source,
         name=name,
@@ -219,18 +245,82 @@ def parse_scene(text: str, *, source: str = "<scene>", default_name: str = "scen
         solver=solver,
         figures=tuple(dict.fromkeys(figs)),
         surface_units=surface_units,
+        manifold=manifold,
     )
 
 
-def _check_figures(chk: _Checker, output: dict[str, Any]) -> list[str]:
-    """[output] figures: known names."""
-    figs = output.get("figures", list(DEFAULT_FIGURES))
+def _check_figures(chk: _Checker, output: dict[str, Any], manifold: bool) -> list[str]:
+    """[output] figures: known names; those drawing the loci only with a [manifold]."""
+    default = DEFAULT_MANIFOLD_FIGURES if manifold else DEFAULT_FIGURES
+    figs = output.get("figures", list(default))
     if not isinstance(figs, list) or not all(isinstance(f, str) for f in figs):
         chk.fail(f"[output] figures = {figs!r}", f"a list of names from {_list(FIGURES)}")
     for f in figs:
         if f not in FIGURES:
             chk.fail(f"[output] figures contains {f!r}", f"names from {_list(FIGURES)}")
+        if f in MANIFOLD_FIGURES and not manifold:
+            chk.fail(
+                f"[output] figures contains {f!r} but the scene has no [manifold] section",
+                f"{_list(MANIFOLD_FIGURES)} with a [manifold] section only",
+            )
     return figs
+
+
+def _check_manifold(
+    chk: _Checker, man_in: dict[str, Any], surface: dict[str, Any], loading: dict[str, Any]
+) -> dict[str, Any]:
+    """[manifold]: the parameter, its range, and the case the loci start from (the first
+    listed value of the parameter inside the range)."""
+    allowed_params = " or ".join(repr(k) for k in MANIFOLD_PARAMETERS)
+    for key in ("parameter", "range"):
+        if key not in man_in:
+            chk.fail(f"[manifold] missing key {key!r}", "[manifold] needs parameter and range")
+    param = chk.string("manifold", "parameter", man_in["parameter"])
+    if param not in MANIFOLD_PARAMETERS:
+        chk.fail(f"[manifold] parameter = {param!r}", allowed_params)
+    if param == "mu" and "mu" not in surface:
+        chk.fail(
+            f"[manifold] parameter = 'mu' but model {surface['model']!r} has no mu",
+            "'reduced_normal_load' for this model",
+        )
+    unit = MANIFOLD_PARAMETERS[param]
+    u = f" [{unit}]" if unit else ""
+    rng = man_in["range"]
+    top = loading["normal_load"] if param == "reduced_normal_load" else math.inf
+    what = "two finite numbers [low, high], 0 < low < high" + (
+        f" <= normal_load = {top!r} N" if math.isfinite(top) else ""
+    )
+    if (
+        not isinstance(rng, list)
+        or len(rng) != 2
+        or not all(isinstance(v, (int, float)) and not isinstance(v, bool) for v in rng)
+        or not all(math.isfinite(v) for v in rng)
+        or not 0.0 < rng[0] < rng[1] <= top
+    ):
+        chk.fail(f"[manifold] range = {rng!r}{u}", what)
+    lo, hi = float(rng[0]), float(rng[1])
+    values = surface["mu"] if param == "mu" else loading["reduced_normal_load"]
+    values = values if isinstance(values, list) else [values]
+    inside = [v for v in values if lo <= v <= hi]
+    if not inside:
+        where = "[surface] mu" if param == "mu" else "[loading] reduced_normal_load"
+        shown = values if len(values) > 1 else values[0]
+        chk.fail(
+            f"[manifold] range = {rng!r}{u} does not hold {where} = {shown!r}",
+            f"a range holding {'a listed value of ' if len(values) > 1 else ''}{param} "
+            "(the loci start from that case)",
+        )
+    mus = surface.get("mu")
+    first_mu = mus[0] if isinstance(mus, list) else mus
+    start = (
+        (inside[0], loading["reduced_normal_load"][0])
+        if param == "mu"
+        else (
+            first_mu,
+            inside[0],
+        )
+    )
+    return {"parameter": param, "range": (lo, hi), "start": start}
 
 
 def _check_sections(chk: _Checker, data: dict[str, Any]) -> None:
