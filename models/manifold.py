@@ -265,9 +265,9 @@ def _assemble(model: ContactLoss, parameter: str, free: str, scale: float, branc
         events += [_polish(chains["A-B-C-D"], ev) for ev in _events(with_c)]
         for sp in with_c.special("event", label="C unresolved"):
             messages.append(
-                f"C is not reported beyond {parameter} = {sp.values[free] * scale!r}, where "
-                f"F_A = (1 - {C_MARGIN:g}) mu F'_N: closer to the C boundary rounding decides "
-                "whether C exists"
+                f"C is not reported from {parameter} = {sp.values[free] * scale!r} on towards "
+                f"the C boundary, where F_A = (1 - {C_MARGIN:g}) mu F'_N: closer to it, "
+                "rounding decides whether C exists"
             )
     first = chains[next(iter(chains))]
     rows += [

@@ -28,9 +28,10 @@ from datetime import datetime, timezone
 from pathlib import Path
 
 import numpy as np
-from _report import write_report
 
 from cusp.models import ContactLoss, ExponentialRoughSurface, point_loci
+
+from _report import write_report
 
 ROOT = Path(__file__).resolve().parents[1]
 DOC = ROOT / "docs" / "benchmarks" / "manifold.md"
@@ -127,7 +128,7 @@ def _report(args, mus, loci, rows, t_loc, t_one, speedup, pt, en) -> list[str]:
         "",
         "| | best [s] | median [s] | per value of μ [ms] |",
         "|---|---|---|---|",
-        f"| locus: `point_loci(model, \"mu\", ({MU_LO:g}, 1.0), at=mus)` ({rows} rows) | "
+        f'| locus: `point_loci(model, "mu", ({MU_LO:g}, 1.0), at=mus)` ({rows} rows) | '
         f"{min(t_loc):.3f} | {np.median(t_loc):.3f} | {1e3 * min(t_loc) / len(mus):.2f} |",
         f"| {len(mus)} single runs: `ContactLoss(...).run()` | {min(t_one):.3f} | "
         f"{np.median(t_one):.3f} | {1e3 * min(t_one) / len(mus):.2f} |",

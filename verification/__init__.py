@@ -17,7 +17,7 @@ One module per job:
   (:class:`Derivation`, :class:`PrintedVerdict`, :class:`ImplementationVerdict`);
 - :mod:`~cusp.verification.exponential`: the rough surface with exponential heights
   (Sec. 2, Eqs 9-15) and its contact-loss path (Sec. 4: :func:`contact_loss_path`, ids
-  ``"MD"``, ``"AB"``, ``"32"``);
+  ``"MD"``, ``"AB"``, ``"32"``; the events of its manifold: :func:`manifold_events`);
 - :mod:`~cusp.verification.smooth`: sphere, cylinder and flat planes (Sec. 3, Eqs 18-31);
 - :mod:`~cusp.verification.catalogue`: all records in paper order (:func:`derive_all`,
   :func:`derivation`);
@@ -32,7 +32,7 @@ printed formula, expected to disagree.
 
 from .catalogue import derivation, derive_all
 from .common import SYMBOLS, Derivation, ImplementationVerdict, PrintedVerdict
-from .exponential import contact_loss_path
+from .exponential import contact_loss_path, manifold_events
 from .implementation import (
     FT_HAT_EXTREMES,
     FT_HAT_INTERIOR,
@@ -56,4 +56,5 @@ __all__ = [
     "IMPLEMENTATION_RTOL",
     "exact_value",
     "contact_loss_path",
+    "manifold_events",
 ]

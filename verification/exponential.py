@@ -357,3 +357,24 @@ def contact_loss_path() -> dict[str, sp.Expr]:
         "snap_back": sp.simplify(-(along_ab + b_to_d)),
         "snap_through": sp.simplify(-(along_ab + b_to_c - F_A * (g_C - g_A))),
     }
+
+
+@functools.lru_cache(maxsize=1)
+def manifold_events() -> dict[str, sp.Expr]:
+    """Closed forms of the events of the catastrophe manifold for exponential heights, solved
+    by sympy from :func:`contact_loss_path` (the loci of the points are its expressions read
+    as functions of μ or of F'_N).
+
+    Keys: ``C boundary, F'_N`` and ``C boundary, mu`` (F_A = μF'_N: where C appears, below
+    it force control ends in gross sliding) and ``F'_T = 0, F'_N`` and ``F'_T = 0, mu`` (F_B
+    = 0: the deepest admissible reduction), each the root in that parameter (sympy must find
+    exactly one).
+    """
+    cf = contact_loss_path()
+    boundary = cf["F_A"] - mu * F_Np
+    return {
+        "C boundary, F'_N": solve_unique(boundary, F_Np),
+        "C boundary, mu": solve_unique(boundary, mu),
+        "F'_T = 0, F'_N": solve_unique(cf["F_B"], F_Np),
+        "F'_T = 0, mu": solve_unique(cf["F_B"], mu),
+    }

@@ -38,6 +38,13 @@ def _closed(key, mu, F_Np):
 
 
 CLOSED = verification.contact_loss_path()
+EVENTS = verification.manifold_events()
+
+
+def _event(key, mu, F_Np):
+    S = verification.SYMBOLS
+    syms = (S["sigma"], S["mu"], S["lambda"], S["F_N0"], S["g_A"], S["Fp_N"])
+    return float(verification.exact_value(EVENTS[key], syms, (SIGMA, mu, LAM, F_N0, G_A, F_Np)))
 
 
 def _check_rows(cols, mus, fnps, keys, rtol=1e-10):
@@ -84,8 +91,8 @@ def test_mu_locus_follows_the_closed_forms_and_locates_its_events():
     _check_energies(cols, mu, fnp)
     events = {e["event"]: e for e in loci.events}
     assert len(loci.events) == len(events) == 2  # each located once
-    mu_c = G_A / (LAM * math.log(F_N0 / (F_N0 - F_NP)))
-    mu_0 = G_A / (LAM * math.log(F_N0 / F_NP))
+    mu_c = _event("C boundary, mu", MU, F_NP)  # g_A/(λ ln(F_N0/ΔF_N))
+    mu_0 = _event("F'_T = 0, mu", MU, F_NP)  # g_A/(λ ln(F_N0/F'_N))
     assert events["C boundary"]["mu"] == pytest.approx(mu_c, rel=1e-10)
     assert events["F'_T = 0"]["mu"] == pytest.approx(mu_0, rel=1e-10)
     assert mu[-1] == pytest.approx(mu_0, rel=1e-10)  # the locus ends there
@@ -110,7 +117,7 @@ def test_c_is_reported_where_it_exists_and_is_resolved():
     assert has_c.sum() >= 10
     assert np.all(margin[has_c] >= C_MARGIN * (1.0 - 1e-6))
     assert np.all(has_c[margin > 1e-5]) and not np.any(has_c[margin < 0])
-    assert any("C is not reported beyond" in m for m in loci.messages)
+    assert any("C is not reported from" in m for m in loci.messages)
     c_rows = {k: v[has_c] for k, v in cols.items()}
     _check_rows(c_rows, c_rows["mu"], np.full(has_c.sum(), F_NP), {"g_C": "g_C", "F_D": "F_D"})
 
@@ -125,10 +132,10 @@ def test_reduced_load_locus_follows_the_closed_forms():
     assert fnp[-1] == pytest.approx(990.0, rel=1e-14)
     _check_rows(cols, mus, fnp, {"g_B": "g_B", "F_B": "F_B", "F_D": "F_D"})
     _check_energies(cols, mus, fnp)
-    F_A = _closed("F_A", MU, F_NP)
     events = {e["event"]: e for e in loci.events}
-    assert events["F'_T = 0"]["reduced_normal_load"] == pytest.approx(F_N0 - F_A / MU, rel=1e-10)
-    assert events["C boundary"]["reduced_normal_load"] == pytest.approx(F_A / MU, rel=1e-10)
+    for name in ("F'_T = 0", "C boundary"):  # F_N0 − F_A/μ and F_A/μ
+        want = _event(f"{name}, F'_N", MU, F_NP)
+        assert events[name]["reduced_normal_load"] == pytest.approx(want, rel=1e-10)
 
 
 def test_extremes_tiny_mu_and_tiny_reductions():
@@ -224,3 +231,72 @@ def test_sphere_mu_locus_agrees_with_single_runs_and_mpmath():
         return oracles.sphere_path(mu=mu, **SPHERE, **kw)
 
     _against_single_runs(lambda mu: Sphere(mu=mu, **SPHERE), loci, rows, 1000.0, 2.0, oracle)
+
+
+def _against_single_loads(make_model, loci, rows):
+    """Rows of an F'_N-locus against single runs at their load (1e-9)."""
+    cols = loci.columns
+    for i in rows:
+        F_Np = float(cols["reduced_normal_load"][i])
+        res = make_model(F_Np).run()
+        for x in "ABCD":
+            if res.points[x] is None or not np.isfinite(cols[f"g_{x}"][i]):
+                continue
+            for col, key in ((f"g_{x}", "g_T"), (f"F_{x}", "F_T"), (f"A_SL_{x}", "A_SL")):
+                assert cols[col][i] == pytest.approx(res.points[x][key], rel=1e-9), (col, F_Np)
+        for kind, col in ENERGIES.items():
+            if np.isfinite(cols[col][i]):
+                assert cols[col][i] == pytest.approx(res.energy[kind], rel=1e-9), (col, F_Np)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("body", ["gaussian", "sphere"])
+def test_reduced_load_loci_agree_with_single_runs(body):
+    if body == "gaussian":
+        surface, g_A = GaussianRoughSurface(mu=0.1, **GAUSS), 0.1
+        want = {"C boundary", "F'_T = 0"}
+    else:
+        # (here F_A/μ lies below the floor F_N0 − F_A/μ: C exists down to F'_T = 0)
+        surface, g_A = Sphere(mu=0.1, **SPHERE), 2.0
+        want = {"F'_T = 0"}
+
+    def make(F_Np):
+        return ContactLoss(surface, 1000.0, g_A, F_Np)
+
+    loci = point_loci(make(850.0), "reduced_normal_load", (100.0, 999.0))
+    events = {e["event"]: e for e in loci.events}
+    assert want <= set(events)
+    assert set(events) == want
+    if "C boundary" in events:  # F_A = μF'_N
+        ev = events["C boundary"]
+        assert ev["F_A"] == pytest.approx(0.1 * ev["reduced_normal_load"], rel=1e-10)
+    assert abs(events["F'_T = 0"]["F_B"]) <= 1e-10 * events["F'_T = 0"]["F_A"]
+    n = len(loci.columns["mu"])
+    has_c = np.flatnonzero(np.isfinite(loci.columns["g_C"]))
+    _against_single_loads(make, loci, [2, int(has_c[0]), int(has_c[len(has_c) // 2]), n - 2])
+
+
+@pytest.mark.slow
+def test_general_density_loci_reproduce_the_exponential_ones():
+    # the quadrature-based adapter on an exponential density (support z > 0), same load
+    # scale: its loci are those of the closed-form surface (1e-9)
+    from cusp.models import GeneralRoughSurface, HeightDensity
+
+    scale = dict(E=0.2, radius=10.0, density=0.01, nominal_area=1e6)
+    heights = HeightDensity(
+        lambda z: np.where(np.asarray(z) >= 0, np.exp(-np.asarray(z) / SIGMA) / SIGMA, 0.0),
+        (0.0, math.inf),
+        scale=SIGMA,
+    )
+    general = GeneralRoughSurface(heights, NU, MU, sigma=SIGMA, **scale)
+    exact = ExponentialRoughSurface(SIGMA, NU, MU, **scale)
+    mus = [0.09, 0.11]  # (the general adapter integrates the density at every level: short)
+    cols = [
+        point_loci(ContactLoss(s, F_N0, G_A, F_NP), "mu", (0.09, 0.11), at=mus).columns
+        for s in (general, exact)
+    ]
+    for mu in mus:
+        i, j = (int(np.argmin(np.abs(c["mu"] - mu))) for c in cols)
+        for key in LOCI_UNITS:
+            a, b = cols[0][key][i], cols[1][key][j]
+            assert (math.isnan(a) and math.isnan(b)) or a == pytest.approx(b, rel=1e-9), key
