@@ -26,8 +26,10 @@ Units as in :mod:`cusp.models.contact_loss`: µm, N, N·µm.
 
 from __future__ import annotations
 
+import logging
 import math
 from collections.abc import Mapping, Sequence
+from contextlib import contextmanager
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -204,7 +206,8 @@ def trace_loci(
     mu0, ia = model.mu0, chain.unknowns.index("A.t")
     # F_A = μF'_N: t_A·μ0 = μ·n_B (t = F_T/(μ0 F_N0), n = F_N/F_N0)
     boundary = Event(lambda u, p: u[ia] * mu0 - p["mu"] * p["n_B"], label="C boundary")
-    main = locus(chain, {x: start[x] for x in names}, free=free, events=[boundary], **kw)
+    with _ends_in_messages():
+        main = locus(chain, {x: start[x] for x in names}, free=free, events=[boundary], **kw)
     branches = {"-".join(names): main}
     chains = {"-".join(names): chain}
     seed = _c_seed(model, start, params, main, o)
@@ -217,9 +220,26 @@ def trace_loci(
             label="C unresolved",
             terminal=True,
         )
-        branches["A-B-C-D"] = locus(chain_c, seed[0], free=free, events=[near], **kw)
+        with _ends_in_messages():
+            branches["A-B-C-D"] = locus(chain_c, seed[0], free=free, events=[near], **kw)
         chains["A-B-C-D"] = chain_c
     return _assemble(model, parameter, free, scale, branches, chains)
+
+
+@contextmanager
+def _ends_in_messages():
+    """While loci are traced: a locus that stops early (``throw=False``) is reported in
+    :attr:`Loci.messages`, so the tracer's log line saying so is not also printed."""
+    log = logging.getLogger("cusp.continuation.tracer")
+
+    def drop(record: logging.LogRecord) -> bool:
+        return not str(record.msg).startswith("continuation stopped")
+
+    log.addFilter(drop)
+    try:
+        yield
+    finally:
+        log.removeFilter(drop)
 
 
 def _c_seed(model, start, params, main: Branch, o):
