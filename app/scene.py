@@ -29,7 +29,7 @@ Schema (units in brackets)::
     normal_load = 1000.0          # F_N0 [N]
     max_slip = 0.34               # g_A [µm]
     reduced_normal_load = 850.0   # F'_N [N], or a list for several reductions (Fig 8)
-                                  #  (mu and reduced_normal_load are not both lists)
+                                  #  (not several values in both mu and this)
 
     [options]
     area_reading = "printed"      # Eq 32 as printed, or "consistent"
@@ -225,11 +225,12 @@ def parse_scene(text: str, *, source: str = "<scene>", default_name: str = "scen
     if reading not in ("printed", "consistent"):
         chk.fail(f"[options] area_reading = {reading!r}", "'printed' or 'consistent'")
     solver = {k: chk.number("solver", k, v) for k, v in data.get("solver", {}).items()}
-    if isinstance(surface.get("mu"), list) and len(loading["reduced_normal_load"]) > 1:
+    mus = surface.get("mu")
+    if isinstance(mus, list) and len(mus) > 1 and len(loading["reduced_normal_load"]) > 1:
         chk.fail(
             f"[surface] mu = {surface['mu']!r} and [loading] reduced_normal_load = "
             f"{loading['reduced_normal_load']!r} are both lists",
-            "a list in one of them only (one case per listed value)",
+            "several values in one of them only (one case per listed value)",
         )
     manifold = None
     if "manifold" in data:

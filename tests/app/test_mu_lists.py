@@ -58,13 +58,15 @@ def test_scene_cases_and_echo():
     single = parse_scene(_scene("0.1", loads="[900.0, 800.0]"))
     assert single.mus == (0.1,) and single.cases == ((0.1, 900.0), (0.1, 800.0))
     assert single.surface["mu"] == 0.1
+    one = parse_scene(_scene("[0.1]", loads="[900.0, 800.0]"))  # a list of one value is fine
+    assert one.cases == ((0.1, 900.0), (0.1, 800.0))
 
 
 BAD = {
     "both lists": (
         _scene("[0.1, 0.2]", loads="[850.0, 900.0]"),
         "[surface] mu = [0.1, 0.2] and [loading] reduced_normal_load = [850.0, 900.0] are "
-        "both lists; allowed: a list in one of them only (one case per listed value)",
+        "both lists; allowed: several values in one of them only (one case per listed value)",
     ),
     "empty list": (_scene("[]"), "[surface] mu = []; allowed: a number or a non-empty list"),
     "bad value": (_scene("[0.1, -0.2]"), "[surface] mu = -0.2; allowed: a finite number > 0"),
