@@ -43,34 +43,64 @@ def _show(value) -> str:
     return np.array2string(arr, threshold=6, edgeitems=2)
 
 
-def check_positive(name: str, value, unit: str = "") -> float:
-    """A finite scalar > 0; returns it as float."""
+def _real(value) -> float:
+    """``value`` as a float if it is a real number (int, float, a real numpy scalar or 0-d
+    array), NaN otherwise: a string ("2.0"), a bool, a complex number or anything else is
+    not a number here, even where Python would convert it."""
+    if isinstance(value, bool | np.bool_ | str | bytes):
+        return float("nan")
+    arr = np.asarray(value) if not isinstance(value, int | float) else None
+    if arr is not None and (arr.ndim != 0 or arr.dtype.kind not in "iuf"):
+        return float("nan")
     try:
-        v = float(value)
-    except (TypeError, ValueError):
-        v = float("nan")
+        return float(value)
+    except (TypeError, ValueError, OverflowError):
+        return float("nan")
+
+
+def _not_a_number(value) -> str:
+    """' (a str, not a number)' for a value that Python would convert but is no number."""
+    if isinstance(value, bool | np.bool_ | str | bytes | complex | np.complexfloating):
+        return f" (a {type(value).__name__}, not a real number)"
+    return ""
+
+
+def check_positive(name: str, value, unit: str = "") -> float:
+    """A finite real scalar > 0 (not a string, bool or complex); returns it as float."""
+    v = _real(value)
     if not (np.isfinite(v) and v > 0.0):
         u = f" [{unit}]" if unit else ""
-        raise ModelParameterError(f"{name} must be a finite number > 0{u}, got {_show(value)}")
+        raise ModelParameterError(
+            f"{name} must be a finite number > 0{u}, got {_show(value)}{_not_a_number(value)}"
+        )
     return v
 
 
 def check_poisson(value, name: str = "nu") -> float:
-    """Poisson's ratio in (−1, 0.5]."""
-    try:
-        v = float(value)
-    except (TypeError, ValueError):
-        v = float("nan")
+    """Poisson's ratio in (−1, 0.5] (a real number, not a string, bool or complex)."""
+    v = _real(value)
     if not (np.isfinite(v) and -1.0 < v <= 0.5):
         raise ModelParameterError(
-            f"{name} (Poisson's ratio) must be a finite number in (-1, 0.5], got {_show(value)}"
+            f"{name} (Poisson's ratio) must be a finite number in (-1, 0.5], got "
+            f"{_show(value)}{_not_a_number(value)}"
         )
     return v
 
 
 def check_finite_array(name: str, value, lower: float | None = None, unit: str = "") -> np.ndarray:
-    """A float array of finite values (≥ lower if given)."""
-    arr = np.asarray(value, dtype=float)
+    """A float array of finite real values (≥ lower if given); a ragged, string, bool or
+    complex array is refused naming ``name``."""
+    try:
+        raw = np.asarray(value)
+    except ValueError:  # ragged nesting
+        raw = None
+    if raw is None or raw.dtype.kind not in "iuf":
+        kind = "ragged" if raw is None else f"of dtype {raw.dtype}"
+        raise ModelParameterError(
+            f"{name} must be real numbers (an array of int or float), got a value {kind}: "
+            f"{value!r:.80}"
+        )
+    arr = raw.astype(float)
     bad = ~np.isfinite(arr)
     if lower is not None:
         bad |= arr < lower
