@@ -5,7 +5,11 @@
 * ``force-slip-detail``: the region around AB magnified, with the snap-back A→D, the
   snap-through A→C and the released areas ABD and ABC shaded (Fig 6b);
 * ``force-area``: F_T against the total slipped area Â_SL (Fig 7), on which the path is
-  single-valued.
+  single-valued;
+* ``fig9``: one panel per case, F_T against g_T (Fig 9 (a) and (b): a low and a high μ),
+  each with the snap-back and snap-through.
+
+The figures of the loci of a ``[manifold]`` scene are drawn by :mod:`cusp.app.manifold_figures`.
 
 Matplotlib is imported here only (never by the solver or the models), with the Agg canvas
 and no pyplot state; SVG output carries no date and a fixed hash salt, so a scene renders to
@@ -25,24 +29,44 @@ _COLORS = ("#1f4e79", "#c0392b", "#2e7d32", "#8e44ad", "#d35400", "#546e7a")
 
 def render(cases, names, *, title: str = "") -> dict[str, dict[str, bytes]]:
     """``{figure name: {"png": bytes, "svg": bytes}}`` for ``cases`` (a list of
-    ``(reduced normal load [N], ContactLossResult)``)."""
+    :class:`cusp.app.run.Case`: μ, F'_N [N], ContactLossResult)."""
     import matplotlib
-    from matplotlib.backends.backend_agg import FigureCanvasAgg
-    from matplotlib.figure import Figure
 
-    dense = [(load, res, {leg: res.dense(leg) for leg in res.legs}) for load, res in cases]
+    mus = {mu for mu, _, _ in cases}
+    dense = [
+        (_case_label(mu, load, len(mus) > 1), res, {leg: res.dense(leg) for leg in res.legs})
+        for mu, load, res in cases
+    ]
     makers = {"force-slip": _force_slip, "force-slip-detail": _detail, "force-area": _force_area}
     out: dict[str, dict[str, bytes]] = {}
     with matplotlib.rc_context({"font.size": 10}):
         for name in names:
-            fig = Figure(figsize=(6.4, 4.8), layout="constrained")
-            FigureCanvasAgg(fig)
-            ax = fig.add_subplot()
-            makers[name](ax, dense)
-            if title:
-                ax.set_title(title)
+            if name == "fig9":
+                fig = new_figure((4.6 * len(dense), 4.4))
+                _panels(fig, dense, title)
+            else:
+                fig = new_figure((6.4, 4.8))
+                ax = fig.add_subplot()
+                makers[name](ax, dense)
+                if title:
+                    ax.set_title(title)
             out[name] = {fmt: figure_bytes(fig, fmt, dpi=150) for fmt in ("png", "svg")}
     return out
+
+
+def new_figure(size: tuple[float, float]):
+    """A matplotlib Figure on the Agg canvas (no pyplot state)."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.figure import Figure
+
+    fig = Figure(figsize=size, layout="constrained")
+    FigureCanvasAgg(fig)
+    return fig
+
+
+def _case_label(mu: float, load: float, by_mu: bool) -> str:
+    """How a case is named in legends and panel titles: by what varies among the cases."""
+    return f"$\\mu$ = {mu:g}" if by_mu else f"$F'_N$ = {load:g} N"
 
 
 def figure_bytes(fig, fmt: str, **savefig_kw) -> bytes:
@@ -87,9 +111,9 @@ def _paths(ax, dense, x: str, xlabel: str) -> None:
     """F_T against ``x`` for every case (Figs 6a, 7, 8): AB dashed when there are several
     reductions, the points labelled for the first case (B only for the others)."""
     several = len(dense) > 1
-    for i, (load, res, legs) in enumerate(dense):
+    for i, (label, res, legs) in enumerate(dense):
         color = _COLORS[i % len(_COLORS)]
-        _plot_path(ax, legs, x, color, f"$F'_N$ = {load:g} N", dashed_ab=several)
+        _plot_path(ax, legs, x, color, label, dashed_ab=several)
         if not several or i == 0:
             _label_points(ax, res, x)
         elif res.points["B"] is not None:
@@ -111,8 +135,31 @@ def _force_area(ax, dense) -> None:
     _paths(ax, dense, "A_SL", r"total slipped contact area $\hat A_{SL} = A_{SL}/A_r$")
 
 
+def _panels(fig, dense, title: str) -> None:
+    """Fig 9 (a), (b), ...: one panel per case, the whole path with the snap-back A→D and
+    the snap-through A→C drawn as arrows."""
+    axes = fig.subplots(1, len(dense), squeeze=False)[0]
+    for i, (ax, case) in enumerate(zip(axes, dense)):
+        label, res, legs = case
+        _paths(ax, [case], "g_T", r"$g_T$ [µm]")
+        for key, color in (("D", _COLORS[1]), ("C", _COLORS[2])):
+            end, A = res.points[key], res.points["A"]
+            if end is not None:
+                ax.annotate(
+                    "",
+                    xy=(end["g_T"], end["F_T"]),
+                    xytext=(A["g_T"], A["F_T"]),
+                    arrowprops={"arrowstyle": "->", "color": color, "lw": 1.2},
+                )
+        ax.set_title(f"({chr(ord('a') + i)}) {label}")
+        if i:
+            ax.set_ylabel("")
+    if title:
+        fig.suptitle(title)
+
+
 def _detail(ax, dense) -> None:
-    load, res, legs = dense[0]
+    _, res, legs = dense[0]
     A, B, C, D = (res.points[k] for k in "ABCD")
     ab, bc = legs["AB"], legs["BC"]
     ax.plot(ab["g_T"], ab["F_T"], "-", color=_COLORS[0], lw=1.8)

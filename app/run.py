@@ -1,7 +1,9 @@
 """``cusp run [SCENE] [--out DIR] [--no-plots]``: trace the contact-loss path of a scene.
 
-Writes ``DIR/summary.json``, ``DIR/branch.csv`` and, unless ``--no-plots``, the scene's
-figures as PNG and SVG. Everything is computed and rendered in memory first, then written to
+``SCENE`` is a scene file or the name of a bundled scene (``fig9``; none: ``fig6``). Writes
+``DIR/summary.json``, ``DIR/branch.csv``, for a scene with a ``[manifold]`` section
+``DIR/loci.csv`` (:mod:`cusp.app.loci`) and, unless ``--no-plots``, the scene's figures as
+PNG and SVG. Everything is computed and rendered in memory first, then written to
 a staging directory beside ``DIR`` and moved into place, so a failure leaves no partial
 output. Exit status: 0 success, 2 bad scene (one line on stderr naming the field), 1 a
 numerical failure (one line).
@@ -25,9 +27,20 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from .scene import Scene, SceneError, load_scene
+from .cases import Case, build_body, make_model, solver_options
+from .scene import MANIFOLD_FIGURES, Scene, SceneError, load_scene
 
-__all__ = ["run_scene", "SceneRun", "summary", "branch_csv", "write_outputs", "DEFAULT_SCENE"]
+__all__ = [
+    "run_scene",
+    "SceneRun",
+    "Case",
+    "summary",
+    "branch_csv",
+    "write_outputs",
+    "DEFAULT_SCENE",
+    "bundled_names",
+    "resolve_scene",
+]
 
 #: the scene ``cusp run`` runs without an argument (the paper's Fig 6)
 DEFAULT_SCENE = "fig6.toml"
@@ -43,7 +56,8 @@ def add_arguments(parser) -> None:
         "scene",
         nargs="?",
         default=None,
-        help=f"scene file (TOML); default: the bundled {DEFAULT_SCENE} (the paper's Fig 6)",
+        help="scene file (TOML) or the name of a bundled scene (fig6, fig8, ...); default: "
+        f"the bundled {DEFAULT_SCENE} (the paper's Fig 6)",
     )
     parser.add_argument(
         "--out",
@@ -62,71 +76,82 @@ def bundled_scene(name: str = DEFAULT_SCENE) -> Path:
     return Path(str(resources.files("cusp.scenes") / name))
 
 
+def bundled_names() -> list[str]:
+    """The names of the bundled scenes (``fig6``, ...), sorted."""
+    from importlib import resources
+
+    files = resources.files("cusp.scenes").iterdir()
+    return sorted(f.name[: -len(".toml")] for f in files if f.name.endswith(".toml"))
+
+
+def resolve_scene(arg: str | None) -> tuple[Path, str | None]:
+    """The scene file ``cusp run ARG`` reads, and how messages name it (None: as given): an
+    existing file, else a bundled scene by name (``fig8`` or ``fig8.toml``; also when a
+    directory of that name is in the way, e.g. an earlier ``--out fig8``)."""
+    if arg is None:
+        return bundled_scene(), f"scenes/{DEFAULT_SCENE} (bundled)"
+    path = Path(arg)
+    if path.is_file():
+        return path, None
+    names = bundled_names()
+    name = arg.removesuffix(".toml")
+    if name in names:
+        return bundled_scene(f"{name}.toml"), f"scenes/{name}.toml (bundled)"
+    if path.exists():  # a directory, say: load_scene names the problem
+        return path, None
+    raise SceneError(
+        f"{arg}: no such scene file, nor a bundled scene of that name; allowed: a scene file "
+        f"(TOML) or a bundled scene: {', '.join(names)}"
+    )
+
+
 @dataclass
 class SceneRun:
-    """The computed cases of a scene: ``cases`` is a list of (F'_N [N], ContactLossResult);
-    ``timing`` holds the compute and render wall times [s]."""
+    """The computed cases of a scene (:class:`Case`, one per listed μ or F'_N), the loci of
+    a ``[manifold]`` scene (a :class:`cusp.models.manifold.Loci`, else None); ``timing``
+    holds the compute and render wall times [s]."""
 
     scene: Scene
-    cases: list
+    cases: list[Case]
     timing: dict[str, float]
-
-
-def build_body(scene: Scene) -> Any:
-    """The body a scene describes, built by its entry in :mod:`cusp.models.registry` (which
-    imports only that body's module)."""
-    from cusp.models import registry
-    from cusp.models.protocol import require_path_body
-
-    params = dict(scene.surface)
-    model = params.pop("model")
-    try:
-        return require_path_body(registry.build_body(model, **params))
-    except ValueError as exc:
-        raise SceneError(f"{scene.source}: [surface] {exc}") from None
+    loci: Any = None
 
 
 def run_scene(scene: Scene, *, plots: bool = True) -> tuple[SceneRun, dict]:
-    """Trace every case of a scene; returns the run and the rendered figures (bytes)."""
-    from cusp.models.contact_loss import DEFAULT_OPTIONS, ContactLoss
-    from cusp.models.errors import ModelParameterError, NoComplianceLawError
-
+    """Trace every case of a scene (and the loci of a [manifold] scene); returns the run and
+    the rendered figures (bytes)."""
     t0 = time.perf_counter()
-    body = build_body(scene)
-    options = DEFAULT_OPTIONS
-    if scene.solver:
-        try:
-            options = options.replace(**scene.solver)
-        except ValueError as exc:
-            raise SceneError(f"{scene.source}: [solver] {exc}") from None
+    options = solver_options(scene)
     cases = []
-    for load in scene.reduced_normal_loads:
-        try:
-            model = ContactLoss(
-                body,
-                scene.loading["normal_load"],
-                scene.loading["max_slip"],
-                load,
-                area_reading=scene.options["area_reading"],
-            )
-        except ModelParameterError as exc:
-            raise SceneError(f"{scene.source}: [loading] {exc}") from None
-        except NoComplianceLawError as exc:  # a registered body without a path or a refusal
-            raise SceneError(f"{scene.source}: [surface] {exc}") from None
-        cases.append((load, model.run(options)))
+    for mu, load in scene.cases:
+        model = make_model(scene, build_body(scene, mu), load)
+        cases.append(Case(model.mu0, load, model.run(options)))
+    loci = None
+    if scene.manifold is not None:
+        from .loci import trace_loci
+
+        loci = trace_loci(scene)
     t1 = time.perf_counter()
+    run = SceneRun(scene, cases, {}, loci)
     figures = {}
-    if plots and scene.figures:
+    path_figures = [f for f in scene.figures if f not in MANIFOLD_FIGURES]
+    loci_figures = [f for f in scene.figures if f in MANIFOLD_FIGURES]
+    if plots and path_figures:
         from .figures import render
 
-        figures = render(cases, scene.figures, title=scene.title)
-    t2 = time.perf_counter()
-    return SceneRun(scene, cases, {"compute_s": t1 - t0, "render_s": t2 - t1}), figures
+        figures = render(cases, path_figures, title=scene.title)
+    if plots and loci_figures:
+        from .manifold_figures import render_manifold
+
+        figures.update(render_manifold(run, loci_figures))
+    run.timing = {"compute_s": t1 - t0, "render_s": time.perf_counter() - t1}
+    return run, figures
 
 
-def _case_summary(load: float, res) -> dict[str, Any]:
+def _case_summary(mu: float, load: float, res) -> dict[str, Any]:
     energy = dict(res.energy)
     return {
+        "mu": {"value": mu, "unit": ""},
         "reduced_normal_load": {"value": load, "unit": "N"},
         "points": res.points,
         "energy": {**energy, "unit": _UNITS["energy"], "error_estimate": dict(res.energy_error)},
@@ -142,10 +167,10 @@ def summary(run: SceneRun) -> dict[str, Any]:
     import numpy
     import scipy
 
-    cases = [_case_summary(load, res) for load, res in run.cases]
+    cases = [_case_summary(*case) for case in run.cases]
     first = cases[0]
-    level_names = run.cases[0][1].level_names
-    return {
+    level_names = run.cases[0].result.level_names
+    out = {
         "scene": run.scene.echo(),
         "points": first["points"],
         "energy": first["energy"],
@@ -166,6 +191,11 @@ def summary(run: SceneRun) -> dict[str, Any]:
             "cusp": _version(),
         },
     }
+    if run.loci is not None:
+        from .loci import manifold_summary
+
+        out["manifold"] = manifold_summary(run.scene, run.loci)
+    return out
 
 
 def _version() -> str:
@@ -180,10 +210,11 @@ def _version() -> str:
 def branch_csv(run: SceneRun) -> str:
     """The traced branches as CSV: one row per traced point, all cases and legs."""
     buf = io.StringIO()
-    first = run.cases[0][1]
+    first = run.cases[0].result
     p_name, q_name = first.level_names
     cols = [
         "case",
+        "mu",
         "reduced_normal_load",
         "leg",
         "point",
@@ -196,7 +227,7 @@ def branch_csv(run: SceneRun) -> str:
     ]
     w = csv.writer(buf, lineterminator="\n")
     w.writerow(cols)
-    for i, (load, res) in enumerate(run.cases):
+    for i, (mu, load, res) in enumerate(run.cases):
         labels = {row: key for key, row in res.point_rows.items()}
         for leg in res.legs:
             path = res.path(leg)
@@ -204,10 +235,11 @@ def branch_csv(run: SceneRun) -> str:
                 w.writerow(
                     [
                         i,
+                        repr(mu),
                         repr(load),
                         leg,
                         labels.get((leg, j), ""),
-                        *(repr(float(path[c][j])) for c in cols[4:]),
+                        *(repr(float(path[c][j])) for c in cols[5:]),
                     ]
                 )
     return buf.getvalue()
@@ -241,10 +273,9 @@ def main(args) -> int:
     from cusp.models.contact_loss import PathError
 
     t_start = time.perf_counter()
-    bundled = args.scene is None
-    path = bundled_scene() if bundled else Path(args.scene)
     try:
-        scene = load_scene(path, source=f"scenes/{DEFAULT_SCENE} (bundled)" if bundled else None)
+        path, source = resolve_scene(args.scene)
+        scene = load_scene(path, source=source)
         run, figures = run_scene(scene, plots=not args.no_plots)
     except SceneError as exc:
         print(f"cusp run: error: {exc}", file=sys.stderr)
@@ -259,6 +290,10 @@ def main(args) -> int:
         ).encode(),
         "branch.csv": branch_csv(run).encode(),
     }
+    if run.loci is not None:
+        from .loci import loci_csv
+
+        files["loci.csv"] = loci_csv(run.loci).encode()
     for name, blobs in figures.items():
         for fmt, data in blobs.items():
             files[f"{name}.{fmt}"] = data
@@ -279,8 +314,8 @@ def _report(run: SceneRun, out: Path, files: list[str], total: float) -> None:
         f"scene {sc.name} ({sc.source}): {sc.surface['model']}, F_N0 = "
         f"{sc.loading['normal_load']:g} N, g_A = {sc.loading['max_slip']:g} µm"
     )
-    for load, res in run.cases:
-        print(f"  F'_N = {load:g} N")
+    for mu, load, res in run.cases:
+        print(f"  mu = {mu:g}, F'_N = {load:g} N")
         for key in "OABCD":
             pt = res.points[key]
             if pt is None:
@@ -296,6 +331,10 @@ def _report(run: SceneRun, out: Path, files: list[str], total: float) -> None:
             print(f"    energy {kind}: {text}")
         for msg in res.messages:
             print(f"    note: {msg}")
+    if run.loci is not None:
+        from .loci import report
+
+        report(run.scene, run.loci)
     t = run.timing
     print(
         f"compute {t['compute_s'] * 1e3:.1f} ms, figures {t['render_s'] * 1e3:.1f} ms, "

@@ -16,7 +16,8 @@ Schema (units in brackets)::
                                   #  (the built-in bodies) | any registered body
     sigma = 2.0                   # composite rms roughness σ* [µm]        (rough-*)
     nu = 0.3                      # Poisson ratio, in (-1, 0.5]
-    mu = 0.1                      # friction coefficient, > 0
+    mu = 0.1                      # friction coefficient, > 0; or a list: one case per
+                                  #  value (Fig 9's panels)
     E = 0.2                       # Young's modulus [N/µm²]   (rough-gaussian, rough-weibull,
     radius = 10.0                 # ρ* or R [µm]               sphere; optional all-or-none
     density = 0.01                # summits η [1/µm²]          for rough-exponential)
@@ -28,6 +29,7 @@ Schema (units in brackets)::
     normal_load = 1000.0          # F_N0 [N]
     max_slip = 0.34               # g_A [µm]
     reduced_normal_load = 850.0   # F'_N [N], or a list for several reductions (Fig 8)
+                                  #  (not several values in both mu and this)
 
     [options]
     area_reading = "printed"      # Eq 32 as printed, or "consistent"
@@ -36,8 +38,15 @@ Schema (units in brackets)::
     ds_max = 0.05                 # largest continuation step (nondimensional)
     tol = 1e-10                   # Newton residual tolerance
 
+    [manifold]                    # optional: the loci of A, B, C, D (Fig 9)
+    parameter = "mu"              # "mu" or "reduced_normal_load"
+    range = [0.01, 1.0]           # [low, high], 0 < low < high (F'_N: high <= normal_load),
+                                  #  holding the scene's value (the first listed, for a list)
+
     [output]
     figures = ["force-slip", "force-slip-detail", "force-area"]
+                                  # default; with [manifold]: fig9, manifold-surface,
+                                  #  loci-control-planes, loci-energies, regime-map
 
 The ``[surface]`` part is read from the body registry (:mod:`cusp.models.registry`): the
 model names, each body's parameters with unit and allowed range, which are required and
@@ -45,10 +54,15 @@ which form an all-or-none group (the load scale of the exponential surface). A b
 registered with :func:`cusp.models.registry.register_body` is a model here at once. The
 cylinder and flat planes are registered but refused, with the registry's reason: the paper
 gives them no compliance law, so they have no load–displacement path.
+
+The cases of a scene are every listed μ with every listed F'_N; as at most one of the two
+is a list, that is one case per listed value. A ``[manifold]`` scene traces, besides its
+cases, the loci from the case of the first listed value that lies in ``range``.
 """
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, NoReturn
@@ -61,10 +75,17 @@ try:
 except ModuleNotFoundError:  # Python 3.10
     import tomli as tomllib
 
-__all__ = ["Scene", "SceneError", "load_scene", "parse_scene", "FIGURES"]
+__all__ = ["Scene", "SceneError", "load_scene", "parse_scene", "FIGURES", "MANIFOLD_FIGURES"]
 
+#: figure names that draw the loci, for a scene with a [manifold] section only
+MANIFOLD_FIGURES = ("manifold-surface", "loci-control-planes", "loci-energies", "regime-map")
 #: figure names a scene may ask for
-FIGURES = ("force-slip", "force-slip-detail", "force-area")
+FIGURES = ("force-slip", "force-slip-detail", "force-area", "fig9", *MANIFOLD_FIGURES)
+#: the figures of a scene without [output] (without, with a [manifold] section)
+DEFAULT_FIGURES = ("force-slip", "force-slip-detail", "force-area")
+DEFAULT_MANIFOLD_FIGURES = ("fig9", *MANIFOLD_FIGURES)
+#: the parameters a [manifold] locus can be traced in, and their units
+MANIFOLD_PARAMETERS = {"mu": "", "reduced_normal_load": "N"}
 
 #: the numbers of [loading] and [solver] (those of [surface] come from the body registry)
 _NUMBERS: dict[str, Parameter] = {
@@ -84,6 +105,7 @@ _SECTIONS = {
     "options": {"area_reading"},
     "solver": {"ds_max", "tol"},
     "output": {"figures"},
+    "manifold": {"parameter", "range"},
 }
 _REQUIRED_SECTIONS = ("surface", "loading")
 
@@ -103,8 +125,10 @@ class SceneError(ValueError):
 @dataclass(frozen=True)
 class Scene:
     """A checked scene. ``surface``, ``loading``, ``options``, ``solver``, ``output`` are
-    plain dicts of the values given (numbers as floats); ``reduced_normal_loads`` is always
-    a tuple."""
+    plain dicts of the values given (numbers as floats; ``surface["mu"]`` a float or a
+    list, as given); ``reduced_normal_loads`` and ``mus`` are always tuples. ``manifold``:
+    None, or ``{"parameter", "range": (low, high), "start": (μ, F'_N)}`` (the case the loci
+    start from)."""
 
     source: str
     name: str
@@ -116,10 +140,23 @@ class Scene:
     figures: tuple[str, ...]
     #: units of the [surface] numbers, from the body's registry entry
     surface_units: dict[str, str] = field(default_factory=dict)
+    manifold: dict[str, Any] | None = None
 
     @property
     def reduced_normal_loads(self) -> tuple[float, ...]:
         return tuple(self.loading["reduced_normal_load"])
+
+    @property
+    def mus(self) -> tuple[float | None, ...]:
+        """The listed friction coefficients ((None,) for a body without ``mu``)."""
+        mu = self.surface.get("mu")
+        return tuple(mu) if isinstance(mu, list) else (mu,)
+
+    @property
+    def cases(self) -> tuple[tuple[float | None, float], ...]:
+        """(μ, F'_N) of each case: every listed μ with every listed F'_N (at most one of
+        them is a list)."""
+        return tuple((mu, load) for mu in self.mus for load in self.reduced_normal_loads)
 
     def echo(self) -> dict[str, Any]:
         """The scene as given, with units: ``{section: {key: {"value", "unit"}}}``."""
@@ -129,6 +166,12 @@ class Scene:
             units = self.surface_units if section == "surface" else UNITS
             out[section] = {
                 k: ({"value": v, "unit": units[k]} if k in units else v) for k, v in block.items()
+            }
+        if self.manifold is not None:
+            unit = MANIFOLD_PARAMETERS[self.manifold["parameter"]]
+            out["manifold"] = {
+                "parameter": self.manifold["parameter"],
+                "range": {"value": list(self.manifold["range"]), "unit": unit},
             }
         out["output"] = {"figures": list(self.figures)}
         return out
@@ -182,13 +225,17 @@ def parse_scene(text: str, *, source: str = "<scene>", default_name: str = "scen
     if reading not in ("printed", "consistent"):
         chk.fail(f"[options] area_reading = {reading!r}", "'printed' or 'consistent'")
     solver = {k: chk.number("solver", k, v) for k, v in data.get("solver", {}).items()}
-
-    figs = data.get("output", {}).get("figures", list(FIGURES))
-    if not isinstance(figs, list) or not all(isinstance(f, str) for f in figs):
-        chk.fail(f"[output] figures = {figs!r}", f"a list of names from {_list(FIGURES)}")
-    for f in figs:
-        if f not in FIGURES:
-            chk.fail(f"[output] figures contains {f!r}", f"names from {_list(FIGURES)}")
+    mus = surface.get("mu")
+    if isinstance(mus, list) and len(mus) > 1 and len(loading["reduced_normal_load"]) > 1:
+        chk.fail(
+            f"[surface] mu = {surface['mu']!r} and [loading] reduced_normal_load = "
+            f"{loading['reduced_normal_load']!r} are both lists",
+            "several values in one of them only (one case per listed value)",
+        )
+    manifold = None
+    if "manifold" in data:
+        manifold = _check_manifold(chk, data["manifold"], surface, loading)
+    figs = _check_figures(chk, data.get("output", {}), manifold is not None)
     return Scene(
         source=source,
         name=name,
@@ -199,7 +246,82 @@ def parse_scene(text: str, *, source: str = "<scene>", default_name: str = "scen
         solver=solver,
         figures=tuple(dict.fromkeys(figs)),
         surface_units=surface_units,
+        manifold=manifold,
     )
+
+
+def _check_figures(chk: _Checker, output: dict[str, Any], manifold: bool) -> list[str]:
+    """[output] figures: known names; those drawing the loci only with a [manifold]."""
+    default = DEFAULT_MANIFOLD_FIGURES if manifold else DEFAULT_FIGURES
+    figs = output.get("figures", list(default))
+    if not isinstance(figs, list) or not all(isinstance(f, str) for f in figs):
+        chk.fail(f"[output] figures = {figs!r}", f"a list of names from {_list(FIGURES)}")
+    for f in figs:
+        if f not in FIGURES:
+            chk.fail(f"[output] figures contains {f!r}", f"names from {_list(FIGURES)}")
+        if f in MANIFOLD_FIGURES and not manifold:
+            chk.fail(
+                f"[output] figures contains {f!r} but the scene has no [manifold] section",
+                f"{_list(MANIFOLD_FIGURES)} with a [manifold] section only",
+            )
+    return figs
+
+
+def _check_manifold(
+    chk: _Checker, man_in: dict[str, Any], surface: dict[str, Any], loading: dict[str, Any]
+) -> dict[str, Any]:
+    """[manifold]: the parameter, its range, and the case the loci start from (the first
+    listed value of the parameter inside the range)."""
+    allowed_params = " or ".join(repr(k) for k in MANIFOLD_PARAMETERS)
+    for key in ("parameter", "range"):
+        if key not in man_in:
+            chk.fail(f"[manifold] missing key {key!r}", "[manifold] needs parameter and range")
+    param = chk.string("manifold", "parameter", man_in["parameter"])
+    if param not in MANIFOLD_PARAMETERS:
+        chk.fail(f"[manifold] parameter = {param!r}", allowed_params)
+    if param == "mu" and "mu" not in surface:
+        chk.fail(
+            f"[manifold] parameter = 'mu' but model {surface['model']!r} has no mu",
+            "'reduced_normal_load' for this model",
+        )
+    unit = MANIFOLD_PARAMETERS[param]
+    u = f" [{unit}]" if unit else ""
+    rng = man_in["range"]
+    top = loading["normal_load"] if param == "reduced_normal_load" else math.inf
+    what = "two finite numbers [low, high], 0 < low < high" + (
+        f" <= normal_load = {top!r} N" if math.isfinite(top) else ""
+    )
+    if (
+        not isinstance(rng, list)
+        or len(rng) != 2
+        or not all(isinstance(v, (int, float)) and not isinstance(v, bool) for v in rng)
+        or not all(math.isfinite(v) for v in rng)
+        or not 0.0 < rng[0] < rng[1] <= top
+    ):
+        chk.fail(f"[manifold] range = {rng!r}{u}", what)
+    lo, hi = float(rng[0]), float(rng[1])
+    values = surface["mu"] if param == "mu" else loading["reduced_normal_load"]
+    values = values if isinstance(values, list) else [values]
+    inside = [v for v in values if lo <= v <= hi]
+    if not inside:
+        where = "[surface] mu" if param == "mu" else "[loading] reduced_normal_load"
+        shown = values if len(values) > 1 else values[0]
+        chk.fail(
+            f"[manifold] range = {rng!r}{u} does not hold {where} = {shown!r}",
+            f"a range holding {'a listed value of ' if len(values) > 1 else ''}{param} "
+            "(the loci start from that case)",
+        )
+    mus = surface.get("mu")
+    first_mu = mus[0] if isinstance(mus, list) else mus
+    start = (
+        (inside[0], loading["reduced_normal_load"][0])
+        if param == "mu"
+        else (
+            first_mu,
+            inside[0],
+        )
+    )
+    return {"parameter": param, "range": (lo, hi), "start": start}
 
 
 def _check_sections(chk: _Checker, data: dict[str, Any]) -> None:
@@ -257,6 +379,9 @@ def _check_surface(chk: _Checker, surf_in: dict[str, Any]) -> tuple[dict[str, An
                 f"[surface] missing key {key!r} for model {model!r}",
                 f"{model} needs {_list(required)}",
             )
+        if key == "mu" and isinstance(surf_in[key], list):
+            surface[key] = chk.numbers("surface", key, surf_in[key], params[key])
+            continue
         surface[key] = chk.number("surface", key, surf_in[key], params[key])
     given = [k for k in optional if k in surf_in]
     if given and len(given) != len(optional):
@@ -283,9 +408,7 @@ def _check_loading(chk: _Checker, load_in: dict[str, Any]) -> dict[str, Any]:
     loading["max_slip"] = chk.number("loading", "max_slip", load_in["max_slip"])
     red = load_in["reduced_normal_load"]
     reds = red if isinstance(red, list) else [red]
-    if not reds:
-        chk.fail("[loading] reduced_normal_load = []", "a number or a non-empty list of numbers")
-    loading["reduced_normal_load"] = [chk.number("loading", "reduced_normal_load", v) for v in reds]
+    loading["reduced_normal_load"] = chk.numbers("loading", "reduced_normal_load", reds)
     for v in loading["reduced_normal_load"]:
         if v >= loading["normal_load"]:
             chk.fail(
@@ -322,6 +445,14 @@ class _Checker:
             u = f" [{spec.unit}]" if spec.unit else ""
             self.fail(f"[{section}] {key} = {value!r}{u}", spec.allowed())
         return float(value)
+
+    def numbers(
+        self, section: str, key: str, values: list, spec: Parameter | None = None
+    ) -> list[float]:
+        """A non-empty list of numbers, each as :meth:`number`."""
+        if not values:
+            self.fail(f"[{section}] {key} = []", "a number or a non-empty list of numbers")
+        return [self.number(section, key, v, spec) for v in values]
 
 
 def _list(items) -> str:

@@ -253,6 +253,6 @@ def test_parsing_scenes_imports_no_body_and_building_one_imports_only_it():
         [sys.executable, "-c", code], capture_output=True, text=True, check=True, cwd=ROOT
     ).stdout
     n, before, after = json.loads(out)
-    assert n == 5
+    assert n == 6  # fig6, fig7, fig8, fig9, gaussian, sphere
     assert before == []
     assert after == ["sphere"]
