@@ -54,6 +54,13 @@ class GaussianRoughSurface(RoughSurface):
         h = check_finite_array("h", h, unit="µm")
         return -1.5 * math.sqrt(self.sigma) * gw_integral(0.5, h / self.sigma)
 
+    def log_load_integral_derivative(self, h):
+        """d log J/dh = −(3/2) F_{1/2}/(σ* F_{3/2}) at h/σ*  [1/µm], from the logs (finite
+        far in the tail, where J and dJ/dh both underflow)."""
+        h = check_finite_array("h", h, unit="µm")
+        t = h / self.sigma
+        return -1.5 / self.sigma * np.exp(log_gw_integral(0.5, t) - log_gw_integral(1.5, t))
+
     def area_integral(self, h):
         """A(h) = σ* F_1(h/σ*)  [µm]."""
         h = check_finite_array("h", h, unit="µm")

@@ -482,10 +482,14 @@ class RoughLevels:
         """(log J, d log J/dp, A, ∫Φ, Φ) at h = u·p: each GW integral once per level (a
         residual and its Jacobian need them at p and q, several times over)."""
         surf, h = self.surf, self.scale * p
-        J = float(surf.load_integral(h))
+        if hasattr(surf, "log_load_integral_derivative"):  # finite where J underflows
+            dlog = float(surf.log_load_integral_derivative(h))
+        else:
+            J = float(surf.load_integral(h))
+            dlog = float(surf.load_integral_derivative(h)) / J if J > 0.0 else math.nan
         return (
             float(surf.log_load_integral(h)),
-            self.scale * float(surf.load_integral_derivative(h)) / J,
+            self.scale * dlog,
             float(surf.area_integral(h)),
             float(surf.tail_probability(h)),
             float(surf.pdf(h)),

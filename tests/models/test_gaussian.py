@@ -132,3 +132,21 @@ def test_properties(F, t):
     assert np.all((f >= 0) & (f <= F * (1 + 1e-15)))
     assert np.all((a >= 0) & (a <= 1))
     assert a[1] <= a[0] * (1 + 1e-15)
+
+
+def test_log_load_derivative_far_in_the_tail():
+    # d log J/dh = −(3/2) F_{1/2}/(σ* F_{3/2}) against the parabolic-cylinder closed form of
+    # the GW integrals (tests/models/_contact_oracles.py, mpmath at 40 digits), out to
+    # h = 500σ*, where J and dJ/dh underflow (the logs are differences of numbers ~ −t²/2:
+    # relative accuracy ~ ε t², so 1e-11 there)
+    import mpmath as mp
+
+    from ._contact_oracles import gw
+
+    s = surface()
+    for t, tol in ((-2.5, 1e-14), (0.0, 1e-14), (10.0, 1e-14), (38.0, 1e-13), (500.0, 1e-11)):
+        got = float(s.log_load_integral_derivative(SIGMA * t))
+        with mp.workdps(40):
+            want = float(-1.5 / SIGMA * gw(0.5, mp.mpf(t)) / gw(1.5, mp.mpf(t)))
+        assert abs(got - want) <= tol * abs(want), (t, got, want)
+    assert float(s.load_integral(SIGMA * 500.0)) == 0.0  # (underflowed: why the logs)

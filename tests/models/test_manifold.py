@@ -300,3 +300,20 @@ def test_general_density_loci_reproduce_the_exponential_ones():
         for key in LOCI_UNITS:
             a, b = cols[0][key][i], cols[1][key][j]
             assert (math.isnan(a) and math.isnan(b)) or a == pytest.approx(b, rel=1e-9), key
+
+
+def test_gaussian_mu_locus_down_to_mu_1e_minus_4():
+    # at μ = 1e-4 the stick level at A is ~500σ* deep in the Gaussian tail, where J(d0) and
+    # dJ/dh underflow: the levels take d log J/dh from the logs of the GW integrals
+    model = ContactLoss(GaussianRoughSurface(mu=0.01, **GAUSS), 1000.0, 0.1, 850.0)
+    loci = point_loci(model, "mu", (1e-4, 0.02), at=[1e-4, 1e-3])
+    cols = loci.columns
+    assert cols["mu"][0] == pytest.approx(1e-4, rel=1e-14)
+    for mu in (1e-4, 1e-3):
+        i = int(np.argmin(np.abs(cols["mu"] - mu)))
+        pts, energy = oracles.gaussian_path(mu=mu, **GAUSS, F_N0=1000.0, g_A=0.1, F_Np=850.0)
+        for x in "ABD":
+            for col, key in ((f"g_{x}", "g_T"), (f"F_{x}", "F_T"), (f"A_SL_{x}", "A_SL")):
+                assert cols[col][i] == pytest.approx(float(pts[x][key]), rel=1e-10), (col, mu)
+        want = float(energy["snap_back"])
+        assert cols["snap_back_energy"][i] == pytest.approx(want, rel=1e-9)
