@@ -191,7 +191,15 @@ def weibull_surface(
     k = check_positive("shape", shape)
     sigma = check_positive("sigma", sigma, "µm")
     # Weibull scale such that the heights have standard deviation sigma
-    spread = math.sqrt(math.gamma(1 + 2 / k) - math.gamma(1 + 1 / k) ** 2)
+    try:
+        spread = math.sqrt(math.gamma(1 + 2 / k) - math.gamma(1 + 1 / k) ** 2)
+    except (OverflowError, ValueError):  # Γ(1 + 2/k) beyond the float range (k < 0.0117)
+        spread = math.nan
+    if not (math.isfinite(spread) and spread > 0.0):  # k > ~1e15: Γ(1 + 2/k) rounds to 1
+        raise ModelParameterError(
+            f"shape = {shape!r}: the Weibull heights have no finite, nonzero spread in floating "
+            "point (sqrt(Γ(1 + 2/k) − Γ(1 + 1/k)²)); allowed: a shape k with 0.0117 < k < 1e15"
+        )
     heights = HeightDensity.weibull(k, sigma / spread)
     return GeneralRoughSurface(
         heights,
