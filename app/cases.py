@@ -34,7 +34,11 @@ def build_body(scene: Scene, mu: float | None = None) -> Any:
     try:
         return require_path_body(registry.build_body(model, **params))
     except ValueError as exc:
-        raise SceneError(f"{scene.source}: [surface] {exc}") from None
+        text = " ".join(str(exc).split())
+        if not any(text.startswith(key) for key in params):  # name the body's parameters
+            given = ", ".join(f"{k} = {v!r}" for k, v in params.items())
+            text = f"{text} (model {model!r} with {given})"
+        raise SceneError(f"{scene.source}: [surface] {text}") from None
 
 
 def make_model(scene: Scene, body: Any, load: float) -> Any:

@@ -22,7 +22,7 @@ import io
 
 import numpy as np
 
-__all__ = ["figure_bytes", "render"]
+__all__ = ["figure_bytes", "render", "title_problem"]
 
 _COLORS = ("#1f4e79", "#c0392b", "#2e7d32", "#8e44ad", "#d35400", "#546e7a")
 
@@ -52,6 +52,17 @@ def render(cases, names, *, title: str = "") -> dict[str, dict[str, bytes]]:
                     ax.set_title(title)
             out[name] = {fmt: figure_bytes(fig, fmt, dpi=150) for fmt in ("png", "svg")}
     return out
+
+
+def title_problem(title: str) -> str | None:
+    """Why ``title`` cannot be drawn (broken mathtext), or None: it is drawn once."""
+    fig = new_figure((2.0, 1.0))
+    fig.suptitle(title)
+    try:
+        fig.canvas.draw()
+    except ValueError as exc:
+        return " ".join(str(exc).split())
+    return None
 
 
 def new_figure(size: tuple[float, float]):

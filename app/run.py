@@ -3,10 +3,11 @@
 ``SCENE`` is a scene file or the name of a bundled scene (``fig9``; none: ``fig6``). Writes
 ``DIR/summary.json``, ``DIR/branch.csv``, for a scene with a ``[manifold]`` section
 ``DIR/loci.csv`` (:mod:`cusp.app.loci`) and, unless ``--no-plots``, the scene's figures as
-PNG and SVG. Everything is computed and rendered in memory first, then written to
-a staging directory beside ``DIR`` and moved into place, so a failure leaves no partial
-output. Exit status: 0 success, 2 bad scene (one line on stderr naming the field), 1 a
-numerical failure (one line).
+PNG and SVG. Everything is computed and rendered in memory first, then committed as one
+set (:mod:`cusp.app.output`), so a failure leaves ``DIR`` as it was. Exit status: 0
+success, 2 bad scene or ``--out`` (one line on stderr naming the field), 1 a numerical
+failure (one line naming the cause); never a traceback, and warnings go to summary.json,
+not stderr (docs/limits.md).
 
 Only what the scene needs is imported: an exponential scene loads no Gaussian or quadrature
 code, ``--no-plots`` loads no matplotlib, and sympy is never loaded.
@@ -17,18 +18,21 @@ from __future__ import annotations
 import csv
 import io
 import json
-import os
 import platform
-import shutil
 import sys
-import tempfile
 import time
-from dataclasses import dataclass
+import warnings
+from collections.abc import Iterator
+from contextlib import contextmanager
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+import numpy as np
+
 from .cases import Case, build_body, make_model, solver_options
-from .scene import MANIFOLD_FIGURES, Scene, SceneError, load_scene
+from .output import OutDirError, check_out_dir, write_outputs
+from .scene import MANIFOLD_FIGURES, Scene, SceneError, check_title, load_scene
 
 __all__ = [
     "run_scene",
@@ -115,6 +119,8 @@ class SceneRun:
     cases: list[Case]
     timing: dict[str, float]
     loci: Any = None
+    #: the warnings raised while computing (kept off stderr; listed in summary.json)
+    warnings: list[str] = field(default_factory=list)
 
 
 def run_scene(scene: Scene, *, plots: bool = True) -> tuple[SceneRun, dict]:
@@ -123,14 +129,20 @@ def run_scene(scene: Scene, *, plots: bool = True) -> tuple[SceneRun, dict]:
     t0 = time.perf_counter()
     options = solver_options(scene)
     cases = []
+    if plots and scene.title and scene.figures:
+        check_title(scene)
+    several = len(scene.cases) > 1
     for mu, load in scene.cases:
-        model = make_model(scene, build_body(scene, mu), load)
-        cases.append(Case(model.mu0, load, model.run(options)))
+        where = f"case mu = {mu!r}, F'_N = {load!r} N: " if several else ""
+        with _failures(where):
+            model = make_model(scene, build_body(scene, mu), load)
+            cases.append(Case(model.mu0, load, model.run(options)))
     loci = None
     if scene.manifold is not None:
         from .loci import trace_loci
 
-        loci = trace_loci(scene)
+        with _failures(f"the loci in {scene.manifold['parameter']}: "):
+            loci = trace_loci(scene)
     t1 = time.perf_counter()
     run = SceneRun(scene, cases, {}, loci)
     figures = {}
@@ -139,11 +151,13 @@ def run_scene(scene: Scene, *, plots: bool = True) -> tuple[SceneRun, dict]:
     if plots and path_figures:
         from .figures import render
 
-        figures = render(cases, path_figures, title=scene.title)
+        with _failures("drawing the figures: "):
+            figures = render(cases, path_figures, title=scene.title)
     if plots and loci_figures:
         from .manifold_figures import render_manifold
 
-        figures.update(render_manifold(run, loci_figures))
+        with _failures("drawing the loci figures: "):
+            figures.update(render_manifold(run, loci_figures))
     run.timing = {"compute_s": t1 - t0, "render_s": time.perf_counter() - t1}
     return run, figures
 
@@ -178,6 +192,7 @@ def summary(run: SceneRun) -> dict[str, Any]:
         "gross_sliding": first["gross_sliding"],
         "messages": first["messages"],
         "solver": first["solver"],
+        "warnings": list(run.warnings),
         "cases": cases,
         "units": {
             **{k: _UNITS[k] for k in ("g_T", "F_T", "F_N", "A_SL")},
@@ -245,51 +260,48 @@ def branch_csv(run: SceneRun) -> str:
     return buf.getvalue()
 
 
-def write_outputs(out: Path, files: dict[str, bytes]) -> None:
-    """Write ``files`` (name -> bytes) into ``out`` atomically: staged beside ``out`` and
-    moved into place (a new directory is renamed in one step; in an existing one each file
-    is replaced atomically). On failure the staging directory is removed."""
-    out = Path(out)
-    parent = out.parent if str(out.parent) else Path(".")
-    parent.mkdir(parents=True, exist_ok=True)
-    if out.exists() and not out.is_dir():
-        raise OSError(f"--out {out} exists and is not a directory")
-    stage = Path(tempfile.mkdtemp(prefix=f".{out.name}.partial-", dir=parent))
-    try:
-        for name, data in files.items():
-            (stage / name).write_bytes(data)
-        if not out.exists():
-            os.replace(stage, out)
-            return
-        for name in files:
-            os.replace(stage / name, out / name)
-    finally:
-        if stage.exists():
-            shutil.rmtree(stage, ignore_errors=True)
+def _first_line(exc: BaseException) -> str:
+    text = str(exc).strip()
+    return text.splitlines()[0] if text else type(exc).__name__
 
 
-def main(args) -> int:
+class NumericalFailure(RuntimeError):
+    """A case or the loci failed numerically (one-line message); ``internal``: the cause
+    was an untyped exception (a bug in the models, named in the message)."""
+
+    def __init__(self, message: str, internal: bool = False) -> None:
+        super().__init__(message)
+        self.internal = internal
+
+
+@contextmanager
+def _failures(where: str) -> Iterator[None]:
+    """Turn what the library raises while computing ``where`` into NumericalFailure (a
+    SceneError passes through)."""
     from cusp.continuation import ContinuationError
+    from cusp.continuation.errors import OptionsError, ProblemDefinitionError
     from cusp.models.contact_loss import PathError
+    from cusp.models.errors import ModelParameterError
 
-    t_start = time.perf_counter()
+    typed = (ContinuationError, PathError, ModelParameterError, ProblemDefinitionError)
     try:
-        path, source = resolve_scene(args.scene)
-        scene = load_scene(path, source=source)
-        run, figures = run_scene(scene, plots=not args.no_plots)
-    except SceneError as exc:
-        print(f"cusp run: error: {exc}", file=sys.stderr)
-        return 2
-    except (ContinuationError, PathError) as exc:
-        first = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
-        print(f"cusp run: numerical failure: {first}", file=sys.stderr)
-        return 1
-    files = {
-        "summary.json": (
-            json.dumps(summary(run), indent=2, ensure_ascii=False, allow_nan=False) + "\n"
-        ).encode(),
-        "branch.csv": branch_csv(run).encode(),
-    }
+        yield
+    except SceneError:
+        raise
+    except (*typed, OptionsError) as exc:
+        raise NumericalFailure(f"{where}{_first_line(exc)}") from exc
+    except Exception as exc:  # last resort: an untyped exception is a bug in the models
+        raise NumericalFailure(
+            f"{where}unexpected {type(exc).__name__} in the models ({_first_line(exc)}); "
+            "this is a bug, please report it with the scene",
+            internal=True,
+        ) from exc
+
+
+def _output_files(run: SceneRun, figures: dict) -> dict[str, bytes]:
+    """Every output file of a run: name -> bytes."""
+    text = json.dumps(summary(run), indent=2, ensure_ascii=False, allow_nan=False)
+    files = {"summary.json": (text + "\n").encode(), "branch.csv": branch_csv(run).encode()}
     if run.loci is not None:
         from .loci import loci_csv
 
@@ -297,12 +309,38 @@ def main(args) -> int:
     for name, blobs in figures.items():
         for fmt, data in blobs.items():
             files[f"{name}.{fmt}"] = data
-    out = Path(args.out) if args.out is not None else Path("cusp-out") / scene.name
+    return files
+
+
+def _fail(kind: str, message: str, status: int) -> int:
+    text = " ".join(message.split())  # one line, whatever the message held
+    print(f"cusp run: {kind}: {text}", file=sys.stderr)
+    return status
+
+
+def main(args) -> int:
+    t_start = time.perf_counter()
+    try:
+        path, source = resolve_scene(args.scene)
+        scene = load_scene(path, source=source)
+        out = Path(args.out) if args.out is not None else Path("cusp-out") / scene.name
+        out = check_out_dir(out)
+        with warnings.catch_warnings(record=True) as caught, np.errstate(all="ignore"):
+            warnings.simplefilter("always")
+            run, figures = run_scene(scene, plots=not args.no_plots)
+            with _failures("writing the outputs: "):
+                run.warnings = sorted({f"{w.category.__name__}: {w.message}" for w in caught})
+                files = _output_files(run, figures)
+    except SceneError as exc:
+        return _fail("error", str(exc), 2)
+    except OutDirError as exc:
+        return _fail("error", str(exc), 2)
+    except NumericalFailure as exc:
+        return _fail("numerical failure", str(exc), 1)
     try:
         write_outputs(out, files)
     except OSError as exc:
-        print(f"cusp run: error: cannot write the output to {out}: {exc}", file=sys.stderr)
-        return 1
+        return _fail("error", f"cannot write the output to {out}: {exc}", 1)
     if not args.quiet:
         _report(run, out, sorted(files), time.perf_counter() - t_start)
     return 0

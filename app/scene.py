@@ -70,12 +70,30 @@ from typing import Any, NoReturn
 from cusp.models import registry
 from cusp.models.registry import Parameter
 
+from .limits import (
+    MAX_CASES,
+    MAX_LIST,
+    MAX_NAME_CHARS,
+    MAX_TITLE_CHARS,
+    check_text,
+    read_scene_bytes,
+    show,
+)
+
 try:
     import tomllib
 except ModuleNotFoundError:  # Python 3.10
     import tomli as tomllib
 
-__all__ = ["Scene", "SceneError", "load_scene", "parse_scene", "FIGURES", "MANIFOLD_FIGURES"]
+__all__ = [
+    "Scene",
+    "SceneError",
+    "load_scene",
+    "parse_scene",
+    "check_title",
+    "FIGURES",
+    "MANIFOLD_FIGURES",
+]
 
 #: figure names that draw the loci, for a scene with a [manifold] section only
 MANIFOLD_FIGURES = ("manifold-surface", "loci-control-planes", "loci-energies", "regime-map")
@@ -94,7 +112,7 @@ _NUMBERS: dict[str, Parameter] = {
         Parameter("normal_load", "N"),
         Parameter("max_slip", "µm"),
         Parameter("reduced_normal_load", "N"),
-        Parameter("ds_max", "", 0.0, 1.0, upper_inclusive=True),
+        Parameter("ds_max", "", 1e-10, 1.0, lower_inclusive=True, upper_inclusive=True),
         Parameter("tol", "", 0.0, 1e-4, upper_inclusive=True),
     )
 }
@@ -183,7 +201,9 @@ def load_scene(path: str | Path, *, source: str | None = None) -> Scene:
     path = Path(path)
     label = str(path) if source is None else source
     try:
-        raw = path.read_bytes()
+        raw = read_scene_bytes(path)
+    except ValueError as exc:
+        raise SceneError(f"{path}: {exc}") from None
     except FileNotFoundError:
         raise SceneError(f"{path}: no such scene file") from None
     except IsADirectoryError:
@@ -203,34 +223,45 @@ def load_scene(path: str | Path, *, source: str | None = None) -> Scene:
 
 def parse_scene(text: str, *, source: str = "<scene>", default_name: str = "scene") -> Scene:
     """Parse and check scene text (see the module docstring for the schema)."""
+    text = text.removeprefix("\ufeff")  # a UTF-8 byte-order mark
     if not text.strip():
         raise SceneError(f"{source}: empty scene; it needs at least [surface] and [loading]")
+    problem = check_text(text)
+    if problem is not None:
+        raise SceneError(f"{source}: {problem}; see docs/limits.md")
     try:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
         raise SceneError(f"{source}: malformed TOML: {exc}") from None
+    except RecursionError:  # pragma: no cover - check_text bounds the nesting first
+        raise SceneError(f"{source}: nested too deep; see docs/limits.md") from None
     chk = _Checker(source)
     _check_sections(chk, data)
 
     meta = data.get("scene", {})
-    name = chk.string("scene", "name", meta.get("name", default_name))
-    if not name or any(ch in name for ch in "/\\\0") or name in (".", ".."):
-        chk.fail(f"[scene] name = {name!r}", "a non-empty file-name-safe label")
+    name = _check_name(chk, meta.get("name", default_name))
     title = chk.string("scene", "title", meta.get("title", ""))
+    if len(title) > MAX_TITLE_CHARS:
+        chk.fail(f"[scene] title of {len(title)} characters", f"at most {MAX_TITLE_CHARS}")
     surface, surface_units = _check_surface(chk, data["surface"])
     loading = _check_loading(chk, data["loading"])
 
     opts_in = data.get("options", {})
     reading = chk.string("options", "area_reading", opts_in.get("area_reading", "printed"))
     if reading not in ("printed", "consistent"):
-        chk.fail(f"[options] area_reading = {reading!r}", "'printed' or 'consistent'")
+        chk.fail(f"[options] area_reading = {show(reading)}", "'printed' or 'consistent'")
     solver = {k: chk.number("solver", k, v) for k, v in data.get("solver", {}).items()}
     mus = surface.get("mu")
     if isinstance(mus, list) and len(mus) > 1 and len(loading["reduced_normal_load"]) > 1:
         chk.fail(
-            f"[surface] mu = {surface['mu']!r} and [loading] reduced_normal_load = "
-            f"{loading['reduced_normal_load']!r} are both lists",
+            f"[surface] mu = {show(surface['mu'])} and [loading] reduced_normal_load = "
+            f"{show(loading['reduced_normal_load'])} are both lists",
             "several values in one of them only (one case per listed value)",
+        )
+    n_cases = len(mus if isinstance(mus, list) else [mus]) * len(loading["reduced_normal_load"])
+    if n_cases > MAX_CASES:
+        chk.fail(
+            f"{n_cases} cases (listed mu times listed reduced_normal_load)", f"at most {MAX_CASES}"
         )
     manifold = None
     if "manifold" in data:
@@ -250,18 +281,51 @@ def parse_scene(text: str, *, source: str = "<scene>", default_name: str = "scen
     )
 
 
+def _check_name(chk: _Checker, value: Any) -> str:
+    """[scene] name: it names the output directory, so a short file-name-safe label."""
+    name = chk.string("scene", "name", value)
+    allowed = (
+        f"a file-name-safe label: 1 to {MAX_NAME_CHARS} characters, no '/', '\\', NUL or "
+        "control characters, not '.' or '..'"
+    )
+    if (
+        not name
+        or len(name) > MAX_NAME_CHARS
+        or any(ch in name for ch in "/\\")
+        or not name.isprintable()
+        or name in (".", "..")
+    ):
+        chk.fail(f"[scene] name = {show(name)} ({len(name)} characters)", allowed)
+    return name
+
+
+def check_title(scene: Scene) -> None:
+    """Refuse a title matplotlib cannot draw (broken mathtext: an unknown command, an
+    unclosed brace between $ signs), before any work. It is drawn once on a small figure,
+    so this imports matplotlib: only for a run that draws figures."""
+    from .figures import title_problem
+
+    problem = title_problem(scene.title)
+    if problem is not None:
+        raise SceneError(
+            f"{scene.source}: [scene] title = {show(scene.title)} cannot be drawn "
+            f"({problem[:120]}); allowed: text, with mathtext between pairs of $ "
+            "(write \\$ for a dollar sign)"
+        )
+
+
 def _check_figures(chk: _Checker, output: dict[str, Any], manifold: bool) -> list[str]:
     """[output] figures: known names; those drawing the loci only with a [manifold]."""
     default = DEFAULT_MANIFOLD_FIGURES if manifold else DEFAULT_FIGURES
     figs = output.get("figures", list(default))
     if not isinstance(figs, list) or not all(isinstance(f, str) for f in figs):
-        chk.fail(f"[output] figures = {figs!r}", f"a list of names from {_list(FIGURES)}")
+        chk.fail(f"[output] figures = {show(figs)}", f"a list of names from {_list(FIGURES)}")
     for f in figs:
         if f not in FIGURES:
-            chk.fail(f"[output] figures contains {f!r}", f"names from {_list(FIGURES)}")
+            chk.fail(f"[output] figures contains {show(f)}", f"names from {_list(FIGURES)}")
         if f in MANIFOLD_FIGURES and not manifold:
             chk.fail(
-                f"[output] figures contains {f!r} but the scene has no [manifold] section",
+                f"[output] figures contains {show(f)} but the scene has no [manifold] section",
                 f"{_list(MANIFOLD_FIGURES)} with a [manifold] section only",
             )
     return figs
@@ -275,13 +339,13 @@ def _check_manifold(
     allowed_params = " or ".join(repr(k) for k in MANIFOLD_PARAMETERS)
     for key in ("parameter", "range"):
         if key not in man_in:
-            chk.fail(f"[manifold] missing key {key!r}", "[manifold] needs parameter and range")
+            chk.fail(f"[manifold] missing key {show(key)}", "[manifold] needs parameter and range")
     param = chk.string("manifold", "parameter", man_in["parameter"])
     if param not in MANIFOLD_PARAMETERS:
-        chk.fail(f"[manifold] parameter = {param!r}", allowed_params)
+        chk.fail(f"[manifold] parameter = {show(param)}", allowed_params)
     if param == "mu" and "mu" not in surface:
         chk.fail(
-            f"[manifold] parameter = 'mu' but model {surface['model']!r} has no mu",
+            f"[manifold] parameter = 'mu' but model {show(surface['model'])} has no mu",
             "'reduced_normal_load' for this model",
         )
     unit = MANIFOLD_PARAMETERS[param]
@@ -289,7 +353,7 @@ def _check_manifold(
     rng = man_in["range"]
     top = loading["normal_load"] if param == "reduced_normal_load" else math.inf
     what = "two finite numbers [low, high], 0 < low < high" + (
-        f" <= normal_load = {top!r} N" if math.isfinite(top) else ""
+        f" <= normal_load = {show(top)} N" if math.isfinite(top) else ""
     )
     if (
         not isinstance(rng, list)
@@ -298,7 +362,7 @@ def _check_manifold(
         or not all(math.isfinite(v) for v in rng)
         or not 0.0 < rng[0] < rng[1] <= top
     ):
-        chk.fail(f"[manifold] range = {rng!r}{u}", what)
+        chk.fail(f"[manifold] range = {show(rng)}{u}", what)
     lo, hi = float(rng[0]), float(rng[1])
     values = surface["mu"] if param == "mu" else loading["reduced_normal_load"]
     values = values if isinstance(values, list) else [values]
@@ -307,7 +371,7 @@ def _check_manifold(
         where = "[surface] mu" if param == "mu" else "[loading] reduced_normal_load"
         shown = values if len(values) > 1 else values[0]
         chk.fail(
-            f"[manifold] range = {rng!r}{u} does not hold {where} = {shown!r}",
+            f"[manifold] range = {show(rng)}{u} does not hold {where} = {show(shown)}",
             f"a range holding {'a listed value of ' if len(values) > 1 else ''}{param} "
             "(the loci start from that case)",
         )
@@ -329,10 +393,13 @@ def _check_sections(chk: _Checker, data: dict[str, Any]) -> None:
     sections = {*_SECTIONS, "surface"}
     for section, value in data.items():
         if section not in sections:
-            chk.fail(f"unknown section [{section}]", f"sections are {_list(sections)}")
+            chk.fail(
+                f"unknown section [{section if len(section) <= 60 else section[:57] + '...'}]",
+                f"sections are {_list(sections)}",
+            )
         if not isinstance(value, dict):
             chk.fail(
-                f"{section} = {value!r} must be a [{section}] table",
+                f"{section} = {show(value)} must be a [{section}] table",
                 f"write it as a section [{section}]",
             )
         keys = _section_keys(section)
@@ -340,7 +407,7 @@ def _check_sections(chk: _Checker, data: dict[str, Any]) -> None:
         if unknown:
             key = sorted(unknown)[0]
             chk.fail(
-                f"[{section}] unknown key {key!r}",
+                f"[{section}] unknown key {show(key)}",
                 f"keys of [{section}] are {_list(set(keys))}",
             )
     for section in _REQUIRED_SECTIONS:
@@ -356,11 +423,13 @@ def _check_surface(chk: _Checker, surf_in: dict[str, Any]) -> tuple[dict[str, An
     model = chk.string("surface", "model", surf_in["model"])
     if model in registry.body_names(with_path=False):
         chk.fail(
-            f"[surface] model = {model!r}: {registry.body_entry(model).refusal}",
+            f"[surface] model = {show(model)}: {registry.body_entry(model).refusal}",
             f"models with a contact-loss path are {_list(with_path)}",
         )
     if model not in with_path:
-        chk.fail(f"[surface] model = {model!r} is not a known model", f"one of {_list(with_path)}")
+        chk.fail(
+            f"[surface] model = {show(model)} is not a known model", f"one of {_list(with_path)}"
+        )
     entry = registry.body_entry(model)
     params = entry.parameters
     required = tuple(p.name for p in entry.required)
@@ -369,14 +438,14 @@ def _check_surface(chk: _Checker, surf_in: dict[str, Any]) -> tuple[dict[str, An
     if extra:
         key = sorted(extra)[0]
         chk.fail(
-            f"[surface] key {key!r} does not apply to model {model!r}",
+            f"[surface] key {show(key)} does not apply to model {show(model)}",
             f"{model} takes {_list(required + optional)}",
         )
     surface: dict[str, Any] = {"model": model}
     for key in required:
         if key not in surf_in:
             chk.fail(
-                f"[surface] missing key {key!r} for model {model!r}",
+                f"[surface] missing key {show(key)} for model {show(model)}",
                 f"{model} needs {_list(required)}",
             )
         if key == "mu" and isinstance(surf_in[key], list):
@@ -401,7 +470,7 @@ def _check_loading(chk: _Checker, load_in: dict[str, Any]) -> dict[str, Any]:
     for key in ("normal_load", "max_slip", "reduced_normal_load"):
         if key not in load_in:
             chk.fail(
-                f"[loading] missing key {key!r}",
+                f"[loading] missing key {show(key)}",
                 "[loading] needs normal_load, max_slip and reduced_normal_load",
             )
     loading["normal_load"] = chk.number("loading", "normal_load", load_in["normal_load"])
@@ -412,8 +481,8 @@ def _check_loading(chk: _Checker, load_in: dict[str, Any]) -> dict[str, Any]:
     for v in loading["reduced_normal_load"]:
         if v >= loading["normal_load"]:
             chk.fail(
-                f"[loading] reduced_normal_load = {v!r} N",
-                f"less than normal_load = {loading['normal_load']!r} N (a reduction)",
+                f"[loading] reduced_normal_load = {show(v)} N",
+                f"less than normal_load = {show(loading['normal_load'])} N (a reduction)",
             )
     return loading
 
@@ -428,7 +497,7 @@ class _Checker:
     def string(self, section: str, key: str, value: Any) -> str:
         if not isinstance(value, str):
             self.fail(
-                f"[{section}] {key} = {value!r} has the wrong type ({type(value).__name__})",
+                f"[{section}] {key} = {show(value)} has the wrong type ({type(value).__name__})",
                 "a string",
             )
         return value
@@ -438,12 +507,18 @@ class _Checker:
         spec = _NUMBERS[key] if spec is None else spec
         if isinstance(value, bool) or not isinstance(value, (int, float)):
             self.fail(
-                f"[{section}] {key} = {value!r} has the wrong type ({type(value).__name__})",
+                f"[{section}] {key} = {show(value)} has the wrong type ({type(value).__name__})",
                 spec.allowed(),
+            )
+        try:
+            float(value)
+        except OverflowError:
+            self.fail(
+                f"[{section}] {key} = {show(value)} is beyond the float range", spec.allowed()
             )
         if not spec.accepts(float(value)):
             u = f" [{spec.unit}]" if spec.unit else ""
-            self.fail(f"[{section}] {key} = {value!r}{u}", spec.allowed())
+            self.fail(f"[{section}] {key} = {show(value)}{u}", spec.allowed())
         return float(value)
 
     def numbers(
@@ -452,6 +527,11 @@ class _Checker:
         """A non-empty list of numbers, each as :meth:`number`."""
         if not values:
             self.fail(f"[{section}] {key} = []", "a number or a non-empty list of numbers")
+        if len(values) > MAX_LIST:
+            self.fail(
+                f"[{section}] {key} is a list of {len(values)} values",
+                f"at most {MAX_LIST} values (the limit of a list)",
+            )
         return [self.number(section, key, v, spec) for v in values]
 
 

@@ -293,7 +293,7 @@ def test_bad_scene_through_the_console_script_has_no_traceback(tmp_path):
 
 
 def test_failed_write_leaves_nothing(tmp_path):
-    files = {"a.txt": b"1", "b.txt": object()}  # the second write fails
+    files = {"summary.json": b"1", "branch.csv": object()}  # the second write fails
     with pytest.raises(TypeError):
         write_outputs(tmp_path / "out", files)  # type: ignore[arg-type]
     assert _leftovers(tmp_path) == []
