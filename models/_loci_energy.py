@@ -71,7 +71,9 @@ def _invert(fun: Callable[[float], tuple[float, float]], target: float, lo: floa
     return x
 
 
-def _gauss(f: Callable[[np.ndarray], np.ndarray], a: float, b: float, floor: float):
+def gauss_legendre(
+    f: Callable[[np.ndarray], np.ndarray], a: float, b: float, floor: float = 0.0
+) -> tuple[float, float]:
     """∫_a^b f by Gauss–Legendre, nodes doubled from 8 until two rules agree to
     QUAD_RTOL·|value| or to ``floor`` (the rounding level of the integrand); returns the value
     and an error estimate (the last difference plus the floor)."""
@@ -154,7 +156,7 @@ def energies(
         def gap(gs):
             return np.array([legs.t_ab(g) - legs.t_bc(g, q_D) for g in gs])
 
-        abd, abd_err = _gauss(gap, g_B, 1.0, floor)
+        abd, abd_err = gauss_legendre(gap, g_B, 1.0, floor)
         abd_err += state
         out["snap_back"], out["snap_back_error"] = abd, abd_err
         if has_c and math.isfinite(row.get("C.q", math.nan)):
@@ -164,7 +166,7 @@ def energies(
             def rest(gs):
                 return np.array([t_A - legs.t_bc(g, q_C) for g in gs])
 
-            extra, extra_err = _gauss(rest, 1.0, g_C, floor_c)
+            extra, extra_err = gauss_legendre(rest, 1.0, g_C, floor_c)
             out["snap_through"] = abd + extra
             out["snap_through_error"] = (
                 abd_err + extra_err + state_tol * size * abs(t_A) * (g_C - 1.0)

@@ -68,8 +68,16 @@ import numpy as np
 
 from cusp.continuation import Branch, ContinuationOptions, Problem, points_at, trace
 
+from ._loci_energy import gauss_legendre
 from .errors import ModelParameterError, check_positive
-from .protocol import ContactLevels, PathBody, require_levels, require_path_body
+from .protocol import (
+    ContactLevels,
+    PathBody,
+    level_lengths,
+    require_levels,
+    require_path_body,
+    stick_bounds,
+)
 
 __all__ = [
     "ContactLoss",
@@ -88,9 +96,6 @@ AREA_READINGS = ("printed", "consistent")
 
 #: default solver settings for the legs (nondimensional arclength)
 DEFAULT_OPTIONS = ContinuationOptions(ds=0.02, ds_max=0.05)
-
-_QUAD_RTOL = 1e-13
-_QUAD_MAX_NODES = 256
 
 
 # ------------------------------------------------------------------------------------------
@@ -128,6 +133,7 @@ class ContactLossResult:
     problems: dict[str, Problem] = field(default_factory=dict)
     point_rows: dict[str, tuple[str, int]] = field(default_factory=dict)
     stats: dict[str, dict[str, Any]] = field(default_factory=dict)
+    levels: Any = None
 
     def path(self, leg: str | None = None) -> dict[str, np.ndarray]:
         """Physical columns along the whole path (or one leg), with a ``leg`` label column.
@@ -151,25 +157,32 @@ class ContactLossResult:
         return self._physical(points_at(self.problems[leg], br, control, values))
 
     def _physical(self, columns) -> dict[str, np.ndarray]:
-        return _to_physical(columns, self.scales, self.level_names)
+        return _to_physical(columns, self.scales, self.level_names, self.levels)
 
 
-def _to_physical(columns, scales, level_names) -> dict[str, np.ndarray]:
-    """Nondimensional leg columns (g, t, n, A_SL, p, q) to physical ones (µm, N)."""
+def _to_physical(columns, scales, level_names, levels=None) -> dict[str, np.ndarray]:
+    """Nondimensional leg columns (g, t, n, A_SL, p, q) to physical ones (µm, N); the levels
+    by the body's own :func:`~cusp.models.protocol.level_lengths` (without ``levels``:
+    p·scale, q·scale)."""
     p_name, q_name = level_names
+    if levels is not None:
+        lp, lq = level_lengths(levels, columns["p"], columns["q"])
+    else:
+        lp = np.asarray(columns["p"]) * scales["level"]
+        lq = np.asarray(columns["q"]) * scales["level"]
     return {
         "g_T": np.asarray(columns["g"]) * scales["g"],
         "F_T": np.asarray(columns["t"]) * scales["t"],
         "F_N": np.asarray(columns["n"]) * scales["n"],
         "A_SL": np.array(columns["A_SL"], dtype=float),
-        p_name: np.asarray(columns["p"]) * scales["level"],
-        q_name: np.asarray(columns["q"]) * scales["level"],
+        p_name: lp,
+        q_name: lq,
     }
 
 
-def _point(values: dict[str, float], scales, level_names) -> dict[str, float]:
+def _point(values: dict[str, float], scales, level_names, levels=None) -> dict[str, float]:
     """One nondimensional point to a physical record."""
-    cols = _to_physical({c: [values[c]] for c in VARIABLES}, scales, level_names)
+    cols = _to_physical({c: [values[c]] for c in VARIABLES}, scales, level_names, levels)
     return {k: float(v[0]) for k, v in cols.items()}
 
 
@@ -396,7 +409,7 @@ class ContactLoss:
         elif d_exists:
             bounds["g"] = (-math.inf, 1.0)
         if math.isfinite(L.slip_limit(B["p"])):
-            bounds["q"] = (0.0, math.inf)  # e.g. a sphere: the stick zone vanishes at gross slip
+            bounds["q"] = stick_bounds(L)  # e.g. a sphere: the stick zone vanishes at gross slip
         prob_bc = self.problem("BC", start=B["g"], constant=B["n"])
         bc = trace(
             prob_bc,
@@ -414,7 +427,9 @@ class ContactLoss:
         legs = {"OA": oa, "AB": ab, "BC": bc}
         energy, error = self._energies(legs, prob_ab, prob_bc, A, B, C, D, o)
         raw = {"O": oa.point(0), "A": A, "B": B, "C": C, "D": D}
-        points = {k: None if v is None else _point(v, self.scales, L.names) for k, v in raw.items()}
+        points = {
+            k: None if v is None else _point(v, self.scales, L.names, L) for k, v in raw.items()
+        }
         return ContactLossResult(
             points=points,
             energy=energy,
@@ -428,6 +443,7 @@ class ContactLoss:
             problems={"OA": prob, "AB": prob_ab, "BC": prob_bc},
             point_rows=_point_rows(legs, c_exists, d_exists),
             stats={name: _leg_stats(br) for name, br in legs.items()},
+            levels=L,
         )
 
     def _gross_sliding_messages(self, t_A: float, c_exists: bool, d_exists: bool) -> list[str]:
@@ -465,13 +481,13 @@ class ContactLoss:
 
         if D is not None or C is not None:
             # area between AB and BC over [g_B, g_A] (D lies on BC at g_A)
-            abd, abd_err = _gauss(gap, g_B, 1.0)
+            abd, abd_err = gauss_legendre(gap, g_B, 1.0)
             abd, abd_err = abd * ft * gs, abd_err * ft * gs
             if D is not None:
                 energy["snap_back"], error["snap_back"] = abd, abd_err
             if C is not None:
                 t_A = A["t"]
-                extra, extra_err = _gauss(lambda g: t_A - f_bc(g), 1.0, C["g"])
+                extra, extra_err = gauss_legendre(lambda g: t_A - f_bc(g), 1.0, C["g"])
                 energy["snap_through"] = abd + extra * ft * gs
                 error["snap_through"] = abd_err + extra_err * ft * gs
         return energy, error
@@ -500,7 +516,7 @@ class ContactLoss:
         names = {"g": "g_T", "t": "F_T", "n": "F_N", "A_SL": "A_SL"}
         for leg, br in legs.items():
             for sp in br.special("fold"):
-                phys = _point(sp.values, self.scales, self.levels.names)
+                phys = _point(sp.values, self.scales, self.levels.names, self.levels)
                 wrt = sp.with_respect_to
                 label = kinds.get(wrt, ("turning point", names.get(wrt, wrt)))
                 out.append(
@@ -568,23 +584,3 @@ def _leg_stats(br: Branch) -> dict[str, Any]:
         "rejected_steps": int(np.sum(br.stats["rejected_steps"])),
         "max_residual_norm": float(np.max(br.stats["residual_norm"])),
     }
-
-
-def _gauss(f, a: float, b: float) -> tuple[float, float]:
-    """∫_a^b f by Gauss–Legendre, nodes doubled from 8 until two rules agree to 1e-13.
-
-    Returns the integral and the difference of the last two rules (an error estimate)."""
-    if a == b:
-        return 0.0, 0.0
-    prev = None
-    n = 8
-    while True:
-        x, w = np.polynomial.legendre.leggauss(n)
-        nodes = 0.5 * (b - a) * x + 0.5 * (a + b)
-        val = 0.5 * (b - a) * float(w @ f(nodes))
-        if prev is not None:
-            err = abs(val - prev)
-            if err <= _QUAD_RTOL * abs(val) or n >= _QUAD_MAX_NODES:
-                return val, err
-        prev = val
-        n *= 2

@@ -49,6 +49,7 @@ from cusp.continuation import (
 from ._loci_energy import energies
 from .contact_loss import ContactLoss
 from .errors import ModelParameterError
+from .protocol import stick_bounds
 
 __all__ = ["CSV_COLUMNS", "LOCI_UNITS", "LOCUS_PARAMETERS", "Loci", "point_loci", "trace_loci"]
 
@@ -196,7 +197,7 @@ def trace_loci(
     if math.isfinite(model.levels.slip_limit(model.levels.p0)):
         # a body that slides as a whole (a sphere): A's stick zone must not vanish, and D
         # ceases to exist where its stick zone does (the locus ends there)
-        bounds.update({"A.q": (0.0, math.inf), "D.q": (0.0, math.inf)})
+        bounds.update({"A.q": stick_bounds(model.levels), "D.q": stick_bounds(model.levels)})
     kw: dict[str, Any] = {"bounds": bounds, "options": o, "throw": False}
     if len(at):
         kw["targets"] = {free: [float(v) / scale for v in at]}
@@ -258,7 +259,7 @@ def _c_seed(model, start, params, main: Branch, o):
     prob = model.problem("BC", start=pt["B"]["g"], constant=params["n_B"], mu=params["mu"])
     bounds = {"t": (-math.inf, pt["A"]["t"])}
     if math.isfinite(model.levels.slip_limit(pt["B"]["p"])):
-        bounds["q"] = (0.0, math.inf)
+        bounds["q"] = stick_bounds(model.levels)
     u0 = [pt["B"][v] for v in prob.unknowns]
     bc = trace(prob, u0, free="g", bounds=bounds, options=o, throw=False)
     if bc.status != "bound" or bc.special("endpoint")[-1].with_respect_to != "t":

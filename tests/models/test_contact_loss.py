@@ -303,7 +303,7 @@ def test_sphere_slipping_under_the_reduced_load_has_no_D_nor_C():
     assert res.points["C"] is None and res.points["D"] is None
     assert res.energy == {"snap_back": None, "snap_through": None}
     assert res.gross_sliding == {"force_control": True, "displacement_control": True}
-    assert res.legs["BC"]["q"][-1] == 0.0  # ends exactly at gross slip (stick zone gone)
+    assert res.path("BC")["c"][-1] == 0.0  # ends exactly at gross slip (stick zone gone)
 
 
 # ------------------------------------------------------------------ refusals
@@ -334,3 +334,21 @@ def test_sphere_max_slip_beyond_gross_sliding_is_refused():
     sph = Sphere(**SPHERE)
     with pytest.raises(ModelParameterError, match="max_slip must be <"):
         ContactLoss(sph, 1000.0, 1.01 * sph.slip_limit(1000.0), 850.0)
+
+
+@pytest.mark.parametrize("f", [1e-3, 1e-5, 1e-6, 1e-7])
+def test_sphere_at_small_slips_matches_mpmath(f):
+    # g_A = f·g_lim(F_N0), F'_N = F_N0 − F_A/(2μ): a, c and a0 agree to ~f; the sphere's
+    # levels are 1 − a/a0 and 1 − c/a0 so that a − c keeps its digits (as 1 − c/a0 = 1 − 1e-8
+    # they had 8 fewer: the energies were 9.6 % off at f = 1e-7). Reference: the mpmath path
+    # of _contact_oracles (40 digits) at the same binary inputs.
+    sph = Sphere(**SPHERE)
+    g_A = f * float(sph.slip_limit(1000.0))
+    F_Np = 1000.0 - 0.5 * float(sph.tangential_force(g_A, 1000.0)) / SPHERE["mu"]
+    res = ContactLoss(sph, 1000.0, g_A, F_Np).run()
+    pts, energy = oracles.sphere_path(**SPHERE, F_N0=1000.0, g_A=g_A, F_Np=F_Np)
+    for key in "ABCD":
+        for q in ("g_T", "F_T", "A_SL"):
+            assert res.points[key][q] == pytest.approx(float(pts[key][q]), rel=1e-8), (key, q)
+    for kind in ("snap_back", "snap_through"):
+        assert res.energy[kind] == pytest.approx(float(energy[kind]), rel=1e-8), kind
