@@ -21,8 +21,11 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable, Mapping
+from typing import Any
 
 import numpy as np
+
+from cusp.continuation import ChainPoint, PointChain
 
 #: two Gauss-Legendre rules agreeing to this (relative) end the doubling
 QUAD_RTOL = 1e-13
@@ -174,3 +177,41 @@ def energies(
     except (ArithmeticError, ValueError):
         pass  # left NaN: the levels do not resolve this leg (the caller says so)
     return out
+
+
+# ------------------------------------------------------------------------------------------
+# the points of a path as one system, polished to rounding
+
+
+def path_chain(model, params: dict[str, float], q_A: float, names: str) -> PointChain:
+    """The chain of the points ``names`` (A, B, then D and/or C) of the path."""
+    oa = model.problem("OA", start=1.0)
+    ab = model.problem("AB", start=params["n_B"], constant=q_A)
+    bc = model.problem("BC", start=1.0, constant=params["n_B"])
+    points = {
+        "A": ChainPoint("A", oa, "g", ("g", 1.0)),
+        "B": ChainPoint("B", ab, "n", ("n", "n_B"), links={"q_A": ("A", "q")}),
+        "D": ChainPoint("D", bc, "g", ("g", 1.0), links={"n_B": ("B", "n")}),
+        "C": ChainPoint("C", bc, "g", ("t", ("A", "t")), links={"n_B": ("B", "n")}),
+    }
+    return PointChain([points[x] for x in names], params)
+
+
+def polish_row(chain: PointChain, row: dict[str, Any]) -> dict[str, Any]:
+    """A row of a locus Newton-polished to rounding at its parameters: the tracer accepts
+    points to its update tolerance, and the released energies (areas between legs that meet
+    at B) are sensitive to the frozen stick level to ~1e3 times that."""
+    p = {k: row[k] for k in chain.params}
+    u = np.array([row[k] for k in chain.unknowns])
+    for _ in range(4):
+        r = chain.residual(u, p)
+        try:
+            du = np.linalg.solve(chain.jacobian(u, p), -r)
+        except np.linalg.LinAlgError:
+            break
+        if not np.all(np.isfinite(du)):
+            break
+        u = u + du
+        if np.all(np.abs(du) <= 4.0 * np.finfo(float).eps * np.maximum(np.abs(u), 1.0)):
+            break
+    return {**row, **dict(zip(chain.unknowns, map(float, u)))}

@@ -352,3 +352,24 @@ def test_sphere_at_small_slips_matches_mpmath(f):
             assert res.points[key][q] == pytest.approx(float(pts[key][q]), rel=1e-8), (key, q)
     for kind in ("snap_back", "snap_through"):
         assert res.energy[kind] == pytest.approx(float(energy[kind]), rel=1e-8), kind
+
+
+@pytest.mark.parametrize("F_Np", [999.999999999, math.nextafter(1000.0, 0.0), 1000.0 * (1 - 1e-8)])
+def test_tiny_reductions_give_energies_with_honest_error_estimates(F_Np):
+    # a reduction of one ulp, or F'_N = 999.999999999 N, used to end in a traceback (the
+    # quadrature asked for a point just outside the leg); now the energies come with error
+    # estimates that bound their actual error (against the sympy closed forms) and a message
+    # saying how far they are resolved
+    res = ContactLoss(ExponentialRoughSurface(2.0, 0.3, 0.1), 1000.0, 0.34, F_Np).run()
+    S = verification.SYMBOLS
+    syms = (S["sigma"], S["mu"], S["lambda"], S["F_N0"], S["g_A"], S["Fp_N"])
+    lam = 2.0 * (2.0 - 0.3) / (2.0 * (1.0 - 0.3))
+    for kind in ("snap_back", "snap_through"):
+        want = float(
+            verification.exact_value(
+                verification.contact_loss_path()[kind], syms, (2.0, 0.1, lam, 1000.0, 0.34, F_Np)
+            )
+        )
+        assert abs(res.energy[kind] - want) <= res.energy_error[kind], kind
+        assert res.energy_error[kind] > 1e-8 * abs(res.energy[kind])
+    assert any("resolved only to" in m for m in res.messages)
