@@ -498,9 +498,10 @@ class ContactLoss:
             energy[kind], error[kind] = value, err
             if err > ENERGY_RTOL * abs(value):
                 notes.append(
-                    f"the {kind.replace('_', '-')} energy is resolved only to "
-                    f"{err / abs(value):.1e} relative (error estimate {err:.3g} N·µm): the "
-                    f"reduction is so small that the area is near the rounding of the legs"
+                    f"the {kind.replace('_', '-')} energy's error bound is {err / abs(value):.1e}"
+                    f" relative ({err:.3g} N·µm), above {ENERGY_RTOL:g}: the area is small "
+                    f"against the rounding of the legs (a bound: the actual error is often "
+                    f"far smaller)"
                 )
         return energy, error, notes
 

@@ -372,4 +372,4 @@ def test_tiny_reductions_give_energies_with_honest_error_estimates(F_Np):
         )
         assert abs(res.energy[kind] - want) <= res.energy_error[kind], kind
         assert res.energy_error[kind] > 1e-8 * abs(res.energy[kind])
-    assert any("resolved only to" in m for m in res.messages)
+    assert any("error bound is" in m for m in res.messages)
