@@ -240,7 +240,7 @@ class BranchSystem(CurveSystem):
         except ArithmeticError:  # a division by zero or overflow at a trial point: as NaN
             return np.full(self.n, np.nan)
         if type(r) is not np.ndarray or r.dtype != float:
-            r = as_vector(r)
+            r = as_vector(r, "the residual", lambda: self.values(z))
         if r.shape != self._shapes[1]:
             raise ProblemDefinitionError(
                 f"residual must return {self.n} values (one per unknown), got shape {r.shape}"
@@ -258,9 +258,9 @@ class BranchSystem(CurveSystem):
         except ArithmeticError:  # as for the residual: a matrix the corrector finds non-finite
             j, fp = np.full(self._shapes[0], np.nan), np.full(self.n, np.nan)
         if type(fp) is not np.ndarray or fp.dtype != float:
-            fp = as_vector(fp)
+            fp = as_vector(fp, f"the param_jacobian (for {self.free!r})", lambda: self.values(z))
         if type(j) is not np.ndarray or j.dtype != float:
-            j = as_matrix(j)
+            j = as_matrix(j, "the jacobian", lambda: self.values(z))
             if type(j) is not np.ndarray:
                 return _sparse_border(j, fp, row)
         if j.shape != self._shapes[0] or fp.shape != self._shapes[1]:
