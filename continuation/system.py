@@ -22,6 +22,7 @@ import scipy.sparse as sp
 from .errors import ProblemDefinitionError
 from .linalg import bordered, rounding_floor
 from .problem import as_matrix, as_vector, has_exact_jacobian
+from .scaling import out_of_range
 from .testfunctions import TestFunction, generic_tests
 
 if TYPE_CHECKING:
@@ -108,6 +109,13 @@ class CurveSystem:
         arclength weights become ``base_weights / scales²`` and a :class:`Problem`'s finite
         differences step relative to them."""
         scales = np.array(scales, dtype=float)
+        k = out_of_range(scales)
+        if k is not None:  # its square or reciprocal square would overflow
+            raise ProblemDefinitionError(
+                f"the typical size of {self.names[k]} would be {scales[k]:.3g}, outside "
+                f"[1e-150, 1e150] where the arclength metric can be formed: rescale it "
+                f"(or give scales=...)"
+            )
         new = object.__new__(type(self))
         new.__dict__.update(self.__dict__)
         new.scales = scales

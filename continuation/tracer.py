@@ -48,7 +48,7 @@ from .linalg import bordered, factor, max_abs
 from .locate import Bracket, Located, tangent_at
 from .options import ContinuationOptions
 from .problem import as_problem
-from .scaling import given_scales, grown_sizes, typical_sizes
+from .scaling import diverged, given_scales, grown_sizes, out_of_range, typical_sizes
 from .start import correct_start
 from .state import Point, TracerState, assemble_branch
 from .stepping import (
@@ -401,6 +401,11 @@ class Tracer:
                 )
             grown = grown_sizes(system.scales, res.z, self._scales)
             if grown is not None:  # the step's end is in the new sizes' metric
+                k = out_of_range(grown)
+                if k is not None:  # a component diverges: stop before the metric overflows
+                    msg = diverged(system.names, res.z, k)
+                    error = NonFiniteResidualError(msg, values=system.values(res.z))
+                    return self._fail(state, Failure("nonfinite_residual", msg, error))
                 system = system.with_scales(grown)
                 t1 = t1 / wnorm(t1, system.weights)
             end = _new_tuple(  # a Point (see stepping.Trial on tuple.__new__)
