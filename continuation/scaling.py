@@ -74,9 +74,18 @@ weighted products can be formed. A component that grows beyond it diverges: the 
 stops there (:func:`diverged`)."""
 
 
+_MIN_SIZE = 1.0 / MAX_SIZE
+
+
 def out_of_range(scales: np.ndarray) -> int | None:
-    """The index of a typical size outside ``[1/MAX_SIZE, MAX_SIZE]`` (or NaN), else None."""
-    bad = ~((scales >= 1.0 / MAX_SIZE) & (scales <= MAX_SIZE))
+    """The index of a typical size outside ``[1/MAX_SIZE, MAX_SIZE]`` (or NaN), else None.
+    Plain Python on the few components of most problems."""
+    if scales.size <= 8:
+        for k, v in enumerate(scales.tolist()):
+            if not _MIN_SIZE <= v <= MAX_SIZE:
+                return k
+        return None
+    bad = ~((scales >= _MIN_SIZE) & (scales <= MAX_SIZE))
     return int(np.argmax(bad)) if bad.any() else None
 
 
