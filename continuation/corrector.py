@@ -197,7 +197,7 @@ def correct(
     system: Any,
     z0: np.ndarray,
     row: np.ndarray,
-    c: float,
+    c: float | None,
     options: Any,
     *,
     budget: int = 1,
