@@ -108,7 +108,10 @@ def grown_sizes(scales: np.ndarray, z: np.ndarray, given: Mapping[int, float]) -
     True
     """
     if z.size <= 8:  # plain Python on the few components of most problems (a tenth the cost)
-        if all(abs(v) <= GROWTH * s for v, s in zip(z.tolist(), scales.tolist())):
+        for v, s in zip(z.tolist(), scales.tolist()):
+            if not abs(v) <= GROWTH * s:  # (NaN too)
+                break
+        else:
             return None
     mag = np.abs(z)
     grown = mag > GROWTH * scales
