@@ -31,6 +31,7 @@ from .errors import (
     OptionsError,
     ProblemDefinitionError,
     SingularMatrixError,
+    SingularPointError,
     StepGuardError,
 )
 from .events import Event
@@ -62,6 +63,7 @@ __all__ = [
     "Problem",
     "ProblemDefinitionError",
     "SingularMatrixError",
+    "SingularPointError",
     "StepGuardError",
     "SpecialPoint",
     "TestFunction",

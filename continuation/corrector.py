@@ -126,7 +126,7 @@ def newton(
     rhs = np.empty(m + 1)
     inv = inverse_magnitudes(system.scales, z)
     sq_step_tol = math.sqrt(step_tol)
-    rel_step_tol = _floor_step_tol(system, step_tol)
+    rel_step_tol = step_tol if system.derivatives_exact else max(step_tol, _FD_STEP_TOL)
     # the first update's weighted length is compared squared (no root on the common path)
     max_first_sq = math.inf if max_first is None else max_first * max_first
     weights = None if system.unit_weights else system.weights
@@ -197,7 +197,7 @@ def correct(
     system: Any,
     z0: np.ndarray,
     row: np.ndarray,
-    c: float,
+    c: float | None,
     options: Any,
     *,
     budget: int = 1,

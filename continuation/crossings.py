@@ -66,8 +66,7 @@ def splits(
     holds one crossing (parts are split again, up to :data:`SPLIT_DEPTH` times). Returns
     the tests whose crossings these replace, and the crossings."""
     last = state.last
-    a = (last.z, last.t, 0.0)
-    b = (trial.res.z, trial.t, math.nan)
+    z_a, t_a, z_b, t_b = last.z, last.t, trial.res.z, trial.t
     replaced: set[TestFunction] = set()
     out: list[Crossing] = []
     data = None
@@ -79,14 +78,15 @@ def splits(
         if data is None:
             if options.predictor == "tangent" and trial.aimed is None and not trial.corner:
                 # the step's h and rt are the pseudo-arclength along t_a and (W t_a)·t_b
-                data = (a[0], a[1], b[0], b[1], trial.h, trial.rt)
+                data = (z_a, t_a, z_b, t_b, trial.h, trial.rt)
             else:
-                data = _part_data(system, a, b)
+                data = _part_data(system, (z_a, t_a, 0.0), (z_b, t_b, math.nan))
             if data[4] == 0.0:
                 break
         thetas = tt.split_points(old, new, data)
         if not thetas:  # (most steps: nothing to split)
             continue
+        a, b = (z_a, t_a, 0.0), (z_b, t_b, math.nan)
         found = _split(tt, options, system, a, old, b, new, SPLIT_DEPTH, data, thetas)
         if found is not None:
             replaced.add(tt)

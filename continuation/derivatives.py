@@ -10,12 +10,15 @@ from typing import Any
 import numpy as np
 import scipy.sparse as sp
 
+from .realvalues import Where, real_array, real_matrix
+
 STRATEGIES = ("forward", "central", "complex")
 
 _EPS = np.finfo(float).eps
 _H_FORWARD = np.sqrt(_EPS)
 _H_CENTRAL = _EPS ** (1.0 / 3.0)
 _H_COMPLEX = 1e-30
+_FD_WHAT = "the residual (evaluated for finite differences near the point)"
 
 
 def _steps(x: np.ndarray, rel: float, typical: Any = 1.0) -> np.ndarray:
@@ -59,6 +62,7 @@ def fd_jacobian(
     sparsity=None,
     groups: list[np.ndarray] | None = None,
     typical: Any = 1.0,
+    where: Where = None,
 ):
     """Jacobian of ``f`` at ``x`` by finite differences or complex step.
 
@@ -66,12 +70,18 @@ def fd_jacobian(
     columns are grouped so the cost is one (forward, complex) or two (central) evaluations
     per group, and a CSR matrix is returned. ``typical``: the typical sizes of the components
     of ``x`` (a scalar or an array): the steps are ``h_j = rel·max(typical_j, |x_j|)``.
+    Complex values of ``f`` are refused under the real methods, naming the point ``where``
+    (:func:`~.realvalues.real_array`).
     """
     x = np.asarray(x, dtype=float)
     n = x.size
+
+    def real(y):
+        return y if type(y) is np.ndarray and y.dtype == float else real_array(y, _FD_WHAT, where)
+
     if method == "forward":
         if f0 is None:
-            f0 = np.asarray(f(x), dtype=float)
+            f0 = real(f(x))
         h = _steps(x, _H_FORWARD, typical)
     elif method == "central":
         h = _steps(x, _H_CENTRAL, typical)
@@ -82,9 +92,9 @@ def fd_jacobian(
 
     def directional(d: np.ndarray) -> np.ndarray:
         if method == "forward":
-            return np.asarray(f(x + d), dtype=float) - f0
+            return real(f(x + d)) - f0
         if method == "central":
-            return (np.asarray(f(x + d), dtype=float) - np.asarray(f(x - d), dtype=float)) * 0.5
+            return (real(f(x + d)) - real(f(x - d))) * 0.5
         return np.imag(np.asarray(f(x + 1j * d), dtype=complex))
 
     if sparsity is None:
@@ -118,18 +128,24 @@ def fd_jacobian(
 
 
 def fd_derivative(
-    f: Callable[[Any], Any], x: float, *, method: str = "central", typical: float = 1.0
+    f: Callable[[Any], Any],
+    x: float,
+    *,
+    method: str = "central",
+    typical: float = 1.0,
+    where: Where = None,
 ) -> np.ndarray:
     """Derivative of a vector function of one real variable (steps relative to
-    ``max(typical, |x|)``)."""
+    ``max(typical, |x|)``; complex values refused as in :func:`fd_jacobian`)."""
     if method == "complex":
         value = np.asarray(f(x + 1j * _H_COMPLEX), dtype=complex)
         return np.imag(value) / _H_COMPLEX
     if method == "forward":
         h = (x + _H_FORWARD * max(typical, abs(x))) - x
-        return (np.asarray(f(x + h), dtype=float) - np.asarray(f(x), dtype=float)) / h
+        return (real_array(f(x + h), _FD_WHAT, where) - real_array(f(x), _FD_WHAT, where)) / h
     h = (x + _H_CENTRAL * max(typical, abs(x))) - x
-    return (np.asarray(f(x + h), dtype=float) - np.asarray(f(x - h), dtype=float)) / (2 * h)
+    up, down = real_array(f(x + h), _FD_WHAT, where), real_array(f(x - h), _FD_WHAT, where)
+    return (up - down) / (2 * h)
 
 
 @dataclass(frozen=True)
@@ -164,20 +180,21 @@ def check_jacobian(
     p = dict(problem.params if p is None else p)
     names = list(problem.unknowns) + list(p)
     supplied = problem.jacobian(u, p)
-    supplied = supplied.toarray() if sp.issparse(supplied) else np.asarray(supplied, float)
+    at = {**dict(zip(problem.unknowns, u.tolist())), **p}
+    supplied = real_matrix(supplied, "the jacobian", at)
+    supplied = supplied.toarray() if sp.issparse(supplied) else supplied
     cols = [supplied]
-    fd_cols = [
-        fd_jacobian(lambda v: np.asarray(problem.residual(v, p), float), u, method="central")
-    ]
+    fd_cols = [fd_jacobian(lambda v: problem.residual(v, p), u, method="central", where=at)]
     for name in p:
-        cols.append(np.asarray(problem.param_jacobian(u, p, name), float)[:, None])
+        dp = real_array(problem.param_jacobian(u, p, name), f"the param_jacobian ({name!r})", at)
+        cols.append(dp[:, None])
 
         def fp(val, name=name):
             q = dict(p)
             q[name] = val
-            return np.asarray(problem.residual(u, q), float)
+            return problem.residual(u, q)
 
-        fd_cols.append(np.asarray(fd_derivative(fp, float(p[name])), float)[:, None])
+        fd_cols.append(fd_derivative(fp, float(p[name]), where=at)[:, None])
     a = np.hstack(cols)
     b = np.hstack(fd_cols)
     scale = np.maximum(np.abs(b), np.abs(b).max(axis=0, keepdims=True))

@@ -83,6 +83,12 @@ class SingularMatrixError(ContinuationError):
     """A linear system that must be regular was exactly singular."""
 
 
+class SingularPointError(SingularMatrixError):
+    """A curve was started at a singular point: the Jacobian ``∂G/∂z`` (for a branch,
+    ``[∂R/∂u, ∂R/∂p]``) has a null space of dimension 2 or more there (a branch point), so
+    the curve has no tangent to start along. ``values``: the point."""
+
+
 class MaxStepsWarning(UserWarning):
     """A branch ended because it took ``max_steps`` steps, before reaching a bound or a
     terminal event: it is incomplete (its status ``"max_steps"`` is not a success)."""

@@ -53,7 +53,7 @@ from .locate import (
     tangent_at,
 )
 from .options import ContinuationOptions
-from .problem import as_problem, has_exact_jacobian
+from .problem import as_matrix, as_problem, as_vector, has_exact_jacobian
 from .state import TracerState
 from .system import CurveSystem, state_weights
 from .testfunctions import TestFunction
@@ -109,16 +109,20 @@ class FoldSystem(CurveSystem):
 
     def f(self, z):
         try:
-            return self.problem.residual(z[: self.n], self._p(z))
+            r = self.problem.residual(z[: self.n], self._p(z))
         except ArithmeticError:  # at a trial point: as non-finite, as for a branch (system.py)
             return np.full(self.n, np.nan)
+        if type(r) is not np.ndarray or r.dtype != float:  # (any protocol object's)
+            r = as_vector(r, "the residual", lambda: self.values(z))
+        return r
 
     def df(self, z):
         """``∂F/∂(u, p1, p2)``: n × (n + 2), dense or CSR."""
         u, p = z[: self.n], self._p(z)
-        j = self.problem.jacobian(u, p)
-        f1 = self.problem.param_jacobian(u, p, self.p1)
-        f2 = self.problem.param_jacobian(u, p, self.p2)
+        at = lambda: self.values(z)  # noqa: E731 (the point, for messages only)
+        j = as_matrix(self.problem.jacobian(u, p), "the jacobian", at)
+        f1 = as_vector(self.problem.param_jacobian(u, p, self.p1), "the param_jacobian", at)
+        f2 = as_vector(self.problem.param_jacobian(u, p, self.p2), "the param_jacobian", at)
         if sp.issparse(j):
             return sp.hstack([j, sp.csr_matrix(np.column_stack([f1, f2]))], format="csr")
         out = np.empty((self.n, self.n + 2))

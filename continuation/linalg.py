@@ -57,7 +57,7 @@ def dense_solve(a: np.ndarray, b: np.ndarray):
 def getrs(lu: np.ndarray, piv: np.ndarray, b: np.ndarray, trans: bool = False) -> np.ndarray:
     """Solve (the transposed system if ``trans``) with the factors of :func:`dense_factors`
     or :func:`dense_solve`."""
-    return _getrs(lu, piv, b, trans=1 if trans else 0)[0]
+    return _getrs(lu, piv, b, 1 if trans else 0)[0]  # (positional: f2py parses keywords slowly)
 
 
 class DenseLU:
@@ -75,7 +75,7 @@ class DenseLU:
         return self
 
     def solve(self, b: np.ndarray, trans: bool = False) -> np.ndarray:
-        return _getrs(self.lu, self.piv, b, trans=1 if trans else 0)[0]
+        return _getrs(self.lu, self.piv, b, 1 if trans else 0)[0]
 
     def sign_det(self) -> float:
         if self.n <= 16:

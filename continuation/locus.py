@@ -34,7 +34,7 @@ from .branch import Branch, SpecialPoint
 from .errors import ProblemDefinitionError
 from .foldcurve import fold_curve
 from .options import ContinuationOptions
-from .problem import as_problem, has_exact_jacobian
+from .problem import as_matrix, as_problem, as_vector, has_exact_jacobian
 from .state import TracerState
 from .tracer import Tracer, trace_directions
 
@@ -169,7 +169,8 @@ class PointChain:
         out: list[Any] = []
         for i in range(len(self.points)):
             ui, q = self._leg_args(i, z, p)
-            out.append(np.asarray(self._legs[i].residual(ui, q), dtype=float))
+            what = f"the residual of point {self.points[i].name!r}"
+            out.append(as_vector(self._legs[i].residual(ui, q), what, q))
             out.append([z[self._layout[i][3]] - self._target(i, z, p)])
         return np.concatenate(out)
 
@@ -182,7 +183,7 @@ class PointChain:
             leg = self._legs[i]
             c0, n, links, col, target, linked = self._layout[i]
             ui, q = self._leg_args(i, z, p)
-            block = leg.jacobian(ui, q)
+            block = as_matrix(leg.jacobian(ui, q), f"the jacobian of point {pt.name!r}", q)
             jac[row : row + n, c0 : c0 + n] = (
                 block.toarray() if hasattr(block, "toarray") else block
             )

@@ -27,6 +27,9 @@ def _positive(name: str, value) -> None:
     )
 
 
+_DS_MIN_DEFAULT = 1e-10
+
+
 @dataclass(frozen=True)
 class ContinuationOptions:
     """Numerical settings of :func:`~cusp.continuation.trace` and
@@ -40,7 +43,7 @@ class ContinuationOptions:
 
     ds: float = 0.05
     """Initial step size."""
-    ds_min: float = 1e-10
+    ds_min: float = _DS_MIN_DEFAULT
     """Smallest step size tried before the fallback corrector and then failure."""
     ds_max: float = 0.5
     """Largest step size."""
@@ -102,6 +105,13 @@ class ContinuationOptions:
         ):
             _positive(name, getattr(self, name))
         if self.ds_min > self.ds_max:
+            # name the one the user moved: ds_min at its default means ds_max went below it
+            if self.ds_min == _DS_MIN_DEFAULT:
+                raise OptionsError(
+                    f"option 'ds_max' ({self.ds_max!r}) must be >= 'ds_min' "
+                    f"({self.ds_min!r}, the default); for steps that small set ds_min below "
+                    "it too"
+                )
             raise OptionsError(
                 f"option 'ds_min' ({self.ds_min!r}) must not exceed 'ds_max' ({self.ds_max!r})"
             )

@@ -11,6 +11,7 @@ import scipy.sparse as sp
 
 from .derivatives import STRATEGIES, column_groups, fd_derivative, fd_jacobian
 from .errors import ProblemDefinitionError
+from .realvalues import Where, real_array, real_matrix
 
 
 @runtime_checkable
@@ -190,11 +191,11 @@ class Problem:
         )
 
     def residual(self, u, p):
-        return np.asarray(self._residual(u, p))
+        return as_vector(self._residual(u, p), "the residual", lambda: _point(self, u, p))
 
     def jacobian(self, u, p):
         if self._jacobian is not None:
-            return as_matrix(self._jacobian(u, p))
+            return as_matrix(self._jacobian(u, p), "the jacobian", lambda: _point(self, u, p))
         return fd_jacobian(
             lambda v: self._residual(v, p),
             u,
@@ -202,11 +203,16 @@ class Problem:
             sparsity=self.sparsity,
             groups=self._groups,
             typical=self._typical_u,
+            where=lambda: _point(self, u, p),
         )
 
     def param_jacobian(self, u, p, name):
         if self._param_jacobian is not None:
-            return as_vector(self._param_jacobian(u, p, name))
+            return as_vector(
+                self._param_jacobian(u, p, name),
+                f"the param_jacobian (for {name!r})",
+                lambda: _point(self, u, p),
+            )
 
         def f(value):
             q = dict(p)
@@ -214,7 +220,18 @@ class Problem:
             return self._residual(u, q)
 
         typical = self._typical_p.get(name, 1.0)
-        return fd_derivative(f, float(p[name]), method=self.derivatives, typical=typical)
+        return fd_derivative(
+            f,
+            float(p[name]),
+            method=self.derivatives,
+            typical=typical,
+            where=lambda: _point(self, u, p),
+        )
+
+
+def _point(problem: Problem, u, p) -> dict[str, Any]:
+    """The values of an evaluation point by name (for messages)."""
+    return {**dict(zip(problem.unknowns, np.ravel(u).tolist())), **p}
 
 
 def has_exact_jacobian(problem) -> bool:
@@ -224,18 +241,21 @@ def has_exact_jacobian(problem) -> bool:
     )
 
 
-def as_matrix(jac):
-    """A Jacobian as returned by a user function, as a float array (sparse ones kept)."""
+def as_matrix(jac, what: str = "the jacobian", where: Where = None):
+    """A Jacobian as returned by a user function, as a float array (sparse ones kept);
+    complex values are refused naming ``what`` and the point ``where``
+    (:func:`~.realvalues.real_array`)."""
     if type(jac) is np.ndarray and jac.dtype == float:
         return jac
-    return jac if sp.issparse(jac) else np.asarray(jac, dtype=float)
+    return real_matrix(jac, what, where)
 
 
-def as_vector(x):
-    """A residual or parameter derivative as returned by a user function, as a float array."""
+def as_vector(x, what: str = "the residual", where: Where = None):
+    """A residual or parameter derivative as returned by a user function, as a float array;
+    complex values are refused naming ``what`` and the point ``where``."""
     if type(x) is np.ndarray and x.dtype == float:
         return x
-    return np.asarray(x, dtype=float)
+    return real_array(x, what, where)
 
 
 def as_problem(obj) -> ContinuationProblem:

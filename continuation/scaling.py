@@ -55,9 +55,10 @@ def given_scales(system: Any, scales: Mapping[str, float] | None) -> dict[int, f
             v = float(value)
         except (TypeError, ValueError):
             v = math.nan
-        if isinstance(value, bool) or not (math.isfinite(v) and v > 0.0):
+        if isinstance(value, bool) or not (1.0 / MAX_SIZE <= v <= MAX_SIZE):
             raise ProblemDefinitionError(
-                f"scales[{name!r}] must be a finite number > 0 (a typical size), got {value!r}"
+                f"scales[{name!r}] must be a number in [1e-150, 1e150] (a typical size), "
+                f"got {value!r}"
             )
         out[k] = v
     return out
@@ -65,6 +66,36 @@ def given_scales(system: Any, scales: Mapping[str, float] | None) -> dict[int, f
 
 GROWTH = 4.0
 """Factor by which a component must exceed its typical size before the size follows it."""
+
+MAX_SIZE = 1e150
+"""The largest typical size (and 1/MAX_SIZE the smallest): its square and the reciprocal of
+its square stay normal floats (1e±300), so that the arclength weights ``base/s²`` and the
+weighted products can be formed. A component that grows beyond it diverges: the branch
+stops there (:func:`diverged`)."""
+
+
+_MIN_SIZE = 1.0 / MAX_SIZE
+
+
+def out_of_range(scales: np.ndarray) -> int | None:
+    """The index of a typical size outside ``[1/MAX_SIZE, MAX_SIZE]`` (or NaN), else None.
+    Plain Python on the few components of most problems."""
+    if scales.size <= 8:
+        for k, v in enumerate(scales.tolist()):
+            if not _MIN_SIZE <= v <= MAX_SIZE:
+                return k
+        return None
+    bad = ~((scales >= _MIN_SIZE) & (scales <= MAX_SIZE))
+    return int(np.argmax(bad)) if bad.any() else None
+
+
+def diverged(names: Sequence[str], z: np.ndarray, k: int) -> str:
+    """The message of a branch stopped because component ``k`` outgrew :data:`MAX_SIZE`."""
+    return (
+        f"the branch diverges: {names[k]} reached {z[k]:.3g}, beyond ±{MAX_SIZE:g}, where the "
+        f"squares in the arclength metric overflow; the branch stops at the last point "
+        f"before. Give a bound on {names[k]!r} (bounds=...) to end it earlier"
+    )
 
 
 def grown_sizes(scales: np.ndarray, z: np.ndarray, given: Mapping[int, float]) -> np.ndarray | None:
@@ -77,7 +108,10 @@ def grown_sizes(scales: np.ndarray, z: np.ndarray, given: Mapping[int, float]) -
     True
     """
     if z.size <= 8:  # plain Python on the few components of most problems (a tenth the cost)
-        if all(abs(v) <= GROWTH * s for v, s in zip(z.tolist(), scales.tolist())):
+        for v, s in zip(z.tolist(), scales.tolist()):
+            if not abs(v) <= GROWTH * s:  # (NaN too)
+                break
+        else:
             return None
     mag = np.abs(z)
     grown = mag > GROWTH * scales

@@ -22,6 +22,7 @@ import scipy.sparse as sp
 from .errors import ProblemDefinitionError
 from .linalg import bordered, rounding_floor
 from .problem import as_matrix, as_vector, has_exact_jacobian
+from .scaling import out_of_range
 from .testfunctions import TestFunction, generic_tests
 
 if TYPE_CHECKING:
@@ -108,6 +109,13 @@ class CurveSystem:
         arclength weights become ``base_weights / scales²`` and a :class:`Problem`'s finite
         differences step relative to them."""
         scales = np.array(scales, dtype=float)
+        k = out_of_range(scales)
+        if k is not None:  # its square or reciprocal square would overflow
+            raise ProblemDefinitionError(
+                f"the typical size of {self.names[k]} would be {scales[k]:.3g}, outside "
+                f"[1e-150, 1e150] where the arclength metric can be formed: rescale it "
+                f"(or give scales=...)"
+            )
         new = object.__new__(type(self))
         new.__dict__.update(self.__dict__)
         new.scales = scales
@@ -240,7 +248,7 @@ class BranchSystem(CurveSystem):
         except ArithmeticError:  # a division by zero or overflow at a trial point: as NaN
             return np.full(self.n, np.nan)
         if type(r) is not np.ndarray or r.dtype != float:
-            r = as_vector(r)
+            r = as_vector(r, "the residual", lambda: self.values(z))
         if r.shape != self._shapes[1]:
             raise ProblemDefinitionError(
                 f"residual must return {self.n} values (one per unknown), got shape {r.shape}"
@@ -258,9 +266,9 @@ class BranchSystem(CurveSystem):
         except ArithmeticError:  # as for the residual: a matrix the corrector finds non-finite
             j, fp = np.full(self._shapes[0], np.nan), np.full(self.n, np.nan)
         if type(fp) is not np.ndarray or fp.dtype != float:
-            fp = as_vector(fp)
+            fp = as_vector(fp, f"the param_jacobian (for {self.free!r})", lambda: self.values(z))
         if type(j) is not np.ndarray or j.dtype != float:
-            j = as_matrix(j)
+            j = as_matrix(j, "the jacobian", lambda: self.values(z))
             if type(j) is not np.ndarray:
                 return _sparse_border(j, fp, row)
         if j.shape != self._shapes[0] or fp.shape != self._shapes[1]:

@@ -42,6 +42,7 @@ from .locate import (
     tangent_at,
 )
 from .problem import has_exact_jacobian
+from .realvalues import real_scalar
 
 if TYPE_CHECKING:
     from .options import ContinuationOptions
@@ -447,7 +448,7 @@ class EventTest(TestFunction):
 
     def value(self, system, z, t, sdet) -> float:
         u, p = system.split(z)
-        val = float(self.event.function(u, p))
+        val = real_scalar(self.event.function(u, p), f"event {self.label!r}", p)
         if not math.isfinite(val):
             raise NonFiniteResidualError(
                 f"event {self.label!r} returned {val} at {system.values(z)}",

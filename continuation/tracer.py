@@ -36,14 +36,11 @@ from typing import Any
 import numpy as np
 
 from .branch import Branch, SpecialPoint, join_halves
-from .corrector import correct
 from .crossings import corner_folds, evaluate, locate_crossings, splits, step_bracket
 from .errors import (
-    ConvergenceError,
     MaxStepsWarning,
     NonFiniteResidualError,
     ProblemDefinitionError,
-    SingularMatrixError,
     format_values,
 )
 from .events import Event
@@ -51,7 +48,8 @@ from .linalg import bordered, factor, max_abs
 from .locate import Bracket, Located, tangent_at
 from .options import ContinuationOptions
 from .problem import as_problem
-from .scaling import given_scales, grown_sizes, typical_sizes
+from .scaling import diverged, given_scales, grown_sizes, out_of_range, typical_sizes
+from .start import correct_start
 from .state import Point, TracerState, assemble_branch
 from .stepping import (
     STALL_FACTOR,
@@ -252,8 +250,13 @@ class Tracer:
             z0, given, bounds, jacobian=lambda: system.jacobian(z0), inherited=inherited
         )
         system = system.with_scales(provisional)
+        details: dict[str, Any] = {}
         if tangent is None:
-            z0, t0, sdet, residual, iters = self._correct_start(system, z0, g0)
+            start = correct_start(system, z0, g0, o, self._rules.e_last, self.direction)
+            z0, t0, sdet, residual, iters, oriented_by = start
+            if oriented_by is not None:  # on a fold of the free parameter (module start)
+                skip_bp = True
+                details = {"fold_of": system.names[-1], "oriented_by": oriented_by}
         else:
             t0 = np.asarray(tangent, dtype=float)
             residual = float(np.max(np.abs(g0)))
@@ -280,28 +283,10 @@ class Tracer:
             else t.value(system, z0, t0, sdet)
             for t in self.tests
         )
-        record: Record = ("endpoint", start_label, None, "converged", None, {})
+        record: Record = ("endpoint", start_label, None, "converged", None, details)
         first = Point(z0, t0, 0.0, iters, 0, residual, o.ds, (record,), None)
         self._check_start_in_bounds(z0)
         return TracerState(first, system, o.ds, tests, 0)
-
-    def _correct_start(self, system: CurveSystem, z0: np.ndarray, g0: np.ndarray):
-        """Newton with the free parameter (the last component) held at its value; returns the
-        point, its tangent, the sign of det [∂G/∂z; (W t)ᵀ], the residual and iterations."""
-        o = self.options
-        k_free = system.dim - 1
-        res = correct(system, z0, self._rules.e_last, z0[k_free], o, budget=4, g0=g0)
-        if not res.converged:
-            raise ConvergenceError(
-                "the starting point did not converge",
-                values=system.values(z0),
-                ds=0.0,
-                iterations=res.iterations,
-                residual_norm=res.residual_norm,
-                remedy="Give a better initial guess u0 for these parameter values.",
-            )
-        t0, sdet = self._initial_tangent(system, res.z, k_free, res.lu)
-        return res.z, t0, sdet, res.residual_norm, res.iterations
 
     def _check_start_in_bounds(self, z0: np.ndarray) -> None:
         for t in self.tests:
@@ -311,33 +296,6 @@ class Tracer:
                     f"the starting point has {t.wrt}={z0[t.k]:.10g}, outside "
                     f"bounds[{t.wrt!r}] = ({lo:g}, {hi:g})"
                 )
-
-    def _initial_tangent(self, system: CurveSystem, z0: np.ndarray, k_free: int, lu: Any):
-        """The tangent direction at ``z0`` (the free parameter moving in ``direction``; not
-        normalised) and the sign of det [∂G/∂z; (W t)ᵀ] for it (None if it was not available
-        from the factorization).
-
-        ``lu``: a factorization of [∂G/∂z; e_kᵀ] at (or, from the corrector, one update
-        from) ``z0``."""
-        sdet = None
-        try:
-            t = lu.solve(self._rules.e_last)
-            if not math.isfinite(max_abs(t)):
-                raise SingularMatrixError("the bordered Jacobian is singular at the start")
-        except Exception:  # starting at a fold in the free parameter: use the kernel
-            dg = system.jacobian(z0)
-            dense = dg.toarray() if hasattr(dg, "toarray") else np.asarray(dg)
-            t = np.linalg.svd(dense)[2][-1]
-            k_free = int(np.argmax(np.abs(t)))
-        else:
-            # t solves [∂G/∂z; e_kᵀ] t = e_last, so (determinant lemma) det [∂G/∂z; (W t')ᵀ]
-            # = det [∂G/∂z; e_kᵀ]·(W t')·t, which for t' = ±t/|t|_W has the sign ±
-            sdet = lu.sign_det()
-        if t[k_free] * self.direction < 0:
-            t = -t
-            if sdet is not None:
-                sdet = -sdet
-        return t, sdet
 
     # ------------------------------------------------------------------ step
 
@@ -443,6 +401,11 @@ class Tracer:
                 )
             grown = grown_sizes(system.scales, res.z, self._scales)
             if grown is not None:  # the step's end is in the new sizes' metric
+                k = out_of_range(grown)
+                if k is not None:  # a component diverges: stop before the metric overflows
+                    msg = diverged(system.names, res.z, k)
+                    error = NonFiniteResidualError(msg, values=system.values(res.z))
+                    return self._fail(state, Failure("nonfinite_residual", msg, error))
                 system = system.with_scales(grown)
                 t1 = t1 / wnorm(t1, system.weights)
             end = _new_tuple(  # a Point (see stepping.Trial on tuple.__new__)

@@ -21,8 +21,11 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable, Mapping
+from typing import Any
 
 import numpy as np
+
+from cusp.continuation import ChainPoint, PointChain
 
 #: two Gauss-Legendre rules agreeing to this (relative) end the doubling
 QUAD_RTOL = 1e-13
@@ -71,7 +74,9 @@ def _invert(fun: Callable[[float], tuple[float, float]], target: float, lo: floa
     return x
 
 
-def _gauss(f: Callable[[np.ndarray], np.ndarray], a: float, b: float, floor: float):
+def gauss_legendre(
+    f: Callable[[np.ndarray], np.ndarray], a: float, b: float, floor: float = 0.0
+) -> tuple[float, float]:
     """∫_a^b f by Gauss–Legendre, nodes doubled from 8 until two rules agree to
     QUAD_RTOL·|value| or to ``floor`` (the rounding level of the integrand); returns the value
     and an error estimate (the last difference plus the floor)."""
@@ -154,7 +159,7 @@ def energies(
         def gap(gs):
             return np.array([legs.t_ab(g) - legs.t_bc(g, q_D) for g in gs])
 
-        abd, abd_err = _gauss(gap, g_B, 1.0, floor)
+        abd, abd_err = gauss_legendre(gap, g_B, 1.0, floor)
         abd_err += state
         out["snap_back"], out["snap_back_error"] = abd, abd_err
         if has_c and math.isfinite(row.get("C.q", math.nan)):
@@ -164,7 +169,7 @@ def energies(
             def rest(gs):
                 return np.array([t_A - legs.t_bc(g, q_C) for g in gs])
 
-            extra, extra_err = _gauss(rest, 1.0, g_C, floor_c)
+            extra, extra_err = gauss_legendre(rest, 1.0, g_C, floor_c)
             out["snap_through"] = abd + extra
             out["snap_through_error"] = (
                 abd_err + extra_err + state_tol * size * abs(t_A) * (g_C - 1.0)
@@ -172,3 +177,41 @@ def energies(
     except (ArithmeticError, ValueError):
         pass  # left NaN: the levels do not resolve this leg (the caller says so)
     return out
+
+
+# ------------------------------------------------------------------------------------------
+# the points of a path as one system, polished to rounding
+
+
+def path_chain(model, params: dict[str, float], q_A: float, names: str) -> PointChain:
+    """The chain of the points ``names`` (A, B, then D and/or C) of the path."""
+    oa = model.problem("OA", start=1.0)
+    ab = model.problem("AB", start=params["n_B"], constant=q_A)
+    bc = model.problem("BC", start=1.0, constant=params["n_B"])
+    points = {
+        "A": ChainPoint("A", oa, "g", ("g", 1.0)),
+        "B": ChainPoint("B", ab, "n", ("n", "n_B"), links={"q_A": ("A", "q")}),
+        "D": ChainPoint("D", bc, "g", ("g", 1.0), links={"n_B": ("B", "n")}),
+        "C": ChainPoint("C", bc, "g", ("t", ("A", "t")), links={"n_B": ("B", "n")}),
+    }
+    return PointChain([points[x] for x in names], params)
+
+
+def polish_row(chain: PointChain, row: dict[str, Any]) -> dict[str, Any]:
+    """A row of a locus Newton-polished to rounding at its parameters: the tracer accepts
+    points to its update tolerance, and the released energies (areas between legs that meet
+    at B) are sensitive to the frozen stick level to ~1e3 times that."""
+    p = {k: row[k] for k in chain.params}
+    u = np.array([row[k] for k in chain.unknowns])
+    for _ in range(4):
+        r = chain.residual(u, p)
+        try:
+            du = np.linalg.solve(chain.jacobian(u, p), -r)
+        except np.linalg.LinAlgError:
+            break
+        if not np.all(np.isfinite(du)):
+            break
+        u = u + du
+        if np.all(np.abs(du) <= 4.0 * np.finfo(float).eps * np.maximum(np.abs(u), 1.0)):
+            break
+    return {**row, **dict(zip(chain.unknowns, map(float, u)))}

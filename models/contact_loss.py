@@ -44,12 +44,17 @@ Each leg is a :class:`cusp.continuation.Problem` in the nondimensional unknowns
 control of the leg as the free parameter: g on OA, n on AB, g on BC. Nondimensional unknowns
 of order one make the arclength metric meaningful (F_T in N and g_T in µm differ by 10³).
 
-The released energies are integrals along the traced branches, ∫ (F_AB − F_BC) dg over
-[g_B, g_A] (ABD) plus ∫ (F_A − F_BC) dg over [g_A, g_C] (ABC − ABD), by Gauss–Legendre
-quadrature in g with the nodes placed on the branches by :func:`cusp.continuation.points_at`
-(each a corrected point, not an interpolated one), doubling the nodes until two rules agree
-to 1e-13 relative. No closed form is evaluated to trace the path; the closed forms of the
-exponential surface (docs/physics.md §7) are test oracles only.
+The released energies are the areas between the legs, ∫ (F_AB − F_BC) dg over [g_B, g_A]
+(ABD) plus ∫ (F_A − F_BC) dg over [g_A, g_C] (ABC − ABD). On AB the stick level is frozen
+and on BC the contact level is fixed by F'_N, so between the traced points each leg is an
+explicit curve in its other level: Gauss–Legendre in g, the level at each node found from g
+by safeguarded Newton (:mod:`cusp.models._loci_energy`, shared with the loci of
+:mod:`cusp.models.manifold`), nodes doubled until two rules agree to 1e-13 relative, the
+points first Newton-polished to rounding. The error estimate adds the rounding of the gap
+and of the points; for a very small reduction (the area shrinks like ΔF_N², the rounding
+like ΔF_N) it says how far the energy is resolved, and a message says so beyond 1e-8. No
+closed form is evaluated to trace the path; the closed forms of the exponential surface
+(docs/physics.md §7) are test oracles only.
 
 Â_SL (Eq 32): ``"printed"`` (default) normalises Â_ST by the current real contact area, as
 printed, so Â_SL = (1 − A_ST/A'_r) + (A_r − A'_r)/A_r; ``"consistent"`` measures the stick
@@ -68,8 +73,19 @@ import numpy as np
 
 from cusp.continuation import Branch, ContinuationOptions, Problem, points_at, trace
 
+from ._loci_energy import energies, path_chain, polish_row
 from .errors import ModelParameterError, check_positive
-from .protocol import ContactLevels, PathBody, require_levels, require_path_body
+from .protocol import (
+    ContactLevels,
+    PathBody,
+    level_lengths,
+    require_levels,
+    require_path_body,
+    stick_bounds,
+)
+
+#: an energy whose error estimate exceeds this (relative) comes with a message
+ENERGY_RTOL = 1e-8
 
 __all__ = [
     "ContactLoss",
@@ -88,9 +104,6 @@ AREA_READINGS = ("printed", "consistent")
 
 #: default solver settings for the legs (nondimensional arclength)
 DEFAULT_OPTIONS = ContinuationOptions(ds=0.02, ds_max=0.05)
-
-_QUAD_RTOL = 1e-13
-_QUAD_MAX_NODES = 256
 
 
 # ------------------------------------------------------------------------------------------
@@ -128,6 +141,7 @@ class ContactLossResult:
     problems: dict[str, Problem] = field(default_factory=dict)
     point_rows: dict[str, tuple[str, int]] = field(default_factory=dict)
     stats: dict[str, dict[str, Any]] = field(default_factory=dict)
+    levels: Any = None
 
     def path(self, leg: str | None = None) -> dict[str, np.ndarray]:
         """Physical columns along the whole path (or one leg), with a ``leg`` label column.
@@ -151,25 +165,32 @@ class ContactLossResult:
         return self._physical(points_at(self.problems[leg], br, control, values))
 
     def _physical(self, columns) -> dict[str, np.ndarray]:
-        return _to_physical(columns, self.scales, self.level_names)
+        return _to_physical(columns, self.scales, self.level_names, self.levels)
 
 
-def _to_physical(columns, scales, level_names) -> dict[str, np.ndarray]:
-    """Nondimensional leg columns (g, t, n, A_SL, p, q) to physical ones (µm, N)."""
+def _to_physical(columns, scales, level_names, levels=None) -> dict[str, np.ndarray]:
+    """Nondimensional leg columns (g, t, n, A_SL, p, q) to physical ones (µm, N); the levels
+    by the body's own :func:`~cusp.models.protocol.level_lengths` (without ``levels``:
+    p·scale, q·scale)."""
     p_name, q_name = level_names
+    if levels is not None:
+        lp, lq = level_lengths(levels, columns["p"], columns["q"])
+    else:
+        lp = np.asarray(columns["p"]) * scales["level"]
+        lq = np.asarray(columns["q"]) * scales["level"]
     return {
         "g_T": np.asarray(columns["g"]) * scales["g"],
         "F_T": np.asarray(columns["t"]) * scales["t"],
         "F_N": np.asarray(columns["n"]) * scales["n"],
         "A_SL": np.array(columns["A_SL"], dtype=float),
-        p_name: np.asarray(columns["p"]) * scales["level"],
-        q_name: np.asarray(columns["q"]) * scales["level"],
+        p_name: lp,
+        q_name: lq,
     }
 
 
-def _point(values: dict[str, float], scales, level_names) -> dict[str, float]:
+def _point(values: dict[str, float], scales, level_names, levels=None) -> dict[str, float]:
     """One nondimensional point to a physical record."""
-    cols = _to_physical({c: [values[c]] for c in VARIABLES}, scales, level_names)
+    cols = _to_physical({c: [values[c]] for c in VARIABLES}, scales, level_names, levels)
     return {k: float(v[0]) for k, v in cols.items()}
 
 
@@ -396,7 +417,7 @@ class ContactLoss:
         elif d_exists:
             bounds["g"] = (-math.inf, 1.0)
         if math.isfinite(L.slip_limit(B["p"])):
-            bounds["q"] = (0.0, math.inf)  # e.g. a sphere: the stick zone vanishes at gross slip
+            bounds["q"] = stick_bounds(L)  # e.g. a sphere: the stick zone vanishes at gross slip
         prob_bc = self.problem("BC", start=B["g"], constant=B["n"])
         bc = trace(
             prob_bc,
@@ -412,9 +433,12 @@ class ContactLoss:
         D = _polish(prob_bc, bc, "g", 1.0, o) if d_exists else None
         messages = self._gross_sliding_messages(A["t"], c_exists, d_exists)
         legs = {"OA": oa, "AB": ab, "BC": bc}
-        energy, error = self._energies(legs, prob_ab, prob_bc, A, B, C, D, o)
+        energy, error, notes = self._energies(A, B, C, D)
+        messages += notes
         raw = {"O": oa.point(0), "A": A, "B": B, "C": C, "D": D}
-        points = {k: None if v is None else _point(v, self.scales, L.names) for k, v in raw.items()}
+        points = {
+            k: None if v is None else _point(v, self.scales, L.names, L) for k, v in raw.items()
+        }
         return ContactLossResult(
             points=points,
             energy=energy,
@@ -428,6 +452,7 @@ class ContactLoss:
             problems={"OA": prob, "AB": prob_ab, "BC": prob_bc},
             point_rows=_point_rows(legs, c_exists, d_exists),
             stats={name: _leg_stats(br) for name, br in legs.items()},
+            levels=L,
         )
 
     def _gross_sliding_messages(self, t_A: float, c_exists: bool, d_exists: bool) -> list[str]:
@@ -447,34 +472,38 @@ class ContactLoss:
             )
         return messages
 
-    def _energies(self, legs, prob_ab, prob_bc, A, B, C, D, o):
-        """Areas ABD and ABC [N·µm] by Gauss–Legendre in g on the corrected branches."""
-        ft, gs = self.scales["t"], self.scales["g"]
+    def _energies(self, A, B, C, D):
+        """Areas ABD and ABC [N·µm] and their error estimates, integrated on the legs AB and
+        BC written explicitly in the levels between the points, first polished to rounding
+        (:func:`~._loci_energy.energies`); with a message where an estimate exceeds
+        :data:`ENERGY_RTOL` of its energy (a tiny reduction: the area shrinks like ΔF_N²,
+        the rounding of the legs like ΔF_N)."""
         energy: dict[str, float | None] = {"snap_back": None, "snap_through": None}
         error: dict[str, float | None] = {"snap_back": None, "snap_through": None}
-        g_B = B["g"]
-
-        def f_ab(g):
-            return points_at(prob_ab, legs["AB"], "g", g, options=o)["t"]
-
-        def f_bc(g):
-            return points_at(prob_bc, legs["BC"], "g", g, options=o)["t"]
-
-        def gap(g):
-            return f_ab(g) - f_bc(g)
-
-        if D is not None or C is not None:
-            # area between AB and BC over [g_B, g_A] (D lies on BC at g_A)
-            abd, abd_err = _gauss(gap, g_B, 1.0)
-            abd, abd_err = abd * ft * gs, abd_err * ft * gs
-            if D is not None:
-                energy["snap_back"], error["snap_back"] = abd, abd_err
-            if C is not None:
-                t_A = A["t"]
-                extra, extra_err = _gauss(lambda g: t_A - f_bc(g), 1.0, C["g"])
-                energy["snap_through"] = abd + extra * ft * gs
-                error["snap_through"] = abd_err + extra_err * ft * gs
-        return energy, error
+        notes: list[str] = []
+        if D is None:  # no D, hence no C either
+            return energy, error, notes
+        pts = {"A": A, "B": B, "D": D} | ({"C": C} if C is not None else {})
+        params = {"mu": self.mu0, "n_B": self.F_Np / self.F_N0}
+        chain = path_chain(self, params, A["q"], "".join(pts))
+        row = {f"{x}.{k}": v for x, pt in pts.items() for k, v in pt.items()} | params
+        row = polish_row(chain, row)
+        tol = 64.0 * float(np.finfo(float).eps)
+        e = energies(self.levels, row, self.mu0, self.mu0, self.g_A, C is not None, tol)
+        unit = self.scales["t"] * self.scales["g"]
+        for kind in energy:
+            if not math.isfinite(e[kind]):
+                continue
+            value, err = float(e[kind] * unit), float(e[f"{kind}_error"] * unit)
+            energy[kind], error[kind] = value, err
+            if err > ENERGY_RTOL * abs(value):
+                notes.append(
+                    f"the {kind.replace('_', '-')} energy's error bound is {err / abs(value):.1e}"
+                    f" relative ({err:.3g} N·µm), above {ENERGY_RTOL:g}: the area is small "
+                    f"against the rounding of the legs (a bound: the actual error is often "
+                    f"far smaller)"
+                )
+        return energy, error, notes
 
     def _folds(self, legs, points) -> list[dict[str, Any]]:
         """Turning points of the controls g_T and F_T along the path."""
@@ -500,7 +529,7 @@ class ContactLoss:
         names = {"g": "g_T", "t": "F_T", "n": "F_N", "A_SL": "A_SL"}
         for leg, br in legs.items():
             for sp in br.special("fold"):
-                phys = _point(sp.values, self.scales, self.levels.names)
+                phys = _point(sp.values, self.scales, self.levels.names, self.levels)
                 wrt = sp.with_respect_to
                 label = kinds.get(wrt, ("turning point", names.get(wrt, wrt)))
                 out.append(
@@ -568,23 +597,3 @@ def _leg_stats(br: Branch) -> dict[str, Any]:
         "rejected_steps": int(np.sum(br.stats["rejected_steps"])),
         "max_residual_norm": float(np.max(br.stats["residual_norm"])),
     }
-
-
-def _gauss(f, a: float, b: float) -> tuple[float, float]:
-    """∫_a^b f by Gauss–Legendre, nodes doubled from 8 until two rules agree to 1e-13.
-
-    Returns the integral and the difference of the last two rules (an error estimate)."""
-    if a == b:
-        return 0.0, 0.0
-    prev = None
-    n = 8
-    while True:
-        x, w = np.polynomial.legendre.leggauss(n)
-        nodes = 0.5 * (b - a) * x + 0.5 * (a + b)
-        val = 0.5 * (b - a) * float(w @ f(nodes))
-        if prev is not None:
-            err = abs(val - prev)
-            if err <= _QUAD_RTOL * abs(val) or n >= _QUAD_MAX_NODES:
-                return val, err
-        prev = val
-        n *= 2

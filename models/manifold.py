@@ -37,18 +37,17 @@ import numpy as np
 
 from cusp.continuation import (
     Branch,
-    ChainPoint,
     ContinuationOptions,
     Event,
-    PointChain,
     locus,
     points_at,
     trace,
 )
 
-from ._loci_energy import energies
-from .contact_loss import ContactLoss
+from ._loci_energy import energies, path_chain, polish_row
+from .contact_loss import ENERGY_RTOL, ContactLoss
 from .errors import ModelParameterError
+from .protocol import stick_bounds
 
 __all__ = ["CSV_COLUMNS", "LOCI_UNITS", "LOCUS_PARAMETERS", "Loci", "point_loci", "trace_loci"]
 
@@ -57,8 +56,6 @@ LOCUS_PARAMETERS = {"mu": "mu", "reduced_normal_load": "n_B"}
 #: the locus of C stops where F_A = (1 − C_MARGIN)·μF'_N: C's slip diverges at the C boundary,
 #: and its sensitivity to rounding grows like 1/margin (at 1e-6, C is resolved to ~1e-10)
 C_MARGIN = 1e-6
-#: an energy whose error estimate exceeds this (relative) is left out (NaN)
-ENERGY_RTOL = 1e-8
 #: the columns of a locus table (``loci.csv``), the last naming the event of an event row
 CSV_COLUMNS = (
     "mu", "reduced_normal_load", "g_A", "F_A", "g_B", "F_B", "g_C", "F_C", "g_D", "F_D",
@@ -111,20 +108,6 @@ class Loci:
             if var and math.isfinite(value):
                 out.setdefault(point, {})[var] = value
         return out
-
-
-def _chain(model: ContactLoss, params: dict[str, float], q_A: float, names: str) -> PointChain:
-    """The chain of the points ``names`` (A, B, then D and/or C) of the path."""
-    oa = model.problem("OA", start=1.0)
-    ab = model.problem("AB", start=params["n_B"], constant=q_A)
-    bc = model.problem("BC", start=1.0, constant=params["n_B"])
-    points = {
-        "A": ChainPoint("A", oa, "g", ("g", 1.0)),
-        "B": ChainPoint("B", ab, "n", ("n", "n_B"), links={"q_A": ("A", "q")}),
-        "D": ChainPoint("D", bc, "g", ("g", 1.0), links={"n_B": ("B", "n")}),
-        "C": ChainPoint("C", bc, "g", ("t", ("A", "t")), links={"n_B": ("B", "n")}),
-    }
-    return PointChain([points[x] for x in names], params)
 
 
 def _span(model: ContactLoss, parameter: str, span) -> tuple[str, float, float, float]:
@@ -196,13 +179,13 @@ def trace_loci(
     if math.isfinite(model.levels.slip_limit(model.levels.p0)):
         # a body that slides as a whole (a sphere): A's stick zone must not vanish, and D
         # ceases to exist where its stick zone does (the locus ends there)
-        bounds.update({"A.q": (0.0, math.inf), "D.q": (0.0, math.inf)})
+        bounds.update({"A.q": stick_bounds(model.levels), "D.q": stick_bounds(model.levels)})
     kw: dict[str, Any] = {"bounds": bounds, "options": o, "throw": False}
     if len(at):
         kw["targets"] = {free: [float(v) / scale for v in at]}
     params = dict(params)
     names = "ABD" if "D" in start else "AB"
-    chain = _chain(model, params, start["A"]["q"], names)
+    chain = path_chain(model, params, start["A"]["q"], names)
     mu0, ia = model.mu0, chain.unknowns.index("A.t")
     # F_A = μF'_N: t_A·μ0 = μ·n_B (t = F_T/(μ0 F_N0), n = F_N/F_N0)
     boundary = Event(lambda u, p: u[ia] * mu0 - p["mu"] * p["n_B"], label="C boundary")
@@ -212,7 +195,7 @@ def trace_loci(
     chains = {"-".join(names): chain}
     seed = _c_seed(model, start, params, main, o)
     if seed is not None and "D" in start:
-        chain_c = _chain(model, seed[1], seed[0]["A"]["q"], "ABCD")
+        chain_c = path_chain(model, seed[1], seed[0]["A"]["q"], "ABCD")
         ic = chain_c.unknowns.index("A.t")
         near = Event(
             lambda u, p: 1.0 - u[ic] * mu0 / (p["mu"] * p["n_B"]) - C_MARGIN,
@@ -258,7 +241,7 @@ def _c_seed(model, start, params, main: Branch, o):
     prob = model.problem("BC", start=pt["B"]["g"], constant=params["n_B"], mu=params["mu"])
     bounds = {"t": (-math.inf, pt["A"]["t"])}
     if math.isfinite(model.levels.slip_limit(pt["B"]["p"])):
-        bounds["q"] = (0.0, math.inf)
+        bounds["q"] = stick_bounds(model.levels)
     u0 = [pt["B"][v] for v in prob.unknowns]
     bc = trace(prob, u0, free="g", bounds=bounds, options=o, throw=False)
     if bc.status != "bound" or bc.special("endpoint")[-1].with_respect_to != "t":
@@ -281,8 +264,8 @@ def _assemble(model: ContactLoss, parameter: str, free: str, scale: float, branc
         # (widened by rounding: both loci end at a common bound, F'_T = 0, located twice)
         ends = float(np.min(with_c[free])), float(np.max(with_c[free]))
         inside = (ends[0] * (1.0 - 1e-9), ends[1] * (1.0 + 1e-9))
-        rows += [_polish(chains["A-B-C-D"], with_c.point(i)) for i in range(len(with_c))]
-        events += [_polish(chains["A-B-C-D"], ev) for ev in _events(with_c)]
+        rows += [polish_row(chains["A-B-C-D"], with_c.point(i)) for i in range(len(with_c))]
+        events += [polish_row(chains["A-B-C-D"], ev) for ev in _events(with_c)]
         for sp in with_c.special("event", label="C unresolved"):
             messages.append(
                 f"C is not reported from {parameter} = {sp.values[free] * scale!r} on towards "
@@ -291,13 +274,13 @@ def _assemble(model: ContactLoss, parameter: str, free: str, scale: float, branc
             )
     first = chains[next(iter(chains))]
     rows += [
-        _polish(first, main.point(i))
+        polish_row(first, main.point(i))
         for i in range(len(main))
         if not inside[0] <= main[free][i] <= inside[1]
     ]
     located = [(ev["event"], ev[free]) for ev in events]
     events += [
-        _polish(first, ev)
+        polish_row(first, ev)
         for ev in _events(main)
         if not inside[0] <= ev[free] <= inside[1]
         and not any(n == ev["event"] and abs(v - ev[free]) <= 1e-9 * abs(v) for n, v in located)
@@ -311,26 +294,6 @@ def _assemble(model: ContactLoss, parameter: str, free: str, scale: float, branc
         {"event": ev.pop("event"), **_physical(model, ev, tol, messages)} for ev in events
     ]
     return Loci(parameter, columns, event_rows, messages, dict(branches), rows)
-
-
-def _polish(chain: PointChain, row: dict[str, Any]) -> dict[str, Any]:
-    """A row of a locus Newton-polished to rounding at its parameters: the tracer accepts
-    points to its update tolerance, and the released energies (areas between legs that meet
-    at B) are sensitive to the frozen stick level to ~1e3 times that."""
-    p = {k: row[k] for k in chain.params}
-    u = np.array([row[k] for k in chain.unknowns])
-    for _ in range(4):
-        r = chain.residual(u, p)
-        try:
-            du = np.linalg.solve(chain.jacobian(u, p), -r)
-        except np.linalg.LinAlgError:
-            break
-        if not np.all(np.isfinite(du)):
-            break
-        u = u + du
-        if np.all(np.abs(du) <= 4.0 * np.finfo(float).eps * np.maximum(np.abs(u), 1.0)):
-            break
-    return {**row, **dict(zip(chain.unknowns, map(float, u)))}
 
 
 def _events(br: Branch) -> list[dict[str, Any]]:

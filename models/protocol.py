@@ -34,8 +34,18 @@ derivatives enter the analytic Jacobian of the continuation problem, so they mus
 (the tests of a body should compare them with finite differences). The levels are
 nondimensional: ``scale`` [µm] converts them to lengths (the path reports p·scale and
 q·scale in µm under the column names ``names``), and a good scale keeps q − p of order one
-at A. Along the path p and q stay within the domain where the relations hold (q ≥ 0 for a
-sphere: ``slip_limit`` tells the path where the stick zone vanishes).
+at A. Along the path p and q stay within the domain where the relations hold (for a body
+that slides as a whole, ``slip_limit`` tells the path where the stick zone vanishes, at
+q = 0 unless the levels say otherwise, below).
+
+Two optional members let a body measure its levels from a reference, so that small
+differences near it keep their digits (the sphere's levels are 1 − a/a0 and 1 − c/a0: at
+small slips c, a and a0 agree to 1e-8 and more, and a − c must not be formed from them):
+
+* ``lengths(p, q)`` — the levels as the lengths the path reports [µm] (arrays in, arrays
+  out); without it, p·scale and q·scale;
+* ``stick_bounds`` — (low, high), the range of q in which a stick zone exists; the end that
+  is finite is the stick level of gross sliding. Without it, (0, inf).
 
 To add a body: write its module (the body class with ``mu``, ``tangential_force`` and
 ``contact_levels``, and its levels class), then register it with one line,
@@ -46,7 +56,10 @@ Units: lengths µm, forces N, energies N·µm.
 
 from __future__ import annotations
 
+import math
 from typing import Any, Protocol, runtime_checkable
+
+import numpy as np
 
 from .errors import ModelParameterError, NoComplianceLawError
 
@@ -56,6 +69,9 @@ __all__ = [
     "require_path_body",
     "require_levels",
     "no_compliance_law",
+    "level_lengths",
+    "stick_bounds",
+    "sliding_level",
     "RESERVED_COLUMNS",
 ]
 
@@ -150,6 +166,28 @@ _LEVEL_MEMBERS = (
     "area_ratio",
     "slip_limit",
 )
+
+
+def level_lengths(levels: Any, p: Any, q: Any) -> tuple[np.ndarray, np.ndarray]:
+    """The levels ``p``, ``q`` (arrays) as lengths [µm] (module docstring: a body's
+    ``lengths``, else p·scale and q·scale)."""
+    lengths = getattr(levels, "lengths", None)
+    if lengths is not None:
+        a, b = lengths(np.asarray(p, dtype=float), np.asarray(q, dtype=float))
+        return np.asarray(a, dtype=float), np.asarray(b, dtype=float)
+    return np.asarray(p, dtype=float) * levels.scale, np.asarray(q, dtype=float) * levels.scale
+
+
+def stick_bounds(levels: Any) -> tuple[float, float]:
+    """The range of the stick level q in which a stick zone exists (module docstring)."""
+    lo, hi = getattr(levels, "stick_bounds", (0.0, math.inf))
+    return float(lo), float(hi)
+
+
+def sliding_level(levels: Any) -> float:
+    """The stick level of gross sliding: the finite end of :func:`stick_bounds`."""
+    lo, hi = stick_bounds(levels)
+    return lo if math.isfinite(lo) else hi
 
 
 def require_path_body(body: object) -> PathBody:

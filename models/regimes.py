@@ -32,6 +32,7 @@ from cusp.continuation import ChainPoint, ContinuationOptions, PointChain, locus
 from .contact_loss import ContactLoss
 from .errors import ModelParameterError
 from .manifold import point_loci, trace_loci
+from .protocol import sliding_level
 
 __all__ = ["REGIMES", "RegimeMap", "regime_map"]
 
@@ -143,7 +144,7 @@ def _d_boundary(model: ContactLoss, spine, mu_span, load_span, options):
         return None
     v = ends[0].values
     bc = model.problem("BC", start=1.0, constant=v["n_B"], mu=v["mu"])
-    point = ChainPoint("D", bc, "n_B", ("q", 0.0))
+    point = ChainPoint("D", bc, "n_B", ("q", sliding_level(model.levels)))
     chain = PointChain([point], {"g": 1.0, "mu": v["mu"]})
     start = {"D": {k: v[f"D.{k}"] for k in ("t", "n", "A_SL", "p", "q")} | {"n_B": v["n_B"]}}
     bounds = {

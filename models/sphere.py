@@ -164,20 +164,25 @@ class Sphere:
 
 
 class SphereLevels:
-    """Contact levels of the Hertz–Mindlin sphere (:class:`cusp.models.protocol.ContactLevels`):
-    p = a/a0, q = c/a0 (a0 [µm] the Hertz radius under F_N0).
+    """Contact levels of the Hertz–Mindlin sphere (:class:`cusp.models.protocol.ContactLevels`),
+    measured from the Hertz radius a0 under F_N0: p = 1 − a/a0, q = 1 − c/a0, so that at
+    small slips, where a, c and a0 agree to many digits, a − c = a0(q − p) keeps them all.
+    With r = 1 − c/a = (q − p)/(1 − p):
 
-    * log(F_N/F_N0) = 3 log p                  (Hertz, F_N ∝ a³)
-    * F̂_T = 1 − (q/p)³                         (Eq 19)
-    * g_T = μκ(p² − q²)                        (Eq 2 with Hertz)
-    * Â_ST = (q/p)²,  A_r/A_r(F_N0) = p²       (A_ST ∝ c², A_r ∝ a²)
+    * log(F_N/F_N0) = 3 log(1 − p)                 (Hertz, F_N ∝ a³)
+    * F̂_T = 1 − (c/a)³ = r(3 − 3r + r²)            (Eq 19)
+    * g_T = μκ(a² − c²)/a0² = μκ(q − p)(2 − p − q)  (Eq 2 with Hertz)
+    * Â_ST = (c/a)² = (1 − r)²,  A_r/A_r(F_N0) = (1 − p)²  (A_ST ∝ c², A_r ∝ a²)
 
-    with κ = (2 − ν) E* a0² / (2 G R*) [µm]; the spheres slide as a whole when the stick
-    zone vanishes, at g_T = μκp² (``slip_limit``).
+    with κ = (2 − ν) E* a0² / (2 G R*) [µm]. The spheres slide as a whole when the stick zone
+    vanishes, c = 0, i.e. q = 1 (``stick_bounds``), at g_T = μκ(1 − p)² (``slip_limit``). The
+    path reports a = a0(1 − p) and c = a0(1 − q) [µm] (``lengths``).
     """
 
     names = ("a", "c")
-    p0 = 1.0  # a = a0 under F_N0
+    p0 = 0.0  # a = a0 under F_N0
+    #: the stick zone exists for q < 1 (c > 0); q = 1 is gross sliding
+    stick_bounds = (-math.inf, 1.0)
 
     def __init__(self, sphere: Sphere, F_N0: float, g_A: float) -> None:
         sphere._require("the contact-loss path (compliance law, Eq 2)")
@@ -188,31 +193,40 @@ class SphereLevels:
         #: κ [µm]
         self.kappa = (2.0 - nu) * sphere.E_star * a0**2 / (2.0 * sphere.G * 0.5 * radius)
 
+    def lengths(self, p, q):
+        """a = a0(1 − p), c = a0(1 − q) [µm]."""
+        return self.scale * (1.0 - p), self.scale * (1.0 - q)
+
     def log_normal_load(self, p: float) -> tuple[float, float]:
-        """log(F_N/F_N0) = 3 log p and its derivative (Hertz)."""
-        return 3.0 * math.log(p), 3.0 / p
+        """log(F_N/F_N0) = 3 log(1 − p) and its derivative (Hertz)."""
+        return 3.0 * math.log1p(-p), -3.0 / (1.0 - p)
 
     def tangential_ratio(self, p: float, q: float) -> tuple[float, float, float]:
-        """F̂_T = 1 − (q/p)³ and its derivatives (Eq 19)."""
-        k = q / p
-        return 1.0 - k**3, 3.0 * k**3 / p, -3.0 * k * k / p
+        """F̂_T = 1 − (c/a)³ = r(3 − 3r + r²), r = (q − p)/(1 − p), and its derivatives
+        (Eq 19)."""
+        w = 1.0 - p
+        r = (q - p) / w
+        dF = 3.0 * (1.0 - r) ** 2  # dF̂/dr
+        return r * (3.0 - 3.0 * r + r * r), -dF * (1.0 - q) / (w * w), dF / w
 
     def slip(self, p: float, q: float) -> tuple[float, float, float]:
-        """g_T/μ = κ(p² − q²) [µm] and its derivatives (Eq 2)."""
-        return self.kappa * (p * p - q * q), 2.0 * self.kappa * p, -2.0 * self.kappa * q
+        """g_T/μ = κ(q − p)(2 − p − q) [µm] and its derivatives (Eq 2)."""
+        k = self.kappa
+        return k * (q - p) * (2.0 - p - q), -2.0 * k * (1.0 - p), 2.0 * k * (1.0 - q)
 
     def stick_area(self, p: float, q: float) -> tuple[float, float, float]:
-        """Â_ST = (q/p)² and its derivatives (Eq 22)."""
-        k = q / p
-        return k * k, -2.0 * k * k / p, 2.0 * k / p
+        """Â_ST = (c/a)² = (1 − r)² and its derivatives (Eq 22)."""
+        w = 1.0 - p
+        k = (1.0 - q) / w  # c/a
+        return k * k, 2.0 * k * k / w, -2.0 * k / w
 
     def area_ratio(self, p: float) -> tuple[float, float]:
-        """A_r/A_r(F_N0) = p² and its derivative."""
-        return p * p, 2.0 * p
+        """A_r/A_r(F_N0) = (1 − p)² and its derivative."""
+        return (1.0 - p) ** 2, -2.0 * (1.0 - p)
 
     def slip_limit(self, p: float) -> float:
-        """κp² [µm]: the stick zone vanishes (gross sliding) at g_T = μκp²."""
-        return self.kappa * p * p
+        """κ(1 − p)² [µm]: the stick zone vanishes (gross sliding) at g_T = μκ(a/a0)²."""
+        return self.kappa * (1.0 - p) ** 2
 
 
 def _positive_load(F_N):

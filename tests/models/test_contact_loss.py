@@ -303,7 +303,7 @@ def test_sphere_slipping_under_the_reduced_load_has_no_D_nor_C():
     assert res.points["C"] is None and res.points["D"] is None
     assert res.energy == {"snap_back": None, "snap_through": None}
     assert res.gross_sliding == {"force_control": True, "displacement_control": True}
-    assert res.legs["BC"]["q"][-1] == 0.0  # ends exactly at gross slip (stick zone gone)
+    assert res.path("BC")["c"][-1] == 0.0  # ends exactly at gross slip (stick zone gone)
 
 
 # ------------------------------------------------------------------ refusals
@@ -334,3 +334,42 @@ def test_sphere_max_slip_beyond_gross_sliding_is_refused():
     sph = Sphere(**SPHERE)
     with pytest.raises(ModelParameterError, match="max_slip must be <"):
         ContactLoss(sph, 1000.0, 1.01 * sph.slip_limit(1000.0), 850.0)
+
+
+@pytest.mark.parametrize("f", [1e-3, 1e-5, 1e-6, 1e-7])
+def test_sphere_at_small_slips_matches_mpmath(f):
+    # g_A = f·g_lim(F_N0), F'_N = F_N0 − F_A/(2μ): a, c and a0 agree to ~f; the sphere's
+    # levels are 1 − a/a0 and 1 − c/a0 so that a − c keeps its digits (as 1 − c/a0 = 1 − 1e-8
+    # they had 8 fewer: the energies were 9.6 % off at f = 1e-7). Reference: the mpmath path
+    # of _contact_oracles (40 digits) at the same binary inputs.
+    sph = Sphere(**SPHERE)
+    g_A = f * float(sph.slip_limit(1000.0))
+    F_Np = 1000.0 - 0.5 * float(sph.tangential_force(g_A, 1000.0)) / SPHERE["mu"]
+    res = ContactLoss(sph, 1000.0, g_A, F_Np).run()
+    pts, energy = oracles.sphere_path(**SPHERE, F_N0=1000.0, g_A=g_A, F_Np=F_Np)
+    for key in "ABCD":
+        for q in ("g_T", "F_T", "A_SL"):
+            assert res.points[key][q] == pytest.approx(float(pts[key][q]), rel=1e-8), (key, q)
+    for kind in ("snap_back", "snap_through"):
+        assert res.energy[kind] == pytest.approx(float(energy[kind]), rel=1e-8), kind
+
+
+@pytest.mark.parametrize("F_Np", [999.999999999, math.nextafter(1000.0, 0.0), 1000.0 * (1 - 1e-8)])
+def test_tiny_reductions_give_energies_with_honest_error_estimates(F_Np):
+    # a reduction of one ulp, or F'_N = 999.999999999 N, used to end in a traceback (the
+    # quadrature asked for a point just outside the leg); now the energies come with error
+    # estimates that bound their actual error (against the sympy closed forms) and a message
+    # saying how far they are resolved
+    res = ContactLoss(ExponentialRoughSurface(2.0, 0.3, 0.1), 1000.0, 0.34, F_Np).run()
+    S = verification.SYMBOLS
+    syms = (S["sigma"], S["mu"], S["lambda"], S["F_N0"], S["g_A"], S["Fp_N"])
+    lam = 2.0 * (2.0 - 0.3) / (2.0 * (1.0 - 0.3))
+    for kind in ("snap_back", "snap_through"):
+        want = float(
+            verification.exact_value(
+                verification.contact_loss_path()[kind], syms, (2.0, 0.1, lam, 1000.0, 0.34, F_Np)
+            )
+        )
+        assert abs(res.energy[kind] - want) <= res.energy_error[kind], kind
+        assert res.energy_error[kind] > 1e-8 * abs(res.energy[kind])
+    assert any("error bound is" in m for m in res.messages)

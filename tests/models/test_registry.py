@@ -24,6 +24,7 @@ from cusp.models import (
     registry,
 )
 from cusp.models.contact_loss import ContactLoss
+from cusp.models.protocol import sliding_level
 from cusp.models.registry import Parameter
 from tests.models import _toy_body as toy
 
@@ -38,7 +39,8 @@ def _bodies():
         ("exponential", ExponentialRoughSurface(2.0, 0.3, 0.1), 1000.0, 0.34, (0.2, 1.1)),
         ("exponential+scale", ExponentialRoughSurface(2.0, 0.3, 0.1, **SCALE), 1000.0, 0.34, None),
         ("gaussian", GaussianRoughSurface(2.0, 0.3, 0.1, **SCALE), 1000.0, 0.1, None),
-        ("sphere", Sphere(1000.0, 0.2, 0.3, 0.1), 1000.0, 2.0, (0.95, 0.7)),
+        # (the sphere's levels are 1 − a/a0, 1 − c/a0: a = 0.95 a0, c = 0.7 a0)
+        ("sphere", Sphere(1000.0, 0.2, 0.3, 0.1), 1000.0, 2.0, (0.05, 0.3)),
         ("toy", toy.BrushBody(0.1, 0.1, 0.05), 1000.0, 0.2, (0.9, 0.6)),
     ]
 
@@ -77,13 +79,15 @@ def test_levels_follow_the_protocol_with_exact_derivatives(name, body, F_N0, g_A
 
 
 def test_slip_limit_is_the_slip_where_the_stick_zone_vanishes():
-    # sphere: κp² = s(p, 0); toy: βa0 p = s(p, 0); rough surfaces never slide as a whole
+    # sphere: κ(1 − p)² = s(p, 1) (c = 0 at q = 1); toy: βa0 p = s(p, 0); rough surfaces
+    # never slide as a whole
     for body, F_N0, g_A in (
         (Sphere(1000.0, 0.2, 0.3, 0.1), 1000.0, 2.0),
         (toy.BrushBody(0.1, 0.1, 0.05), 1000.0, 0.2),
     ):
         L = body.contact_levels(F_N0, g_A)
-        assert L.slip_limit(0.8) == pytest.approx(L.slip(0.8, 0.0)[0], rel=1e-15)
+        p = 0.2
+        assert L.slip_limit(p) == pytest.approx(L.slip(p, sliding_level(L))[0], rel=1e-15)
     assert (
         ExponentialRoughSurface(2.0, 0.3, 0.1).contact_levels(1000.0, 0.34).slip_limit(0.0)
         == math.inf

@@ -1,0 +1,185 @@
+"""The first point of a curve and its tangent, also on a fold or at a singular point.
+
+The start is corrected by Newton with the free parameter (the last component of ``z``)
+held at its value, and the tangent solves ``[∂G/∂z; e_lastᵀ] t = e_last``. Both need the
+matrix ``[∂G/∂z; e_lastᵀ]`` (∂G/∂u, for a branch) to be regular, which it is not on a fold
+of the free parameter: there the guess may already solve ``G = 0`` (the residual 0) and
+still Newton with the parameter fixed cannot take a step. The curve itself is regular
+there — ``∂G/∂z`` has full rank, a one-dimensional null space — so the start is taken from
+the null space instead (:func:`kernel_tangent`: ``[∂G/∂z; cᵀ] t = e_last`` with a border
+``c`` that is not orthogonal to the tangent) and corrected in the hyperplane through the
+guess orthogonal to that tangent. At a singular point (a branch point: the null space of
+``∂G/∂z`` two-dimensional or more) no tangent is defined and the start is refused
+(:class:`~.errors.SingularPointError`).
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any, NamedTuple
+
+import numpy as np
+
+from .corrector import correct
+from .errors import (
+    ConvergenceError,
+    NonFiniteResidualError,
+    SingularMatrixError,
+    SingularPointError,
+    format_values,
+)
+from .linalg import bordered, factor, max_abs
+
+_BORDER_SEED = 17
+"""Seed of the two fixed pseudo-random borders of :func:`kernel_tangent` (the start is then
+reproducible bit for bit)."""
+
+_SAME_DIRECTION = 5e-9
+"""``1 − |cos|`` of the angle between the two borders' tangents above which the null space
+is taken as two-dimensional: 1e-4 rad. On a regular curve both are the null vector, to
+rounding times the condition of the bordered matrix; at a branch point each border picks
+its own vector of the null space."""
+
+
+class Start(NamedTuple):
+    """The corrected start ``z``, its tangent ``t`` (not normalised, oriented), the sign of
+    ``det [∂G/∂z; (W t)ᵀ]`` (None if not known), the residual's max-norm, the Newton
+    iterations and, for a start on a fold of the free parameter, the name of the component
+    that orients the tangent (else None)."""
+
+    z: np.ndarray
+    t: np.ndarray
+    sdet: float | None
+    residual: float
+    iterations: int
+    fold_oriented_by: str | None
+
+
+def correct_start(
+    system: Any, z0: np.ndarray, g0: np.ndarray, options: Any, e_last: np.ndarray, direction: int
+) -> Start:
+    """The start of a curve from the guess ``z0`` (``g0`` = G(z0)): Newton with the last
+    component fixed, or on a fold of that component the null-space start of the module
+    docstring. ``direction`` (±1): the sign of the last component's change along the
+    tangent, or, on a fold of it, of the change of the component that moves most relative
+    to its typical size."""
+    k = system.dim - 1
+    res = correct(system, z0, e_last, z0[k], options, budget=4, g0=g0)
+    if res.converged:
+        t = _solve(res.lu, e_last)
+        if t is not None:
+            sdet = res.lu.sign_det()
+            if t[k] * direction < 0:
+                t, sdet = -t, -sdet
+            return Start(res.z, t, sdet, res.residual_norm, res.iterations, None)
+        z, rn, iters = res.z, res.residual_norm, res.iterations
+    elif res.reason == "singular":
+        # ∂G/∂u is singular at the guess (or an iterate): a fold of the free parameter,
+        # where the curve is still regular, or a singular point
+        z, rn, iters = _correct_on_fold(
+            system, res.z, z0, options, res.iterations, res.residual_norm
+        )
+    else:
+        raise ConvergenceError(
+            "the starting point did not converge",
+            values=system.values(z0),
+            ds=0.0,
+            iterations=res.iterations,
+            residual_norm=res.residual_norm,
+            remedy="Give a better initial guess u0 for these parameter values.",
+        )
+    t = kernel_tangent(system, z)
+    i = int(np.argmax(np.abs(t) / np.maximum(system.scales, np.abs(z))))
+    if t[i] * direction < 0:
+        t = -t
+    return Start(z, t, None, rn, iters, system.names[i])
+
+
+def _solve(lu: Any, rhs: np.ndarray) -> np.ndarray | None:
+    """``lu``'s solution for ``rhs``, None if it is not finite or ``lu`` is missing."""
+    if lu is None:
+        return None
+    t = lu.solve(rhs)
+    return t if math.isfinite(max_abs(t)) else None
+
+
+def _correct_on_fold(
+    system: Any, z: np.ndarray, z0: np.ndarray, options: Any, iterations: int, residual: float
+) -> tuple[np.ndarray, float, int]:
+    """Newton from ``z`` in the hyperplane orthogonal to the curve's tangent there (the
+    free parameter free), where ``∂G/∂u`` is singular. The free parameter may move by no
+    more than Newton's update tolerance relative to its size (``√step_tol``): the start is
+    at the parameter value asked for, or refused (``residual``: the max-norm of G there, for
+    the message)."""
+    t = kernel_tangent(system, z)
+    res = correct(system, z, system.weights * t, None, options, budget=4)
+    k = system.dim - 1
+    moved = abs(res.z[k] - z0[k])
+    allowed = math.sqrt(options.step_tol) * max(system.scales[k], abs(z0[k]))
+    if not res.converged or moved > allowed:
+        name = system.names[k]
+        remedy = f"Give a guess u0 on the curve at this {name}, off the fold."
+        if res.converged:
+            remedy = (
+                f"With {name} free the nearest solution has {name}={res.z[k]:.10g}, "
+                f"{moved:.3g} away: start there, or give a guess u0 on the curve at this "
+                f"{name}, off the fold."
+            )
+        raise ConvergenceError(
+            f"the starting point did not converge: with {name} held fixed the Jacobian is "
+            f"singular there (a fold of {name})",
+            values=system.values(z0),
+            ds=0.0,
+            iterations=iterations + res.iterations,
+            residual_norm=residual,
+            remedy=remedy,
+        )
+    return res.z, res.residual_norm, iterations + res.iterations
+
+
+def kernel_tangent(system: Any, z: np.ndarray) -> np.ndarray:
+    """The null vector of ``∂G/∂z`` at ``z`` (not normalised, either sign), from the
+    bordered matrices ``[∂G/∂z; cᵀ]`` with two fixed pseudo-random borders ``c`` (scaled by
+    the typical sizes; one fails only if it is orthogonal to the tangent). Raises
+    :class:`~.errors.SingularPointError` where the null space is two-dimensional or more:
+    then every border leaves the matrix singular, or the two borders' solutions differ."""
+    dg = system.jacobian(z)
+    data = dg.data if hasattr(dg, "tocsr") else np.asarray(dg)
+    if not np.isfinite(data).all():
+        raise NonFiniteResidualError(
+            f"the Jacobian is not finite at the starting point {format_values(system.values(z))}",
+            values=system.values(z),
+        )
+    rng = np.random.default_rng(_BORDER_SEED)
+    rhs = np.zeros(system.dim)
+    rhs[-1] = 1.0
+    found = []
+    for _ in range(2):
+        row = rng.uniform(0.5, 1.5, system.dim) * rng.choice((-1.0, 1.0), system.dim)
+        try:
+            t = _solve(factor(bordered(dg, row / system.scales)), rhs)
+        except SingularMatrixError:
+            t = None
+        if t is None:
+            raise _singular_point(system, z)
+        found.append(t / math.sqrt(t.dot(system.weights * t)))
+    a, b = found
+    if 1.0 - abs(a.dot(system.weights * b)) > _SAME_DIRECTION:
+        raise _singular_point(system, z)
+    return a
+
+
+def _singular_point(system: Any, z: np.ndarray) -> SingularPointError:
+    values = system.values(z)
+    return SingularPointError(
+        f"the starting point {format_values(values)} is a singular point: the Jacobian of "
+        f"the equations in the unknowns and {system.names[-1]} has a null space of dimension "
+        f"2 or more (a branch point), so the curve has no tangent there. Start off "
+        f"it, with a guess on the branch you want, or trace a branch through it and switch at "
+        f"its located branch point: "
+        f"trace(problem, branch.special('branch_point')[0], free=...)",
+        values=values,
+    )
+
+
+__all__ = ["Start", "correct_start", "kernel_tangent"]
