@@ -325,6 +325,9 @@ class SignWithSpectrum(float):
 
     def __new__(cls, sign: float, m: np.ndarray) -> SignWithSpectrum:
         self = super().__new__(cls, sign)
+        if not np.all(np.isfinite(m)):  # LAPACK's xerbla would print to stdout
+            self.spectrum = None
+            return self
         wr, wi, _, vr, info = _geev(m, compute_vl=0, compute_vr=1)
         if info != 0 or not np.all(np.isfinite(vr)):
             self.spectrum = None
