@@ -285,7 +285,8 @@ class ContactLoss:
         m = mu / self.g_A
         R = np.empty(5)
         J = np.zeros((5, 7))
-        R[0] = math.log(n) - ell
+        # (a trial point of the tracer may have n <= 0: non-finite, its step is shortened)
+        R[0] = (math.log(n) if n > 0.0 else math.nan) - ell
         J[0, 2] = 1.0 / n
         J[0, 4] = -dell
         R[1] = k * t - n * F

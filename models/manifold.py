@@ -175,7 +175,9 @@ def trace_loci(
     scale = 1.0 if free == "mu" else model.F_N0
     lo, hi = span[0] / scale, span[1] / scale
     o = options or _DEFAULT
-    bounds = {free: (lo, hi), "B.t": (0.0, math.inf)}
+    # (a path started at the deepest reduction may have F'_T a rounding below 0)
+    t_B, t_A = start["B"]["t"], start["A"]["t"]
+    bounds = {free: (lo, hi), "B.t": (min(0.0, t_B) if t_B > -1e-9 * abs(t_A) else 0.0, math.inf)}
     if math.isfinite(model.levels.slip_limit(model.levels.p0)):
         # a body that slides as a whole (a sphere): A's stick zone must not vanish, and D
         # ceases to exist where its stick zone does (the locus ends there)

@@ -467,7 +467,15 @@ class RoughLevels:
 
     def __init__(self, surf: RoughSurface, F_N0: float, g_A: float) -> None:
         self.surf = surf
-        c = max(1.0, g_A / (surf.mu * surf.lam))
+        with np.errstate(over="ignore"):
+            x_A = float((g_A / surf.sigma) * surf._sigma_over_lam / surf.mu)  # g_A/(μλ)
+        if not math.isfinite(x_A):
+            raise ModelParameterError(
+                f"sigma = {surf.sigma!r} µm and mu = {surf.mu!r} with max_slip = {g_A!r} µm "
+                "give g_A/(mu lambda) beyond the float range: the contact-loss path cannot be "
+                "scaled"
+            )
+        c = max(1.0, x_A)
         #: u [µm]
         self.scale = s = surf.sigma * c
         #: λc [µm]: g_T = μ λc (q − p)

@@ -187,18 +187,31 @@ class SphereLevels:
     def __init__(self, sphere: Sphere, F_N0: float, g_A: float) -> None:
         sphere._require("the contact-loss path (compliance law, Eq 2)")
         nu, radius = cast(float, sphere.nu), cast(float, sphere.radius)  # checked just above
-        a0 = float(sphere.contact_radius(F_N0))
+        with np.errstate(over="ignore", under="ignore", divide="ignore", invalid="ignore"):
+            a0 = float(sphere.contact_radius(F_N0))
+            den = 2.0 * sphere.G * 0.5 * radius
+            kappa = (2.0 - nu) * sphere.E_star * a0**2 / den if den > 0.0 else math.inf
+        if not (0.0 < a0 < math.inf and 0.0 < kappa < math.inf):
+            raise ModelParameterError(
+                f"radius = {radius!r} µm and E = {sphere.E!r} N/µm² under F_N0 = {F_N0!r} N "
+                f"give a Hertz radius a0 = {a0!r} µm and a compliance κ = {kappa!r} µm outside "
+                f"the float range: choose radius and E whose a0 = (3 F_N0 R/(8 E*))^(1/3) and "
+                f"κ are finite and > 0"
+            )
         #: a0 [µm]
         self.scale = a0
         #: κ [µm]
-        self.kappa = (2.0 - nu) * sphere.E_star * a0**2 / (2.0 * sphere.G * 0.5 * radius)
+        self.kappa = kappa
 
     def lengths(self, p, q):
         """a = a0(1 − p), c = a0(1 − q) [µm]."""
         return self.scale * (1.0 - p), self.scale * (1.0 - q)
 
     def log_normal_load(self, p: float) -> tuple[float, float]:
-        """log(F_N/F_N0) = 3 log(1 − p) and its derivative (Hertz)."""
+        """log(F_N/F_N0) = 3 log(1 − p) and its derivative (Hertz); NaN where a ≤ 0 (a trial
+        point of the path may land there: a non-finite residual shortens its step)."""
+        if not p < 1.0:
+            return math.nan, math.nan
         return 3.0 * math.log1p(-p), -3.0 / (1.0 - p)
 
     def tangential_ratio(self, p: float, q: float) -> tuple[float, float, float]:
