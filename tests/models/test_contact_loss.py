@@ -352,6 +352,8 @@ def test_sphere_at_small_slips_matches_mpmath(f):
             assert res.points[key][q] == pytest.approx(float(pts[key][q]), rel=1e-8), (key, q)
     for kind in ("snap_back", "snap_through"):
         assert res.energy[kind] == pytest.approx(float(energy[kind]), rel=1e-8), kind
+        # the error estimate bounds the actual error
+        assert abs(res.energy[kind] - float(energy[kind])) <= res.energy_error[kind], kind
 
 
 @pytest.mark.parametrize("F_Np", [999.999999999, math.nextafter(1000.0, 0.0), 1000.0 * (1 - 1e-8)])
