@@ -466,6 +466,7 @@ def phases(pb, rounds=100, repeat=7):
 
 
 def _phases_once(pb, rounds):
+    import cusp.continuation.start as sr
     import cusp.continuation.stepping as st
     import cusp.continuation.tracer as tr
 
@@ -493,7 +494,7 @@ def _phases_once(pb, rounds):
     wrap(st, "newton", "corrector (steps and start)")
     wrap(st, "damped_newton", "corrector (steps and start)")
     wrap(st, "correct", "corrector (steps and start)")
-    wrap(tr, "correct", "corrector (steps and start)")
+    wrap(sr, "correct", "corrector (steps and start)")  # the start's corrector
     wrap(tr, "locate_crossings", "special-point location")
     wrap(tr, "corner_folds", "special-point location")
     wrap(tr.Tracer, "_located_point", "special-point location")

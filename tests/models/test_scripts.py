@@ -51,3 +51,11 @@ def test_fig5_data_ordering():
     for k in order[:3]:
         y = data[k][1]
         assert y[0] == 0 and y[-1] == 0 and 0.2 < np.argmax(y) / y.size < 0.9
+
+
+def test_bench_trace_phase_timer_wraps_the_engine_functions_it_names():
+    # the per-phase breakdown wraps engine functions by name; a function moved to another
+    # module (the start's corrector did) must fail here, not four minutes into the benchmark
+    bench = load("bench_trace")
+    total, parts = bench._phases_once(bench.PROBLEMS[0], 1)
+    assert total > 0.0 and parts and all(v >= 0.0 for v in parts.values())
