@@ -14,7 +14,7 @@ This module is the reference for adding a body. A body is any object with
 That is :class:`PathBody`. The levels are two numbers that locate the state of the contact:
 the contact level p and the stick level q (a rough surface: the mean-plane separation d and
 the stick-threshold level d0 = d + g_N0, Eq 5; a sphere: the contact radius a and the stick
-radius c). In them the equilibrium of the contact is four relations, the same on every leg
+radius c, measured from a0 as below). In them the equilibrium of the contact is four relations, the same on every leg
 of the path (μ the friction coefficient, F_N0 the normal load on OA):
 
 * normal equilibrium      log(F_N/F_N0) = ``log_normal_load(p)``    (Eq 11; Hertz for a sphere)
@@ -127,11 +127,12 @@ class ContactLevels(Protocol):
         ...
 
     def slip_limit(self, p: float) -> float:
-        """s(p, 0) [µm], the slip at which the stick zone vanishes at contact level p: μ
-        times it is the slip g_T at which the body slides as a whole under that load (κ(a/a0)²
-        for a sphere, Eq 2); inf if it never does at finite slip (a rough surface). The
-        path refuses g_A ≥ μ·slip_limit(p0); when it is finite the reloading leg is bounded
-        at q = 0 (the stick zone gone), so q = 0 must be the stick level of gross sliding."""
+        """s(p, q_slide) [µm], the slip at which the stick zone vanishes at contact level p
+        (q_slide the stick level of gross sliding: 0, or the finite end of ``stick_bounds``):
+        μ times it is the slip g_T at which the body slides as a whole under that load
+        (κ(a/a0)² for a sphere, Eq 2); inf if it never does at finite slip (a rough
+        surface). The path refuses g_A ≥ μ·slip_limit(p0); when it is finite the reloading
+        leg is bounded at q_slide (the stick zone gone)."""
         ...
 
 
