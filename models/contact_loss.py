@@ -16,7 +16,8 @@ Formulation
 A body is described by two levels: the contact level p and the stick level q (for a rough
 surface the mean-plane separation d and the stick-threshold level d0 = d + g_N0, in units of
 σ*; for a sphere 1 − a/a0 and 1 − c/a0, a and c the contact and stick radii and a0 the
-Hertz radius at F_N0, measured from a0 so that a − c keeps its digits at small slips). In these the equilibrium of the contact reads, for every state on the path,
+Hertz radius at F_N0, measured from a0 so that a − c keeps its digits at small slips). In
+these the equilibrium of the contact reads, for every state on the path,
 
 * normal equilibrium        log(F_N/F_N0) = ℓ(p)               (Eq 11; Hertz for a sphere)
 * tangential equilibrium    F_T/(μF_N) = F̂_T(p, q)            (Eq 9; Eq 19)

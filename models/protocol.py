@@ -14,8 +14,9 @@ This module is the reference for adding a body. A body is any object with
 That is :class:`PathBody`. The levels are two numbers that locate the state of the contact:
 the contact level p and the stick level q (a rough surface: the mean-plane separation d and
 the stick-threshold level d0 = d + g_N0, Eq 5; a sphere: the contact radius a and the stick
-radius c, measured from a0 as below). In them the equilibrium of the contact is four relations, the same on every leg
-of the path (μ the friction coefficient, F_N0 the normal load on OA):
+radius c, measured from a0 as below). In them the equilibrium of the contact is four
+relations, the same on every leg of the path (μ the friction coefficient, F_N0 the normal
+load on OA):
 
 * normal equilibrium      log(F_N/F_N0) = ``log_normal_load(p)``    (Eq 11; Hertz for a sphere)
 * tangential equilibrium  F_T/(μF_N) = ``tangential_ratio(p, q)``   (Eq 9; Eq 19)
