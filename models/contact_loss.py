@@ -51,10 +51,9 @@ and on BC the contact level is fixed by F'_N, so between the traced points each 
 explicit curve in its other level: Gauss–Legendre in g, the level at each node found from g
 by safeguarded Newton (:mod:`cusp.models._loci_energy`, shared with the loci of
 :mod:`cusp.models.manifold`), nodes doubled until two rules agree to 1e-13 relative, the
-points first Newton-polished to rounding. The error estimate adds the rounding of the gap
-and of the points; for a very small reduction (the area shrinks like ΔF_N², the rounding
-like ΔF_N) it says how far the energy is resolved, and a message says so beyond 1e-8. No
-closed form is evaluated to trace the path; the closed forms of the exponential surface
+points first Newton-polished to rounding. The error bound adds the rounding of the gap and
+of the points (the area shrinks like ΔF_N², the rounding like ΔF_N: a message beyond 1e-8).
+No closed form is evaluated to trace the path; those of the exponential surface
 (docs/physics.md §7) are test oracles only.
 
 Â_SL (Eq 32): ``"printed"`` (default) normalises Â_ST by the current real contact area, as
