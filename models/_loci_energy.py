@@ -25,7 +25,7 @@ from typing import Any
 
 import numpy as np
 
-from cusp.continuation import ChainPoint, PointChain
+from cusp.continuation import ChainPoint, ConvergenceError, PointChain, points_at
 
 #: two Gauss-Legendre rules agreeing to this (relative) end the doubling
 QUAD_RTOL = 1e-13
@@ -195,6 +195,20 @@ def path_chain(model, params: dict[str, float], q_A: float, names: str) -> Point
         "C": ChainPoint("C", bc, "g", ("t", ("A", "t")), links={"n_B": ("B", "n")}),
     }
     return PointChain([points[x] for x in names], params)
+
+
+def polish_point(problem, br, name: str, value: float, o) -> dict[str, float]:
+    """The point of a traced leg at ``name = value``, Newton-polished to the update tolerance;
+    where Newton does not converge there (C within ~1e-6 of the C boundary, where its slip
+    diverges), the leg's own row located at it (a bound or target of the trace)."""
+    try:
+        cols = points_at(problem, br, name, value, options=o)
+    except ConvergenceError:
+        hits = np.flatnonzero(np.asarray(br[name]) == value)
+        if not hits.size:
+            raise
+        return {k: float(v) for k, v in br.point(int(hits[0])).items()}
+    return {k: float(v[0]) for k, v in cols.items()}
 
 
 def polish_row(chain: PointChain, row: dict[str, Any]) -> dict[str, Any]:

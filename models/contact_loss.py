@@ -74,6 +74,7 @@ import numpy as np
 from cusp.continuation import Branch, ContinuationOptions, Problem, points_at, trace
 
 from ._loci_energy import energies, path_chain, polish_row
+from ._loci_energy import polish_point as _polish
 from .errors import ModelParameterError, check_positive
 from .protocol import (
     ContactLevels,
@@ -561,12 +562,6 @@ def _require_end(br: Branch, leg: str, what: str) -> None:
             f"the contact-loss leg {leg} ended with status {br.status!r} before reaching "
             f"{what}: {br.message}"
         )
-
-
-def _polish(problem, br: Branch, name: str, value: float, o) -> dict[str, float]:
-    """The point of the branch at ``name = value``, Newton-polished to the update tolerance."""
-    cols = points_at(problem, br, name, value, options=o)
-    return {k: float(v[0]) for k, v in cols.items()}
 
 
 def _point_rows(legs, c_exists: bool, d_exists: bool) -> dict[str, tuple[str, int]]:
