@@ -130,7 +130,7 @@ def test_path_is_traced_by_the_solver_with_corner_folds_at_A_and_B():
     res = ContactLoss(ExponentialRoughSurface(*FIG6[:3]), *FIG6[3:]).run()
     assert set(res.legs) == {"OA", "AB", "BC"}
     assert all(br.status == "bound" for br in res.legs.values())
-    assert res.legs["OA"].variables[-1] == "g" and res.legs["AB"].variables[-1] == "n"
+    assert res.legs["OA"].variables[-1] == "g" and res.legs["AB"].variables[-1] == "m"
     corners = {(f["point"], f["kind"]) for f in res.folds if f["corner"]}
     assert corners == {
         ("A", "snap-back"),
