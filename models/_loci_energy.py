@@ -4,8 +4,8 @@ On the legs AB and BC one level is constant: the stick level q = q_A on AB (the 
 zone) and the contact level p = p_B on BC (F_N = F'_N), so each leg is an explicit curve in
 its other level (module docstring of :mod:`cusp.models.contact_loss`, nondimensional):
 
-* AB: n = exp ℓ(p), t = (μ/μ0) n F̂_T(p, q_A), g = (μ/g_A) s(p, q_A);
-* BC: n = n_B,       t = (μ/μ0) n_B F̂_T(p_B, q), g = (μ/g_A) s(p_B, q).
+* AB: 1 − m = exp ℓ(p), t = (μ/μ0) (1 − m) F̂_T(p, q_A),   g = (μ/g_A) s(p, q_A);
+* BC: m = m_B,         t = (μ/μ0) (1 − m_B) F̂_T(p_B, q), g = (μ/g_A) s(p_B, q).
 
 The areas are integrals in g of the gap between two such curves, ABD = ∫_{g_B}^{g_A}
 (F_AB − F_BC) dg and ABC − ABD = ∫_{g_A}^{g_C} (F_A − F_BC) dg, by Gauss–Legendre with the
@@ -25,7 +25,7 @@ from typing import Any
 
 import numpy as np
 
-from cusp.continuation import ChainPoint, PointChain
+from cusp.continuation import ChainPoint, ConvergenceError, PointChain, points_at
 
 #: two Gauss-Legendre rules agreeing to this (relative) end the doubling
 QUAD_RTOL = 1e-13
@@ -103,7 +103,8 @@ class LegCurves:
         self.L = levels
         self.m = mu / g_A
         self.k = mu / mu0
-        self.qA, self.pA, self.pB, self.nB = row["A.q"], row["A.p"], row["B.p"], row["B.n"]
+        self.qA, self.pA, self.pB = row["A.q"], row["A.p"], row["B.p"]
+        self.nB = 1.0 - row["B.m"]  # F'_N/F_N0
         self.row = row
 
     def g_ab(self, p: float) -> tuple[float, float]:
@@ -186,15 +187,29 @@ def energies(
 def path_chain(model, params: dict[str, float], q_A: float, names: str) -> PointChain:
     """The chain of the points ``names`` (A, B, then D and/or C) of the path."""
     oa = model.problem("OA", start=1.0)
-    ab = model.problem("AB", start=params["n_B"], constant=q_A)
-    bc = model.problem("BC", start=1.0, constant=params["n_B"])
+    ab = model.problem("AB", start=params["m_B"], constant=q_A)
+    bc = model.problem("BC", start=1.0, constant=params["m_B"])
     points = {
         "A": ChainPoint("A", oa, "g", ("g", 1.0)),
-        "B": ChainPoint("B", ab, "n", ("n", "n_B"), links={"q_A": ("A", "q")}),
-        "D": ChainPoint("D", bc, "g", ("g", 1.0), links={"n_B": ("B", "n")}),
-        "C": ChainPoint("C", bc, "g", ("t", ("A", "t")), links={"n_B": ("B", "n")}),
+        "B": ChainPoint("B", ab, "m", ("m", "m_B"), links={"q_A": ("A", "q")}),
+        "D": ChainPoint("D", bc, "g", ("g", 1.0), links={"m_B": ("B", "m")}),
+        "C": ChainPoint("C", bc, "g", ("t", ("A", "t")), links={"m_B": ("B", "m")}),
     }
     return PointChain([points[x] for x in names], params)
+
+
+def polish_point(problem, br, name: str, value: float, o) -> dict[str, float]:
+    """The point of a traced leg at ``name = value``, Newton-polished to the update tolerance;
+    where Newton does not converge there (C within ~1e-6 of the C boundary, where its slip
+    diverges), the leg's own row located at it (a bound or target of the trace)."""
+    try:
+        cols = points_at(problem, br, name, value, options=o)
+    except ConvergenceError:
+        hits = np.flatnonzero(np.asarray(br[name]) == value)
+        if not hits.size:
+            raise
+        return {k: float(v) for k, v in br.point(int(hits[0])).items()}
+    return {k: float(v[0]) for k, v in cols.items()}
 
 
 def polish_row(chain: PointChain, row: dict[str, Any]) -> dict[str, Any]:

@@ -19,7 +19,7 @@ surface the mean-plane separation d and the stick-threshold level d0 = d + g_N0,
 Hertz radius at F_N0, measured from a0 so that a − c keeps its digits at small slips). In
 these the equilibrium of the contact reads, for every state on the path,
 
-* normal equilibrium        log(F_N/F_N0) = ℓ(p)               (Eq 11; Hertz for a sphere)
+* normal equilibrium        log1p(−m) = ℓ(p), m = 1 − F_N/F_N0 (Eq 11; Hertz for a sphere)
 * tangential equilibrium    F_T/(μF_N) = F̂_T(p, q)            (Eq 9; Eq 19)
 * compliance                g_T = μ s(p, q)                     (Eqs 4–5; Eq 2)
 * slipped area              Â_SL = (1 − Â_ST(p, q)) + ΔA_r/A_r (Eq 32)
@@ -30,8 +30,8 @@ protocol of :mod:`cusp.models.protocol` (``body.contact_levels(F_N0, g_A)`` retu
 exponential surface's levels are in :mod:`cusp.models.exponential`, those of any other
 height density in :mod:`cusp.models.rough`, the sphere's in :mod:`cusp.models.sphere`.
 
-plus one constraint for the leg: F_N = F_N0 (OA), the frozen stick zone q = q_A (AB) or
-F_N = F'_N (BC). Mindlin and Deresiewicz freeze the stick zone of every asperity while the
+plus one constraint for the leg: m = 0 (OA), the frozen stick zone q = q_A (AB) or m = m_B
+(BC). Mindlin and Deresiewicz freeze the stick zone of every asperity while the
 tractions are removed from the lost annulus; summed over the contact this is their rule
 F'_T = F_A − μΔF_N (μF_N − F_T = μ K J(d0) for a rough surface, μ(4E*/3R*)c³ for a sphere,
 is kept). The frozen-level form is used as the residual because it stays well conditioned
@@ -39,11 +39,13 @@ when F̂_T(A) is within rounding of 1, where F_T no longer resolves q; the force
 checked on every traced row in the tests.
 Each leg is a :class:`cusp.continuation.Problem` in the nondimensional unknowns
 
-    g = g_T/g_A,  t = F_T/(μ0 F_N0),  n = F_N/F_N0,  A_SL,  p,  q
+    g = g_T/g_A,  t = F_T/(μ0 F_N0),  m = 1 − F_N/F_N0,  A_SL,  p,  q
 
-(μ0 the friction coefficient of the body; μ is a parameter ``mu`` of the problem) with the
-control of the leg as the free parameter: g on OA, n on AB, g on BC. Nondimensional unknowns
-of order one make the arclength metric meaningful (F_T in N and g_T in µm differ by 10³).
+(μ0 the friction coefficient of the body; μ a parameter ``mu``), the control of the leg as
+the free parameter: g on OA, the reduction m on AB (0 to m_B), g on BC. Order-one unknowns
+make the arclength metric meaningful (F_T in N and g_T in µm differ by 10³); the reduction m,
+not F_N/F_N0, keeps a tiny reduction's digits: m_B = (F_N0 − F'_N)/F_N0 is exact where
+F'_N ≥ F_N0/2 (Sterbenz), rounded once otherwise; F_N = F_N0 (1 − m).
 
 The released energies are the areas between the legs, ∫ (F_AB − F_BC) dg over [g_B, g_A]
 (ABD) plus ∫ (F_A − F_BC) dg over [g_A, g_C] (ABC − ABD). On AB the stick level is frozen
@@ -74,6 +76,7 @@ import numpy as np
 from cusp.continuation import Branch, ContinuationOptions, Problem, points_at, trace
 
 from ._loci_energy import energies, path_chain, polish_row
+from ._loci_energy import polish_point as _polish
 from .errors import ModelParameterError, check_positive
 from .protocol import (
     ContactLevels,
@@ -97,9 +100,9 @@ __all__ = [
 ]
 
 #: nondimensional variables of every leg problem (one of them is the leg's control)
-VARIABLES = ("g", "t", "n", "A_SL", "p", "q")
+VARIABLES = ("g", "t", "m", "A_SL", "p", "q")
 #: leg -> its control (the free parameter of the leg problem)
-LEG_CONTROLS = {"OA": "g", "AB": "n", "BC": "g"}
+LEG_CONTROLS = {"OA": "g", "AB": "m", "BC": "g"}
 AREA_READINGS = ("printed", "consistent")
 
 #: default solver settings for the legs (nondimensional arclength)
@@ -111,8 +114,7 @@ DEFAULT_OPTIONS = ContinuationOptions(ds=0.02, ds_max=0.05)
 
 
 class PathError(RuntimeError):
-    """A leg of the path ended before its end point (the branch's status and message say
-    why)."""
+    """A leg of the path ended before its end point (its branch's status and message say why)."""
 
 
 @dataclass(frozen=True)
@@ -169,7 +171,7 @@ class ContactLossResult:
 
 
 def _to_physical(columns, scales, level_names, levels=None) -> dict[str, np.ndarray]:
-    """Nondimensional leg columns (g, t, n, A_SL, p, q) to physical ones (µm, N); the levels
+    """Nondimensional leg columns (g, t, m, A_SL, p, q) to physical ones (µm, N); the levels
     by the body's own :func:`~cusp.models.protocol.level_lengths` (without ``levels``:
     p·scale, q·scale)."""
     p_name, q_name = level_names
@@ -181,7 +183,7 @@ def _to_physical(columns, scales, level_names, levels=None) -> dict[str, np.ndar
     return {
         "g_T": np.asarray(columns["g"]) * scales["g"],
         "F_T": np.asarray(columns["t"]) * scales["t"],
-        "F_N": np.asarray(columns["n"]) * scales["n"],
+        "F_N": (1.0 - np.asarray(columns["m"])) * scales["F_N"],
         "A_SL": np.array(columns["A_SL"], dtype=float),
         p_name: lp,
         q_name: lq,
@@ -236,6 +238,7 @@ class ContactLoss:
         self.F_N0 = check_positive("normal_load", normal_load, "N")
         self.g_A = check_positive("max_slip", max_slip, "µm")
         self.F_Np = check_positive("reduced_normal_load", reduced_normal_load, "N")
+        self.m_B = (self.F_N0 - self.F_Np) / self.F_N0
         if area_reading not in AREA_READINGS:
             raise ModelParameterError(
                 f"area_reading must be one of {AREA_READINGS}, got {area_reading!r}"
@@ -267,14 +270,15 @@ class ContactLoss:
         self.scales = {
             "g": self.g_A,
             "t": self.mu0 * self.F_N0,
-            "n": self.F_N0,
+            "F_N": self.F_N0,
             "level": self.levels.scale,
         }
 
     # -------------------------------------------------------------- residual and Jacobian
     def _equations(self, x, mu: float, leg: str, consts) -> tuple[np.ndarray, np.ndarray]:
-        """Residual (5) and its derivatives with respect to (g, t, n, A_SL, p, q, mu)."""
-        g, t, n, a_sl, p, q = x
+        """Residual (5) and its derivatives with respect to (g, t, m, A_SL, p, q, mu)."""
+        g, t, red, a_sl, p, q = x
+        n = 1.0 - red  # F_N/F_N0
         L = self.levels
         ell, dell = L.log_normal_load(p)
         F, dF_p, dF_q = L.tangential_ratio(p, q)
@@ -285,13 +289,13 @@ class ContactLoss:
         m = mu / self.g_A
         R = np.empty(5)
         J = np.zeros((5, 7))
-        # (a trial point of the tracer may have n <= 0: non-finite, its step is shortened)
-        R[0] = (math.log(n) if n > 0.0 else math.nan) - ell
-        J[0, 2] = 1.0 / n
+        # (a trial point of the tracer may have m >= 1: non-finite, its step is shortened)
+        R[0] = (math.log1p(-red) if red < 1.0 else math.nan) - ell
+        J[0, 2] = -1.0 / n
         J[0, 4] = -dell
         R[1] = k * t - n * F
         J[1, 1] = k
-        J[1, 2] = -F
+        J[1, 2] = F
         J[1, 4] = -n * dF_p
         J[1, 5] = -n * dF_q
         J[1, 6] = -k * t / mu
@@ -310,13 +314,13 @@ class ContactLoss:
             J[3, 4] = dr_p * ast + r * dast_p
             J[3, 5] = r * dast_q
         if leg == "OA":
-            R[4] = n - 1.0
+            R[4] = red
             J[4, 2] = 1.0
         elif leg == "AB":
             R[4] = q - consts  # the stick zone is frozen (Mindlin-Deresiewicz)
             J[4, 5] = 1.0
         else:
-            R[4] = n - consts
+            R[4] = red - consts
             J[4, 2] = 1.0
         return R, J
 
@@ -326,8 +330,8 @@ class ContactLoss:
         """The continuation problem of one leg (nondimensional; see the module docstring).
 
         ``start``: the value of the leg's control (:data:`LEG_CONTROLS`). ``constant``: q_A
-        (the stick level at A) on AB, n_B (F'_N/F_N0) on BC. Parameters: the control, ``mu``
-        and the leg constant (``q_A`` or ``n_B``).
+        (the stick level at A) on AB, m_B (1 − F'_N/F_N0) on BC. Parameters: the control,
+        ``mu`` and the leg constant (``q_A`` or ``m_B``).
         """
         if leg not in LEG_CONTROLS:
             raise ModelParameterError(f"leg must be one of {list(LEG_CONTROLS)}, got {leg!r}")
@@ -335,7 +339,7 @@ class ContactLoss:
         ci = VARIABLES.index(control)
         unknowns = [v for v in VARIABLES if v != control]
         params = {control: float(start), "mu": self.mu0 if mu is None else float(mu)}
-        const_name = {"OA": None, "AB": "q_A", "BC": "n_B"}[leg]
+        const_name = {"OA": None, "AB": "q_A", "BC": "m_B"}[leg]
         if const_name is not None:
             if constant is None:
                 raise ModelParameterError(f"leg {leg} needs constant={const_name}")
@@ -363,7 +367,7 @@ class ContactLoss:
             if name == "mu":
                 return J[:, 6]
             col = np.zeros(5)
-            col[4] = -1.0  # d/d q_A (AB) and d/d n_B (BC) of the leg constraint
+            col[4] = -1.0  # d/d q_A (AB) and d/d m_B (BC) of the leg constraint
             return col
 
         return Problem(
@@ -380,35 +384,34 @@ class ContactLoss:
         """Trace O→A→B→C (and D), locate the folds and integrate the released energies."""
         o = options or DEFAULT_OPTIONS
         L = self.levels
-        p0 = L.p0
         # O -> A: slip raised at F_N0
         prob = self.problem("OA", start=0.0)
         oa = trace(
             prob,
-            [0.0, 1.0, 0.0, p0, p0],
+            [0.0, 0.0, 0.0, L.p0, L.p0],
             free="g",
             bounds={"g": (-math.inf, 1.0)},
+            scales={"m": 1.0},  # F_N/F_N0's size (m, its reduction, is 0 on OA)
             monitor=["t", "A_SL"],
             options=o,
         )
         _require_end(oa, "OA", "g = g_A")
         A = _polish(prob, oa, "g", 1.0, o)
         # A -> B: normal load reduced, Mindlin-Deresiewicz
-        n_B = self.F_Np / self.F_N0
-        prob_ab = self.problem("AB", start=A["n"], constant=A["q"])
+        prob_ab = self.problem("AB", start=A["m"], constant=A["q"])
         ab = trace(
             prob_ab,
-            _unknowns(A, "n"),
-            free="n",
-            direction=-1,
-            bounds={"n": (n_B, math.inf)},
+            [A[v] for v in prob_ab.unknowns],
+            free="m",
+            bounds={"m": (-math.inf, self.m_B)},
+            scales={"m": 1.0},
             monitor=["g", "t", "A_SL"],
             options=o,
         )
         _require_end(ab, "AB", "F_N = F'_N")
-        B = _polish(prob_ab, ab, "n", n_B, o)
+        B = _polish(prob_ab, ab, "m", self.m_B, o)
         # B -> C: reloading at F'_N
-        c_exists = A["t"] < n_B  # F_A < mu F'_N (t = F_T/(mu0 F_N0), mu = mu0)
+        c_exists = A["t"] < 1.0 - self.m_B  # F_A < mu F'_N (t = F_T/(mu0 F_N0), mu = mu0)
         d_exists = self.mu0 * L.slip_limit(B["p"]) > self.g_A
         bounds: dict[str, tuple[float, float]] = {}
         targets = {}
@@ -419,13 +422,14 @@ class ContactLoss:
             bounds["g"] = (-math.inf, 1.0)
         if math.isfinite(L.slip_limit(B["p"])):
             bounds["q"] = stick_bounds(L)  # e.g. a sphere: the stick zone vanishes at gross slip
-        prob_bc = self.problem("BC", start=B["g"], constant=B["n"])
+        prob_bc = self.problem("BC", start=B["g"], constant=B["m"])
         bc = trace(
             prob_bc,
-            _unknowns(B, "g"),
+            [B[v] for v in prob_bc.unknowns],
             free="g",
             bounds=bounds,
             targets=targets,
+            scales={"m": 1.0},
             monitor=["t", "A_SL"],
             options=o,
         )
@@ -485,7 +489,7 @@ class ContactLoss:
         if D is None:  # no D, hence no C either
             return energy, error, notes
         pts = {"A": A, "B": B, "D": D} | ({"C": C} if C is not None else {})
-        params = {"mu": self.mu0, "n_B": self.F_Np / self.F_N0}
+        params = {"mu": self.mu0, "m_B": self.m_B}
         chain = path_chain(self, params, A["q"], "".join(pts))
         row = {f"{x}.{k}": v for x, pt in pts.items() for k, v in pt.items()} | params
         row = polish_row(chain, row)
@@ -527,7 +531,7 @@ class ContactLoss:
                             "direction_after": "increasing" if t_after[var] > 0 else "decreasing",
                         }
                     )
-        names = {"g": "g_T", "t": "F_T", "n": "F_N", "A_SL": "A_SL"}
+        names = {"g": "g_T", "t": "F_T", "m": "F_N", "A_SL": "A_SL"}
         for leg, br in legs.items():
             for sp in br.special("fold"):
                 phys = _point(sp.values, self.scales, self.levels.names, self.levels)
@@ -551,22 +555,12 @@ class ContactLoss:
 # helpers
 
 
-def _unknowns(point: dict[str, float], control: str) -> list[float]:
-    return [point[v] for v in VARIABLES if v != control]
-
-
 def _require_end(br: Branch, leg: str, what: str) -> None:
     if br.status != "bound":
         raise PathError(
             f"the contact-loss leg {leg} ended with status {br.status!r} before reaching "
             f"{what}: {br.message}"
         )
-
-
-def _polish(problem, br: Branch, name: str, value: float, o) -> dict[str, float]:
-    """The point of the branch at ``name = value``, Newton-polished to the update tolerance."""
-    cols = points_at(problem, br, name, value, options=o)
-    return {k: float(v[0]) for k, v in cols.items()}
 
 
 def _point_rows(legs, c_exists: bool, d_exists: bool) -> dict[str, tuple[str, int]]:

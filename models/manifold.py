@@ -51,8 +51,9 @@ from .protocol import stick_bounds
 
 __all__ = ["CSV_COLUMNS", "LOCI_UNITS", "LOCUS_PARAMETERS", "Loci", "point_loci", "trace_loci"]
 
-#: the parameters a locus can be traced in: name -> the chain's parameter (μ; F'_N/F_N0)
-LOCUS_PARAMETERS = {"mu": "mu", "reduced_normal_load": "n_B"}
+#: the parameters a locus can be traced in: name -> the chain's parameter (μ; the reduction
+#: m_B = 1 − F'_N/F_N0, so F'_N = F_N0 (1 − m_B))
+LOCUS_PARAMETERS = {"mu": "mu", "reduced_normal_load": "m_B"}
 #: the locus of C stops where F_A = (1 − C_MARGIN)·μF'_N: C's slip diverges at the C boundary,
 #: and its sensitivity to rounding grows like 1/margin (at 1e-6, C is resolved to ~1e-10)
 C_MARGIN = 1e-6
@@ -89,7 +90,7 @@ class Loci:
     (``*_error``). ``events``: the located events, each ``{"event": name, **columns}``.
     ``messages``: how each locus ended. ``branches``: the traced (nondimensional) loci of
     the chains, ``"A-B-D"`` and, where C exists, ``"A-B-C-D"``; ``rows``: the rows of
-    ``columns`` as those chains' variables (``"A.q"``, ``"mu"``, ``"n_B"``, ...)."""
+    ``columns`` as those chains' variables (``"A.q"``, ``"mu"``, ``"m_B"``, ...)."""
 
     parameter: str
     columns: dict[str, np.ndarray]
@@ -100,7 +101,7 @@ class Loci:
 
     def start_at(self, i: int) -> dict[str, dict[str, float]]:
         """Row ``i``'s points as the ``start`` of :func:`trace_loci` (with its ``mu`` and
-        ``n_B`` in :attr:`rows`)."""
+        ``m_B`` in :attr:`rows`)."""
         row = self.rows[i]
         out: dict[str, dict[str, float]] = {}
         for key, value in row.items():
@@ -110,14 +111,23 @@ class Loci:
         return out
 
 
-def _span(model: ContactLoss, parameter: str, span) -> tuple[str, float, float, float]:
-    """The chain's parameter, its scale and the span (nondimensional)."""
+def _chain_value(model: ContactLoss, free: str, value):
+    """A value of a locus's parameter (μ, or F'_N [N]) as the chain's (μ, or m_B)."""
+    return value if free == "mu" else (model.F_N0 - value) / model.F_N0
+
+
+def _user_value(model: ContactLoss, free: str, value):
+    """The chain's parameter (μ, or m_B) as the locus's (μ, or F'_N [N])."""
+    return value if free == "mu" else model.F_N0 - model.F_N0 * value  # ΔF_N kept exact
+
+
+def _span(model: ContactLoss, parameter: str, span) -> tuple[str, float, float]:
+    """The chain's parameter and the span (in the units of ``parameter``)."""
     if parameter not in LOCUS_PARAMETERS:
         raise ModelParameterError(
             f"parameter must be one of {sorted(LOCUS_PARAMETERS)}, got {parameter!r}"
         )
     free = LOCUS_PARAMETERS[parameter]
-    scale = 1.0 if free == "mu" else model.F_N0
     here = model.mu0 if free == "mu" else model.F_Np
     if span is None:
         span = (here / 100, 100 * here) if free == "mu" else (here / 100, model.F_N0)
@@ -127,12 +137,12 @@ def _span(model: ContactLoss, parameter: str, span) -> tuple[str, float, float, 
         raise ModelParameterError(
             f"span of {parameter} must be two numbers, got {span!r}"
         ) from None
-    if not (0.0 < lo <= here <= hi < math.inf) or (free == "n_B" and hi > model.F_N0):
+    if not (0.0 < lo <= here <= hi < math.inf) or (free == "m_B" and hi > model.F_N0):
         raise ModelParameterError(
             f"span of {parameter} must hold the model's value {here!r} and lie in (0, "
             f"{'inf' if free == 'mu' else model.F_N0!r}], got {span!r}"
         )
-    return free, scale, lo / scale, hi / scale
+    return free, lo, hi
 
 
 def point_loci(
@@ -150,12 +160,12 @@ def point_loci(
     the C boundary). A locus that stops for another reason (the levels of the body no longer
     resolve a point) is kept as far as it went, and ``messages`` says so. ``at``: values of
     the parameter that must be rows of the loci (located exactly, as targets)."""
-    free, scale, lo, hi = _span(model, parameter, span)
+    _, lo, hi = _span(model, parameter, span)
     res = model.run(options)
     start = {name: res.legs[leg].point(row) for name, (leg, row) in res.point_rows.items()}
     start.pop("O", None)
-    params = {"mu": model.mu0, "n_B": model.F_Np / model.F_N0}
-    return trace_loci(model, parameter, (lo * scale, hi * scale), start, params, at, options)
+    params = {"mu": model.mu0, "m_B": model.m_B}
+    return trace_loci(model, parameter, (lo, hi), start, params, at, options)
 
 
 def trace_loci(
@@ -170,10 +180,9 @@ def trace_loci(
     """:func:`point_loci` from given points: ``start`` holds each of A, B and D (if it
     exists) and C (if it exists) as ``{point: {variable: value}}`` (the nondimensional
     variables of the legs, as the rows of :attr:`Loci.rows`), at ``params`` (``mu`` and
-    ``n_B`` = F'_N/F_N0); ``span`` in the units of ``parameter``."""
+    ``m_B`` = 1 − F'_N/F_N0); ``span`` in the units of ``parameter``."""
     free = LOCUS_PARAMETERS[parameter]
-    scale = 1.0 if free == "mu" else model.F_N0
-    lo, hi = span[0] / scale, span[1] / scale
+    lo, hi = sorted(_chain_value(model, free, float(v)) for v in span)
     o = options or _DEFAULT
     # (a path started at the deepest reduction may have F'_T a rounding below 0)
     t_B, t_A = start["B"]["t"], start["A"]["t"]
@@ -184,15 +193,22 @@ def trace_loci(
         bounds.update({"A.q": stick_bounds(model.levels), "D.q": stick_bounds(model.levels)})
     kw: dict[str, Any] = {"bounds": bounds, "options": o, "throw": False}
     if len(at):
-        kw["targets"] = {free: [float(v) / scale for v in at]}
+        kw["targets"] = {free: [_chain_value(model, free, float(v)) for v in at]}
     params = dict(params)
     names = "ABD" if "D" in start else "AB"
     chain = path_chain(model, params, start["A"]["q"], names)
     mu0, ia = model.mu0, chain.unknowns.index("A.t")
-    # F_A = μF'_N: t_A·μ0 = μ·n_B (t = F_T/(μ0 F_N0), n = F_N/F_N0)
-    boundary = Event(lambda u, p: u[ia] * mu0 - p["mu"] * p["n_B"], label="C boundary")
+    # F_A = μF'_N: t_A·μ0 = μ·(1 − m_B) (t = F_T/(μ0 F_N0), m = 1 − F_N/F_N0)
+    boundary = Event(lambda u, p: u[ia] * mu0 - p["mu"] * (1.0 - p["m_B"]), label="C boundary")
     with _ends_in_messages():
-        main = locus(chain, {x: start[x] for x in names}, free=free, events=[boundary], **kw)
+        main = locus(
+            chain,
+            {x: start[x] for x in names},
+            free=free,
+            events=[boundary],
+            scales=_sizes(model, names, free),
+            **kw,
+        )
     branches = {"-".join(names): main}
     chains = {"-".join(names): chain}
     seed = _c_seed(model, start, params, main, o)
@@ -200,15 +216,25 @@ def trace_loci(
         chain_c = path_chain(model, seed[1], seed[0]["A"]["q"], "ABCD")
         ic = chain_c.unknowns.index("A.t")
         near = Event(
-            lambda u, p: 1.0 - u[ic] * mu0 / (p["mu"] * p["n_B"]) - C_MARGIN,
+            lambda u, p: 1.0 - u[ic] * mu0 / (p["mu"] * (1.0 - p["m_B"])) - C_MARGIN,
             direction=-1,
             label="C unresolved",
             terminal=True,
         )
         with _ends_in_messages():
-            branches["A-B-C-D"] = locus(chain_c, seed[0], free=free, events=[near], **kw)
+            branches["A-B-C-D"] = locus(
+                chain_c, seed[0], free=free, events=[near], scales=_sizes(model, "ABCD", free), **kw
+            )
         chains["A-B-C-D"] = chain_c
-    return _assemble(model, parameter, free, scale, branches, chains)
+    return _assemble(model, parameter, free, branches, chains)
+
+
+def _sizes(model: ContactLoss, names: str, free: str) -> dict[str, float]:
+    """Typical sizes of the reductions m (and m_B): 1, that of F_N/F_N0, not their value (0
+    at A, where A.m and A.p = p0 + O(A.m) carry a rounding that would set their sizes; tiny
+    for a tiny reduction)."""
+    out = {f"{x}.m": 1.0 for x in names} | {"A.p": max(1.0, abs(model.levels.p0))}
+    return out | ({"m_B": 1.0} if free == "m_B" else {})
 
 
 @contextmanager
@@ -233,14 +259,15 @@ def _c_seed(model, start, params, main: Branch, o):
     None where C exists nowhere along it. Returns (start values, chain parameters)."""
     if "C" in start and "D" in start:
         return {x: start[x] for x in "ABCD"}, dict(params)
-    margin = main["mu"] * main["n_B"] - main["A.t"] * model.mu0  # > 0 where C exists
+    limit = main["mu"] * (1.0 - main["m_B"])  # μF'_N/(μ0 F_N0)
+    margin = limit - main["A.t"] * model.mu0  # > 0 where C exists
     if not np.any(margin > 0.0):
         return None
-    i = int(np.argmax(margin / (main["mu"] * main["n_B"])))
+    i = int(np.argmax(margin / limit))
     row = main.point(i)
-    params = {"mu": row["mu"], "n_B": row["n_B"]}
+    params = {"mu": row["mu"], "m_B": row["m_B"]}
     pt = {x: {k[2:]: v for k, v in row.items() if k.startswith(x + ".")} for x in "ABD"}
-    prob = model.problem("BC", start=pt["B"]["g"], constant=params["n_B"], mu=params["mu"])
+    prob = model.problem("BC", start=pt["B"]["g"], constant=params["m_B"], mu=params["mu"])
     bounds = {"t": (-math.inf, pt["A"]["t"])}
     if math.isfinite(model.levels.slip_limit(pt["B"]["p"])):
         bounds["q"] = stick_bounds(model.levels)
@@ -253,7 +280,7 @@ def _c_seed(model, start, params, main: Branch, o):
     return pt, params
 
 
-def _assemble(model: ContactLoss, parameter: str, free: str, scale: float, branches, chains):
+def _assemble(model: ContactLoss, parameter: str, free: str, branches, chains):
     """The rows of the loci (the chain with C where it ran, the other beyond), polished to
     rounding, their physical columns and energies, the events and how each locus ended."""
     main = branches[next(iter(branches))]
@@ -269,8 +296,9 @@ def _assemble(model: ContactLoss, parameter: str, free: str, scale: float, branc
         rows += [polish_row(chains["A-B-C-D"], with_c.point(i)) for i in range(len(with_c))]
         events += [polish_row(chains["A-B-C-D"], ev) for ev in _events(with_c)]
         for sp in with_c.special("event", label="C unresolved"):
+            at = _user_value(model, free, sp.values[free])
             messages.append(
-                f"C is not reported from {parameter} = {sp.values[free] * scale!r} on towards "
+                f"C is not reported from {parameter} = {at!r} on towards "
                 f"the C boundary, where F_A = (1 - {C_MARGIN:g}) mu F'_N: closer to it, "
                 "rounding decides whether C exists"
             )
@@ -287,8 +315,8 @@ def _assemble(model: ContactLoss, parameter: str, free: str, scale: float, branc
         if not inside[0] <= ev[free] <= inside[1]
         and not any(n == ev["event"] and abs(v - ev[free]) <= 1e-9 * abs(v) for n, v in located)
     ]
-    rows.sort(key=lambda r: r[free])
-    events.sort(key=lambda r: r[free])
+    rows.sort(key=lambda r: _user_value(model, free, r[free]))
+    events.sort(key=lambda r: _user_value(model, free, r[free]))
     tol = 64.0 * float(np.finfo(float).eps)  # the rows' error, relative, once polished
     table = [_physical(model, row, tol, messages) for row in rows]
     columns = {key: np.array([r[key] for r in table]) for key in LOCI_UNITS}
@@ -315,7 +343,7 @@ def _physical(
     """One row of a locus in physical units (NaN for a point the row does not carry), with
     the released energies at it (NaN where not resolved to :data:`ENERGY_RTOL`)."""
     sg, st = model.scales["g"], model.scales["t"]
-    out = {"mu": row["mu"], "reduced_normal_load": row["n_B"] * model.F_N0}
+    out = {"mu": row["mu"], "reduced_normal_load": _user_value(model, "m_B", row["m_B"])}
     for x in "ABCD":
         out[f"g_{x}"] = row.get(f"{x}.g", math.nan) * sg
         out[f"F_{x}"] = row.get(f"{x}.t", math.nan) * st

@@ -113,7 +113,7 @@ def regime_map(
             "reduced_normal_load",
             (lo, top),
             spine.start_at(i),
-            {"mu": row["mu"], "n_B": row["n_B"]},
+            {"mu": row["mu"], "m_B": row["m_B"]},
             at=load_grid,
             options=options,
         )
@@ -143,17 +143,18 @@ def _d_boundary(model: ContactLoss, spine, mu_span, load_span, options):
     if not ends:
         return None
     v = ends[0].values
-    bc = model.problem("BC", start=1.0, constant=v["n_B"], mu=v["mu"])
-    point = ChainPoint("D", bc, "n_B", ("q", sliding_level(model.levels)))
+    bc = model.problem("BC", start=1.0, constant=v["m_B"], mu=v["mu"])
+    point = ChainPoint("D", bc, "m_B", ("q", sliding_level(model.levels)))
     chain = PointChain([point], {"g": 1.0, "mu": v["mu"]})
-    start = {"D": {k: v[f"D.{k}"] for k in ("t", "n", "A_SL", "p", "q")} | {"n_B": v["n_B"]}}
+    start = {"D": {k: v[f"D.{k}"] for k in ("t", "m", "A_SL", "p", "q")} | {"m_B": v["m_B"]}}
     bounds = {
         "mu": tuple(float(x) for x in mu_span),
-        "D.n_B": (load_span[0] / model.F_N0, 1.0),
+        "D.m_B": (0.0, (model.F_N0 - load_span[0]) / model.F_N0),
     }
     o = options or ContinuationOptions(ds=0.02, ds_max=0.1)
-    br = locus(chain, start, free="mu", bounds=bounds, options=o, throw=False)
-    return np.asarray(br["mu"]), np.asarray(br["D.n_B"]) * model.F_N0
+    scales = {"D.m": 1.0, "D.m_B": 1.0}  # the size of F_N/F_N0, not of the reduction
+    br = locus(chain, start, free="mu", bounds=bounds, scales=scales, options=o, throw=False)
+    return np.asarray(br["mu"]), model.F_N0 * (1.0 - np.asarray(br["D.m_B"]))
 
 
 def _grid(spec, span, *, log: bool, name: str) -> np.ndarray:

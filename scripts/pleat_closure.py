@@ -220,50 +220,50 @@ def _mu_slides(case: dict) -> float | None:
 
 
 def closure_slopes(case: dict) -> dict[str, float]:
-    """The loci of A, B and D at the closure (n_B = F'_N/F_N0 = 1, where B = D = A).
+    """The loci of A, B and D at the closure (m_B = 1 − F'_N/F_N0 = 0, where B = D = A).
 
     The locus in F'_N (:func:`point_loci`) is traced from F'_N = 0.999 F_N0 through
     F'_N = F_N0; ``gap`` is the largest difference between B, D and A at its end (0 if the
     locus closes there). Its slopes at d = 0 (d/dd of g_A − g_B [µm], F_A − F_B, F_A − F_D
     [N], and of g_A) are those of the same chain of points (A: g_T = g_A on OA; B: F_N = F'_N
     on AB with A's stick level; D: g_T = g_A on BC at B's load) by the implicit function
-    theorem at the closure point, −J⁻¹ ∂R/∂n_B with J the chain's Jacobian: exact, where the
+    theorem at the closure point, −J⁻¹ ∂R/∂m_B with J the chain's Jacobian: exact, where the
     tangent the tracer stores at a bound-hit end carries an O(h²) error of the last step."""
     F_N0 = case["F_N0"]
     body = build_body(case["model"], **case["params"])
     model = ContactLoss(body, F_N0, case["g_A"], 0.999 * F_N0)
     loci = point_loci(model, "reduced_normal_load", (0.99 * F_N0, F_N0))
     main = loci.branches["A-B-D"]
-    end = main.point(int(np.argmax(main["n_B"])))
-    at_a = {v: end[f"A.{v}"] for v in ("g", "t", "n", "A_SL", "p", "q")}
+    end = main.point(int(np.argmin(main["m_B"])))
+    at_a = {v: end[f"A.{v}"] for v in ("g", "t", "m", "A_SL", "p", "q")}
     s = model.scales
     chain = PointChain(
         [
             ChainPoint("A", model.problem("OA", start=1.0), "g", ("g", 1.0)),
             ChainPoint(
                 "B",
-                model.problem("AB", start=1.0, constant=at_a["q"]),
-                "n",
-                ("n", "n_B"),
+                model.problem("AB", start=0.0, constant=at_a["q"]),
+                "m",
+                ("m", "m_B"),
                 links={"q_A": ("A", "q")},
             ),
             ChainPoint(
                 "D",
-                model.problem("BC", start=1.0, constant=1.0),
+                model.problem("BC", start=1.0, constant=0.0),
                 "g",
                 ("g", 1.0),
-                links={"n_B": ("B", "n")},
+                links={"m_B": ("B", "m")},
             ),
         ],
-        {"mu": model.mu0, "n_B": 1.0},
+        {"mu": model.mu0, "m_B": 0.0},
     )
     u = chain.start({"A": at_a, "B": at_a, "D": at_a})
     du = np.linalg.solve(
-        chain.jacobian(u, chain.params), -chain.param_jacobian(u, chain.params, "n_B")
+        chain.jacobian(u, chain.params), chain.param_jacobian(u, chain.params, "m_B")
     )
-    rate = dict(zip(chain.unknowns, du))  # d/dn_B, and d = 1 − n_B
+    rate = dict(zip(chain.unknowns, du))  # −d/dm_B = d/dn_B, n_B = 1 − m_B, d = m_B
     return {
-        "n_B": end["n_B"],
+        "n_B": 1.0 - end["m_B"],
         "gap": max(abs(end[f"{x}.{v}"] - end[f"A.{v}"]) for x in "BD" for v in ("g", "t")),
         "residual": float(np.max(np.abs(chain.residual(u, chain.params)))),
         "dg": rate["B.g"] * s["g"],

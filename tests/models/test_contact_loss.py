@@ -130,7 +130,7 @@ def test_path_is_traced_by_the_solver_with_corner_folds_at_A_and_B():
     res = ContactLoss(ExponentialRoughSurface(*FIG6[:3]), *FIG6[3:]).run()
     assert set(res.legs) == {"OA", "AB", "BC"}
     assert all(br.status == "bound" for br in res.legs.values())
-    assert res.legs["OA"].variables[-1] == "g" and res.legs["AB"].variables[-1] == "n"
+    assert res.legs["OA"].variables[-1] == "g" and res.legs["AB"].variables[-1] == "m"
     corners = {(f["point"], f["kind"]) for f in res.folds if f["corner"]}
     assert corners == {
         ("A", "snap-back"),
@@ -354,6 +354,26 @@ def test_sphere_at_small_slips_matches_mpmath(f):
         assert res.energy[kind] == pytest.approx(float(energy[kind]), rel=1e-8), kind
         # the error estimate bounds the actual error
         assert abs(res.energy[kind] - float(energy[kind])) <= res.energy_error[kind], kind
+
+
+@pytest.mark.parametrize("f", [1e-8, 1e-9])
+def test_sphere_at_tiny_slips_keeps_the_reduction_exact(f):
+    # the legs' unknown is the reduction m = 1 - F_N/F_N0 (issue 17): as n = F_N/F_N0, the
+    # reduction 1e-9 at f = 1e-8 lost 7 digits in n_B = 1 - 1e-9 and B's g_T and F_T were
+    # 3.7e-9 off; now every point's g_T and F_T is exact to rounding. A_SL (1 - Â_ST with
+    # Â_ST ≈ 1 - f) and the energies (the gap between the legs a ~1e-9 fraction of F_T) are
+    # limited by other cancellations, which their error estimates bound.
+    sph = Sphere(**SPHERE)
+    g_A = f * float(sph.slip_limit(1000.0))
+    F_Np = 1000.0 - 0.5 * float(sph.tangential_force(g_A, 1000.0)) / SPHERE["mu"]
+    res = ContactLoss(sph, 1000.0, g_A, F_Np).run()
+    pts, energy = oracles.sphere_path(**SPHERE, F_N0=1000.0, g_A=g_A, F_Np=F_Np)
+    for key in "ABCD":
+        for q in ("g_T", "F_T", "F_N"):
+            assert res.points[key][q] == pytest.approx(float(pts[key][q]), rel=1e-14), (key, q)
+    for kind in ("snap_back", "snap_through"):
+        assert abs(res.energy[kind] - float(energy[kind])) <= res.energy_error[kind], kind
+    assert any("error bound is" in m for m in res.messages)
 
 
 @pytest.mark.parametrize("F_Np", [999.999999999, math.nextafter(1000.0, 0.0), 1000.0 * (1 - 1e-8)])
