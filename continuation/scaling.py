@@ -147,8 +147,14 @@ def typical_sizes(
     largest = max(s)
     small = any(0.0 < x <= 1e-6 * largest for x in s)
     if jacobian is not None and small:
-        for i in _at_rounding_level(jacobian(), s):
-            s[i] = 0.0
+        # the given sizes count as the components' magnitudes here: a component the user
+        # sized 1 but whose value is a rounding 0 still makes the terms of its equations
+        mags = list(s)
+        for k, v in given.items():
+            mags[k] = v
+        for i in _at_rounding_level(jacobian(), mags):
+            if i not in given:
+                s[i] = 0.0
     for t in bounds:
         lo, hi = t.pair
         ends = [abs(v) for v in (lo, hi) if math.isfinite(v)]

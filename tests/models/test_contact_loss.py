@@ -395,3 +395,11 @@ def test_tiny_reductions_give_energies_with_honest_error_estimates(F_Np):
         assert abs(res.energy[kind] - want) <= res.energy_error[kind], kind
         assert res.energy_error[kind] > 1e-8 * abs(res.energy[kind])
     assert any("error bound is" in m for m in res.messages)
+
+
+def test_the_reduction_leg_takes_ordinary_steps_from_a_rounding_zero():
+    # at A the contact level p and the reduction m are 0 up to rounding (~1e-33); the leg's
+    # typical sizes must not be taken from those values (they were, with m sized 1 by the
+    # path: the AB leg then crept in ~2,000 steps at some μ, e.g. this one)
+    res = ContactLoss(ExponentialRoughSurface(2.0, 0.3, 0.37166054590330455), 1000.0, 0.34, 850.0)
+    assert len(res.run().legs["AB"]) < 100
