@@ -27,6 +27,7 @@ from cusp.models import (
 )
 from cusp.models.contact_loss import ContactLoss
 from tests.models import _contact_oracles as oracles
+from tests.models._exponential_closed import closed_form
 
 POINT_RTOL = 1e-10
 ENERGY_RTOL = 1e-8
@@ -336,17 +337,23 @@ def test_sphere_max_slip_beyond_gross_sliding_is_refused():
         ContactLoss(sph, 1000.0, 1.01 * sph.slip_limit(1000.0), 850.0)
 
 
+def _sphere_small_slip(f):
+    """The run at g_A = f·g_lim(F_N0), F'_N = F_N0 − F_A/(2μ), and the mpmath path there."""
+    sph = Sphere(**SPHERE)
+    g_A = f * float(sph.slip_limit(1000.0))
+    F_Np = 1000.0 - 0.5 * float(sph.tangential_force(g_A, 1000.0)) / SPHERE["mu"]
+    res = ContactLoss(sph, 1000.0, g_A, F_Np).run()
+    pts, energy = oracles.sphere_path(**SPHERE, F_N0=1000.0, g_A=g_A, F_Np=F_Np)
+    return res, pts, energy
+
+
 @pytest.mark.parametrize("f", [1e-3, 1e-5, 1e-6, 1e-7])
 def test_sphere_at_small_slips_matches_mpmath(f):
     # g_A = f·g_lim(F_N0), F'_N = F_N0 − F_A/(2μ): a, c and a0 agree to ~f; the sphere's
     # levels are 1 − a/a0 and 1 − c/a0 so that a − c keeps its digits (as 1 − c/a0 = 1 − 1e-8
     # they had 8 fewer: the energies were 9.6 % off at f = 1e-7). Reference: the mpmath path
     # of _contact_oracles (40 digits) at the same binary inputs.
-    sph = Sphere(**SPHERE)
-    g_A = f * float(sph.slip_limit(1000.0))
-    F_Np = 1000.0 - 0.5 * float(sph.tangential_force(g_A, 1000.0)) / SPHERE["mu"]
-    res = ContactLoss(sph, 1000.0, g_A, F_Np).run()
-    pts, energy = oracles.sphere_path(**SPHERE, F_N0=1000.0, g_A=g_A, F_Np=F_Np)
+    res, pts, energy = _sphere_small_slip(f)
     for key in "ABCD":
         for q in ("g_T", "F_T", "A_SL"):
             assert res.points[key][q] == pytest.approx(float(pts[key][q]), rel=1e-8), (key, q)
@@ -363,11 +370,7 @@ def test_sphere_at_tiny_slips_keeps_the_reduction_exact(f):
     # 3.7e-9 off; now every point's g_T and F_T is exact to rounding. A_SL (1 - Â_ST with
     # Â_ST ≈ 1 - f) and the energies (the gap between the legs a ~1e-9 fraction of F_T) are
     # limited by other cancellations, which their error estimates bound.
-    sph = Sphere(**SPHERE)
-    g_A = f * float(sph.slip_limit(1000.0))
-    F_Np = 1000.0 - 0.5 * float(sph.tangential_force(g_A, 1000.0)) / SPHERE["mu"]
-    res = ContactLoss(sph, 1000.0, g_A, F_Np).run()
-    pts, energy = oracles.sphere_path(**SPHERE, F_N0=1000.0, g_A=g_A, F_Np=F_Np)
+    res, pts, energy = _sphere_small_slip(f)
     for key in "ABCD":
         for q in ("g_T", "F_T", "F_N"):
             assert res.points[key][q] == pytest.approx(float(pts[key][q]), rel=1e-14), (key, q)
@@ -383,15 +386,8 @@ def test_tiny_reductions_give_energies_with_honest_error_estimates(F_Np):
     # estimates that bound their actual error (against the sympy closed forms) and a message
     # saying how far they are resolved
     res = ContactLoss(ExponentialRoughSurface(2.0, 0.3, 0.1), 1000.0, 0.34, F_Np).run()
-    S = verification.SYMBOLS
-    syms = (S["sigma"], S["mu"], S["lambda"], S["F_N0"], S["g_A"], S["Fp_N"])
-    lam = 2.0 * (2.0 - 0.3) / (2.0 * (1.0 - 0.3))
     for kind in ("snap_back", "snap_through"):
-        want = float(
-            verification.exact_value(
-                verification.contact_loss_path()[kind], syms, (2.0, 0.1, lam, 1000.0, 0.34, F_Np)
-            )
-        )
+        want = closed_form(kind, 0.1, F_Np)
         assert abs(res.energy[kind] - want) <= res.energy_error[kind], kind
         assert res.energy_error[kind] > 1e-8 * abs(res.energy[kind])
     assert any("error bound is" in m for m in res.messages)

@@ -19,11 +19,11 @@ import pytest
 from cusp.models import ContactLoss, ExponentialRoughSurface, GaussianRoughSurface, Sphere
 from cusp.models.manifold import C_MARGIN, CSV_COLUMNS, LOCI_UNITS, point_loci
 from tests.models import _contact_oracles as oracles
+from tests.models._exponential_closed import closed_form
 
-verification = pytest.importorskip("cusp.verification")
+pytest.importorskip("cusp.verification")  # (sympy: the closed forms)
 
 SIGMA, NU, MU, F_N0, G_A, F_NP = 2.0, 0.3, 0.1, 1000.0, 0.34, 850.0  # the Fig 6 scene
-LAM = SIGMA * (2.0 - NU) / (2.0 * (1.0 - NU))  # the float λ the model uses
 
 
 def _model(mu=MU, F_Np=F_NP):
@@ -31,20 +31,11 @@ def _model(mu=MU, F_Np=F_NP):
 
 
 def _closed(key, mu, F_Np):
-    S = verification.SYMBOLS
-    syms = (S["sigma"], S["mu"], S["lambda"], S["F_N0"], S["g_A"], S["Fp_N"])
-    vals = (SIGMA, mu, LAM, F_N0, G_A, F_Np)
-    return float(verification.exact_value(CLOSED[key], syms, vals))
-
-
-CLOSED = verification.contact_loss_path()
-EVENTS = verification.manifold_events()
+    return closed_form(key, mu, F_Np)
 
 
 def _event(key, mu, F_Np):
-    S = verification.SYMBOLS
-    syms = (S["sigma"], S["mu"], S["lambda"], S["F_N0"], S["g_A"], S["Fp_N"])
-    return float(verification.exact_value(EVENTS[key], syms, (SIGMA, mu, LAM, F_N0, G_A, F_Np)))
+    return closed_form(key, mu, F_Np, event=True)
 
 
 def _check_rows(cols, mus, fnps, keys, rtol=1e-10):

@@ -18,21 +18,16 @@ import pytest
 from cusp.models import ContactLoss, ExponentialRoughSurface, Sphere
 from cusp.models.errors import ModelParameterError
 from cusp.models.regimes import REGIMES, regime_map
+from tests.models._exponential_closed import closed_form
 
-verification = pytest.importorskip("cusp.verification")
+pytest.importorskip("cusp.verification")  # (sympy: the closed forms)
 
 SIGMA, NU, F_N0, G_A = 2.0, 0.3, 1000.0, 0.34
 LAM = SIGMA * (2.0 - NU) / (2.0 * (1.0 - NU))
 
 
 def _closed(key, mu, F_Np):
-    S = verification.SYMBOLS
-    syms = (S["sigma"], S["mu"], S["lambda"], S["F_N0"], S["g_A"], S["Fp_N"])
-    vals = (SIGMA, mu, LAM, F_N0, G_A, F_Np)
-    return float(verification.exact_value(CLOSED[key], syms, vals))
-
-
-CLOSED = verification.contact_loss_path()
+    return closed_form(key, mu, F_Np)
 
 
 @pytest.fixture(scope="module")
