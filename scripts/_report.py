@@ -4,6 +4,7 @@ byte-for-byte reproducible."""
 from __future__ import annotations
 
 import os
+import subprocess
 from pathlib import Path
 
 
@@ -33,3 +34,15 @@ def save_figure(fig, path, **savefig_kw) -> Path:
 
     path = Path(path)
     return write_bytes(path, figure_bytes(fig, path.suffix.lstrip(".").lower(), **savefig_kw))
+
+
+def commit_and_load() -> tuple[str, float]:
+    """The short commit of the repository holding this script ("unknown" outside git) and
+    the machine's 1-minute load average (NaN where the OS does not report it): the
+    provenance line of a benchmark report."""
+    root = Path(__file__).resolve().parents[1]
+    commit = subprocess.run(
+        ["git", "rev-parse", "--short", "HEAD"], cwd=root, capture_output=True, text=True
+    ).stdout.strip()
+    load = os.getloadavg()[0] if hasattr(os, "getloadavg") else float("nan")
+    return commit or "unknown", load

@@ -22,7 +22,6 @@ import argparse
 import math
 import os
 import platform
-import subprocess
 import time
 from datetime import datetime, timezone
 from pathlib import Path
@@ -31,7 +30,7 @@ import numpy as np
 
 from cusp.models import ContactLoss, ExponentialRoughSurface, point_loci
 
-from _report import write_report
+from _report import commit_and_load, write_report
 
 ROOT = Path(__file__).resolve().parents[1]
 DOC = ROOT / "docs" / "benchmarks" / "manifold.md"
@@ -102,13 +101,7 @@ def _report(args, mus, loci, rows, t_loc, t_one, speedup, pt, en) -> list[str]:
     import numpy
     import scipy
 
-    commit = (
-        subprocess.run(
-            ["git", "rev-parse", "--short", "HEAD"], cwd=ROOT, capture_output=True, text=True
-        ).stdout.strip()
-        or "unknown"
-    )
-    load = os.getloadavg()[0] if hasattr(os, "getloadavg") else float("nan")
+    commit, load = commit_and_load()
     events = ", ".join(f"{e['event']} at μ = {e['mu']:.10g}" for e in loci.events)
     return [
         "# Benchmark: the μ-locus of the manifold against single runs",

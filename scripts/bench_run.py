@@ -27,7 +27,7 @@ import time
 from datetime import datetime, timezone
 from pathlib import Path
 
-from _report import write_report
+from _report import commit_and_load, write_report
 
 ROOT = Path(__file__).resolve().parents[1]
 SCENE = ROOT / "scenes" / "fig6.toml"
@@ -100,13 +100,7 @@ def main() -> None:
     import numpy
     import scipy
 
-    commit = (
-        subprocess.run(
-            ["git", "rev-parse", "--short", "HEAD"], cwd=ROOT, capture_output=True, text=True
-        ).stdout.strip()
-        or "unknown"
-    )
-    load = os.getloadavg()[0] if hasattr(os, "getloadavg") else float("nan")
+    commit, load = commit_and_load()
     lines = [
         "# Benchmark: wall time of `cusp run` on the Fig 6 scene",
         "",

@@ -34,7 +34,6 @@ from __future__ import annotations
 import argparse
 import math
 import platform
-import subprocess
 import time
 from pathlib import Path
 
@@ -48,7 +47,7 @@ from cusp.models.manifold import point_loci
 from cusp.models.registry import build_body
 
 from _pleat_reference import REF_DPS, exponential_series, reference, rel_error
-from _report import save_figure, write_report
+from _report import commit_and_load, save_figure, write_report
 
 ROOT = Path(__file__).resolve().parents[1]
 #: the bodies: label -> bundled scene
@@ -492,9 +491,7 @@ def figure(results: dict, path: Path) -> None:
 
 
 def report(results: dict, series: dict, seconds: float) -> str:
-    commit = subprocess.run(
-        ["git", "rev-parse", "--short", "HEAD"], cwd=ROOT, capture_output=True, text=True
-    ).stdout.strip()
+    commit = commit_and_load()[0]
     exp = results["exponential"]
     smallest = {k: smallest_ratio(exp["sweep"], k, s["exponent"]) for k, s in series.items()}
     lines = [
