@@ -132,7 +132,6 @@ def energies(
     mu: float,
     mu0: float,
     g_A: float,
-    has_c: bool,
     state_tol: float,
 ) -> dict[str, float]:
     """Snap-back (area ABD) and snap-through (area ABC) energies, nondimensional (times
@@ -163,7 +162,7 @@ def energies(
         abd, abd_err = gauss_legendre(gap, g_B, 1.0, floor)
         abd_err += state
         out["snap_back"], out["snap_back_error"] = abd, abd_err
-        if has_c and math.isfinite(row.get("C.q", math.nan)):
+        if math.isfinite(row.get("C.q", math.nan)):  # C in the row: ABC too
             g_C, q_C = row["C.g"], row["C.q"]
             floor_c = 64.0 * _EPS * abs(t_A) * abs(g_C - 1.0)
 

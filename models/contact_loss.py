@@ -494,7 +494,7 @@ class ContactLoss:
         row = {f"{x}.{k}": v for x, pt in pts.items() for k, v in pt.items()} | params
         row = polish_row(chain, row)
         tol = 64.0 * float(np.finfo(float).eps)
-        e = energies(self.levels, row, self.mu0, self.mu0, self.g_A, C is not None, tol)
+        e = energies(self.levels, row, self.mu0, self.mu0, self.g_A, tol)
         unit = self.scales["t"] * self.scales["g"]
         for kind in energy:
             if not math.isfinite(e[kind]):

@@ -348,7 +348,7 @@ def _physical(
         out[f"g_{x}"] = row.get(f"{x}.g", math.nan) * sg
         out[f"F_{x}"] = row.get(f"{x}.t", math.nan) * st
         out[f"A_SL_{x}"] = row.get(f"{x}.A_SL", math.nan)
-    e = energies(model.levels, row, row["mu"], model.mu0, model.g_A, "C.q" in row, tol)
+    e = energies(model.levels, row, row["mu"], model.mu0, model.g_A, tol)
     for kind in ("snap_back", "snap_through"):
         value, error = e[kind] * st * sg, e[f"{kind}_error"] * st * sg
         if error > ENERGY_RTOL * abs(value):
