@@ -22,7 +22,7 @@ import numpy as np
 from scipy import special as sc
 
 from .errors import ModelParameterError, check_finite_array, check_ratio
-from .rough import RoughSurface
+from .rough import RoughSurface, slip_in_mu_lambda
 
 __all__ = ["ExponentialRoughSurface", "ExponentialLevels"]
 
@@ -168,7 +168,7 @@ class ExponentialLevels:
     names = ("d", "d0")
 
     def __init__(self, surf: ExponentialRoughSurface, F_N0: float, g_A: float) -> None:
-        x_A = _slip_in_mu_lambda(surf, g_A)
+        x_A = slip_in_mu_lambda(surf, g_A)
         self.c = max(1.0, x_A)
         #: u [µm]
         self.scale = surf.sigma * self.c
@@ -229,17 +229,3 @@ def _stick_force_ratio(F: np.ndarray, x: np.ndarray, m: np.ndarray) -> np.ndarra
         high = m * (sc.erfcx(r) + (4.0 * x + 6.0) * r / (3.0 * math.sqrt(math.pi)) - 1.0)
     out = np.where(F <= 0.5, low, high)
     return np.where(F == 1.0, 0.0, out)
-
-
-def _slip_in_mu_lambda(surf, g_A: float) -> float:
-    """x_A = g_A/(μλ) (formed without μλ, which can underflow), or a ModelParameterError when
-    it is beyond the float range (a σ* or μ so small that the levels cannot be scaled)."""
-    with np.errstate(over="ignore"):
-        x = float((g_A / surf.sigma) * surf._sigma_over_lam / surf.mu)
-    if not math.isfinite(x):
-        raise ModelParameterError(
-            f"sigma = {surf.sigma!r} µm and mu = {surf.mu!r} with max_slip = {g_A!r} µm give "
-            f"g_A/(mu lambda) beyond the float range: the contact-loss path cannot be scaled; "
-            f"choose sigma and mu with max_slip/(mu sigma) < 1e300"
-        )
-    return x

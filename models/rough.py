@@ -467,14 +467,7 @@ class RoughLevels:
 
     def __init__(self, surf: RoughSurface, F_N0: float, g_A: float) -> None:
         self.surf = surf
-        with np.errstate(over="ignore"):
-            x_A = float((g_A / surf.sigma) * surf._sigma_over_lam / surf.mu)  # g_A/(μλ)
-        if not math.isfinite(x_A):
-            raise ModelParameterError(
-                f"sigma = {surf.sigma!r} µm and mu = {surf.mu!r} with max_slip = {g_A!r} µm "
-                "give g_A/(mu lambda) beyond the float range: the contact-loss path cannot be "
-                "scaled"
-            )
+        x_A = slip_in_mu_lambda(surf, g_A)
         c = max(1.0, x_A)
         #: u [µm]
         self.scale = s = surf.sigma * c
@@ -538,3 +531,17 @@ class RoughLevels:
     def slip_limit(self, p: float) -> float:
         """inf: a rough surface does not slide as a whole at finite slip."""
         return math.inf
+
+
+def slip_in_mu_lambda(surf, g_A: float) -> float:
+    """x_A = g_A/(μλ) (formed without μλ, which can underflow), or a ModelParameterError when
+    it is beyond the float range (a σ* or μ so small that the levels cannot be scaled)."""
+    with np.errstate(over="ignore"):
+        x = float((g_A / surf.sigma) * surf._sigma_over_lam / surf.mu)
+    if not math.isfinite(x):
+        raise ModelParameterError(
+            f"sigma = {surf.sigma!r} µm and mu = {surf.mu!r} with max_slip = {g_A!r} µm give "
+            f"g_A/(mu lambda) beyond the float range: the contact-loss path cannot be scaled; "
+            f"choose sigma and mu with max_slip/(mu sigma) < 1e300"
+        )
+    return x
