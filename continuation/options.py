@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, fields, replace
+from dataclasses import dataclass, field, fields, replace
 
 from .errors import OptionsError
 
@@ -29,6 +29,44 @@ def _positive(name: str, value) -> None:
 
 _DS_MIN_DEFAULT = 1e-10
 
+RTOL_DEFAULT = 1e-4
+"""The default of :attr:`ContinuationOptions.rtol` (chosen from the work-precision fronts:
+docs/benchmarks/work-precision.md)."""
+
+RTOL_MIN = 1e-13
+"""The smallest ``rtol``: below it the branch's own points (at the rounding level of the
+residual) are the interpolant's error, whatever the step."""
+
+#: floors of the derived tolerances: Newton's update and location stop at the rounding level
+_POINT_TOL_FLOOR = 1e-16
+_LOCATE_TOL_FLOOR = 1e-15
+_QUAD_TOL_FLOOR = 1e-14
+
+#: the tolerances ``rtol`` sets (a value given explicitly overrides it)
+DERIVED = ("tol", "step_tol", "curve_tol", "locate_tol")
+
+
+def point_tol(rtol: float) -> float:
+    """The error left in a point placed by Newton (a point of the branch, a located special
+    point, a polished point of a loading path) for a given ``rtol``: ``(rtol/100)²``, at least
+    1e-16.
+
+    Newton stops when its update is below ``rtol/100`` relative to each component's
+    magnitude; under its quadratic convergence the error left is about the square of that.
+    The points are the nodes of the interpolant and of every quadrature along the branch, so
+    they are kept two orders below ``rtol`` and more: squaring costs at most one more
+    iteration. At the default ``rtol`` = 1e-4 this is 1e-12, the step tolerance the solver
+    has always used."""
+    # (rounded to 12 digits: the default is exactly 1e-12, not 1.0000000000000004e-12)
+    return max(float(f"{(0.01 * rtol) ** 2:.12g}"), _POINT_TOL_FLOOR)
+
+
+def quadrature_tol(rtol: float) -> float:
+    """The relative tolerance of quadratures along a branch or a loading path (energies,
+    loci) for a given ``rtol``: a tenth of :func:`point_tol` (1e-13 at the default), at
+    least 1e-14."""
+    return max(float(f"{0.1 * point_tol(rtol):.12g}"), _QUAD_TOL_FLOOR)
+
 
 @dataclass(frozen=True)
 class ContinuationOptions:
@@ -38,8 +76,32 @@ class ContinuationOptions:
     Step sizes are pseudo-arclengths measured in the weighted norm
     ``||dz||² = state_weight·Σ du_i² + Σ dp_j²`` (``state_weight`` defaults to 1/n, so the
     state enters as a root-mean-square and large discretisations take the same steps as
-    small ones).
+    small ones), relative to the components' typical sizes.
+
+    **Accuracy: one knob, ``rtol``.** It sets, consistently:
+
+    - the curve tolerance: the branch's interpolant (its cubic Hermite arcs between points,
+      :meth:`Branch.interpolate`) is within ``rtol`` of the true curve (weighted norm,
+      relative to the typical sizes), checked at every step; and the predictor–corrector
+      distance allowed per step, ``curve_tol = 2·√rtol``, which on a curve of unit
+      curvature keeps the interpolant within about ``rtol/24``;
+    - the Newton tolerances: updates below ``rtol/100`` relative, so the error left in a
+      point is about ``step_tol = (rtol/100)²`` (:func:`point_tol`), and a residual
+      max-norm ``tol = 100·step_tol``;
+    - the location tolerance of special points, ``locate_tol = (rtol/100)²``;
+    - the quadrature tolerance of energies and loci along a path (:func:`quadrature_tol`).
+
+    The default, 1e-4, keeps the solver's accuracy as it always was (points and special
+    points to 1e-12, quadratures to 1e-13) and puts the interpolant within 1e-4; 1e-2 or
+    1e-3 is enough for a figure and costs fewer steps; below 1e-6 the steps shrink like
+    ``rtol^(1/4)`` (see docs/continuation.md, "Choosing rtol"). ``tol``, ``step_tol``,
+    ``curve_tol`` and ``locate_tol`` may still be given one by one: a value given overrides
+    what ``rtol`` sets.
     """
+
+    rtol: float = RTOL_DEFAULT
+    """Relative accuracy of everything the solver reports (see above), in
+    ``[1e-13, 0.1]``."""
 
     ds: float = 0.05
     """Initial step size."""
@@ -50,10 +112,12 @@ class ContinuationOptions:
     max_steps: int = 5000
     """Accepted steps after which the branch ends, incomplete: status ``"max_steps"`` (not a
     success) and a :class:`~.errors.MaxStepsWarning`."""
-    tol: float = 1e-10
-    """Newton converges when the max-norm of the residual is below ``tol``..."""
-    step_tol: float = 1e-12
+    tol: float = None  # type: ignore[assignment]
+    """Newton converges when the max-norm of the residual is below ``tol`` (default from
+    ``rtol``: ``100·step_tol``, 1e-10 at the default)..."""
+    step_tol: float = None  # type: ignore[assignment]
     """... and the error left after the last update, about its square, is below ``step_tol``
+    (default from ``rtol``: :func:`point_tol`, 1e-12 at the default)
     relative to each component's magnitude ``max(typical size, |z_i|)``. Located special
     points are polished until the update itself is that small (with differenced derivatives,
     whose error keeps Newton from getting much further, until it is below 1e-10)."""
@@ -73,10 +137,11 @@ class ContinuationOptions:
     """Nominal distance from the predictor to the corrected point, as a fraction of ds (how
     much the curve bends away from its tangent within a step): a step whose distance exceeds
     twice this fraction of ds is rejected."""
-    curve_tol: float = 0.02
+    curve_tol: float = None  # type: ignore[assignment]
     """Nominal distance from the predictor to the corrected point, in the weighted norm
     (relative to the components' typical sizes): a step whose distance exceeds four times
-    this is rejected. The one number that sets how closely the steps follow the curve."""
+    this is rejected (default from ``rtol``: ``2·√rtol``, 0.02 at the default). The step's
+    interpolant is checked against ``rtol`` itself as well."""
     growth: float = 2.0
     """Largest factor by which ds may grow in one step."""
     predictor: str = "tangent"
@@ -85,11 +150,37 @@ class ContinuationOptions:
     """Weight of each unknown in the arclength norm; None means 1/n."""
     detect_folds: bool = True
     detect_branch_points: bool = True
-    locate_tol: float = 1e-12
-    """Relative tolerance to which special points are located."""
+    locate_tol: float = None  # type: ignore[assignment]
+    """Relative tolerance to which special points are located (default from ``rtol``:
+    ``(rtol/100)²``, 1e-12 at the default)."""
     max_locate_iterations: int = 40
+    _from_rtol: frozenset[str] = field(default=frozenset(), init=False, repr=False, compare=False)
+    """The tolerances that were not given and so follow ``rtol``."""
+
+    @property
+    def quad_tol(self) -> float:
+        """Relative tolerance of quadratures along a path (energies, loci):
+        :func:`quadrature_tol` of ``rtol``."""
+        return quadrature_tol(self.rtol)
+
+    def _follow_rtol(self) -> None:
+        """Set the tolerances that were not given from ``rtol`` (see the class)."""
+        _positive("rtol", self.rtol)
+        _check("rtol", self.rtol, RTOL_MIN <= self.rtol <= 0.1, f"within [{RTOL_MIN:g}, 0.1]")
+        eps = point_tol(self.rtol)
+        derived = {
+            "tol": float(f"{100.0 * eps:.12g}"),
+            "step_tol": eps,
+            "curve_tol": float(f"{2.0 * math.sqrt(self.rtol):.12g}"),
+            "locate_tol": max(eps, _LOCATE_TOL_FLOOR),
+        }
+        unset = frozenset(name for name in DERIVED if getattr(self, name) is None)
+        for name in unset:
+            object.__setattr__(self, name, derived[name])
+        object.__setattr__(self, "_from_rtol", unset)
 
     def __post_init__(self) -> None:
+        self._follow_rtol()
         for name in (
             "ds",
             "ds_min",
@@ -158,13 +249,16 @@ class ContinuationOptions:
 
     def replace(self, **changes) -> ContinuationOptions:
         """A copy with some fields changed (validated again)."""
-        unknown = set(changes) - {f.name for f in fields(self)}
+        names = {f.name for f in fields(self) if f.init}
+        unknown = set(changes) - names
         if unknown:
-            allowed = sorted(f.name for f in fields(self))
+            allowed = sorted(names)
             raise OptionsError(f"unknown option(s) {sorted(unknown)}; allowed: {allowed}")
         if "ds" not in changes:  # keep the default initial step inside new bounds
             lo = changes.get("ds_min", self.ds_min)
             hi = changes.get("ds_max", self.ds_max)
             if isinstance(lo, (int, float)) and isinstance(hi, (int, float)) and lo <= hi:
                 changes["ds"] = min(max(self.ds, lo), hi)
+        for name in self._from_rtol:  # still following rtol unless given now
+            changes.setdefault(name, None)
         return replace(self, **changes)
