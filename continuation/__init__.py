@@ -24,6 +24,7 @@ corners across the legs of a loading program) are the entry points, returning a 
 from .branch import Branch, SpecialPoint
 from .derivatives import JacobianCheck, check_jacobian
 from .errors import (
+    AccuracyError,
     ContinuationError,
     ConvergenceError,
     MaxStepsWarning,
@@ -46,6 +47,7 @@ from .testfunctions import TestFunction
 from .tracer import Tracer, trace
 
 __all__ = [
+    "AccuracyError",
     "Branch",
     "ChainPoint",
     "BranchSystem",

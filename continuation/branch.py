@@ -117,6 +117,34 @@ class Branch:
             kinds[sp.kind] = kinds.get(sp.kind, 0) + 1
         return f"<Branch {len(self)} points, status={self.status!r}, special points {kinds}>"
 
+    def interpolate(self, s) -> dict[str, np.ndarray]:
+        """Dense output: the branch at pseudo-arclengths ``s`` (within ``self.s``), by the
+        solver's interpolant, without Newton: the cubic Hermite arcs between its points,
+        which the step control kept within ``rtol`` of the curve (weighted norm, relative
+        to the typical sizes; ``stats["interpolation_error"]`` holds each step's measured
+        error). Returns ``{column: array}``. Raises
+        :class:`~cusp.continuation.AccuracyError` on a segment whose arc is not within
+        ``rtol`` (then use :func:`~cusp.continuation.points_at`, which runs Newton).
+
+        >>> from cusp.continuation import Problem, trace
+        >>> prob = Problem(lambda u, p: [u[0]**2 + p["b"]**2 - 1], ["x"], {"b": 0.0})
+        >>> br = trace(prob, [1.0], free="b", bounds={"b": (-0.5, 0.5)}, rtol=1e-8)
+        >>> mid = br.interpolate([0.5 * (br.s[0] + br.s[-1])])
+        >>> bool(abs(mid["x"][0] ** 2 + mid["b"][0] ** 2 - 1) < 1e-8)  # on the circle to rtol
+        True
+        """
+        from .dense import interpolate
+
+        return interpolate(self, s)
+
+    def interpolate_at(self, name: str, values) -> dict[str, np.ndarray]:
+        """Dense output where component ``name`` takes each of ``values`` (the first
+        crossing in branch order): the interpolant of :meth:`interpolate`, solved for the
+        value on its segment (no Newton on the problem)."""
+        from .dense import interpolate_at
+
+        return interpolate_at(self, name, values)
+
     def plot(self, x: str, y: str, ax=None, *, special: bool = True, **kwargs):
         """Plot column ``y`` against ``x`` (matplotlib imported lazily); returns the Axes."""
         from .plotting import plot_branch
@@ -158,11 +186,16 @@ def join_halves(
     ok = backward.success and forward.success
     status = forward.status if ok or not forward.success else backward.status
     message = f"direction -1: {backward.message}; direction +1: {forward.message}"
+    interp = stats.get("interpolation_error")
+    if interp is not None:  # each row's entry is the segment ending at it: shift the reversed
+        back = backward.stats["interpolation_error"]
+        interp[:nb] = np.concatenate([[0.0], back[::-1][:-1]])
     info = {
         "direction": "both",
         "start_index": nb - 1,
         "status_minus": backward.status,
         "status_plus": forward.status,
+        **{k: v for k, v in forward.info.items() if k in ("rtol", "scales", "base_weights")},
     }
     return Branch(
         columns,

@@ -89,6 +89,11 @@ class SingularPointError(SingularMatrixError):
     the curve has no tangent to start along. ``values``: the point."""
 
 
+class AccuracyError(ContinuationError):
+    """A result cannot be given to the requested accuracy (a branch's interpolant across a
+    segment it could not bring within ``rtol``, or a branch with no interpolant)."""
+
+
 class MaxStepsWarning(UserWarning):
     """A branch ended because it took ``max_steps`` steps, before reaching a bound or a
     terminal event: it is incomplete (its status ``"max_steps"`` is not a success)."""

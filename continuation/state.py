@@ -39,6 +39,9 @@ class Point(NamedTuple):
     """Special-point records of this row."""
     prev: Point | None
     """The row before (None at the start)."""
+    interp: float
+    """The distance from the cubic Hermite arc of the step that reached this point to the
+    curve (0 at the start; a point located inside a step carries that step's)."""
 
 
 class TracerState(NamedTuple):
@@ -115,6 +118,7 @@ def assemble_branch(state: TracerState, info: dict[str, Any]) -> Branch:
         "rejected_steps": np.array(rejected),
         "residual_norm": np.array(residual),
         "ds": np.array(dss),
+        "interpolation_error": np.array([p.interp for p in points]),
     }
     return Branch(
         columns,
@@ -125,7 +129,12 @@ def assemble_branch(state: TracerState, info: dict[str, Any]) -> Branch:
         status=status,
         message=message,
         stats=stats,
-        info={"steps": state.steps, **info, "scales": dict(scales)},
+        info={
+            "steps": state.steps,
+            **info,
+            "scales": dict(scales),
+            "base_weights": system.base_weights.tolist(),
+        },
     )
 
 

@@ -32,7 +32,9 @@ from .errors import (
     StepGuardError,
     format_values,
 )
+from .interpolant import interpolation_error
 from .locate import Bracket, oriented_tangent
+from .stepcontrol import guard_factor, interpolation_factor
 
 if TYPE_CHECKING:
     from .options import ContinuationOptions
@@ -101,13 +103,14 @@ def wnorm(x: np.ndarray, weights: np.ndarray) -> float:
 class Trial(NamedTuple):
     """An accepted step: the corrector's result ``res`` (its ``z`` is the new point), the
     unit tangent ``t`` there, ``factor`` (by which its guards would scale the step size:
-    :func:`guard_factor`), the step size ``ds``
+    :func:`~.stepcontrol.guard_factor`), the step size ``ds``
     used and the new point's pseudo-arclength ``h`` from the last one, ``rt`` (det
     [∂G/∂z; (W t)ᵀ] has the sign of the corrector's determinant times the sign of ``rt``),
-    the number of rejected tries, whether it was a corner step, and the bound test it was
-    aimed at (or None).
+    the number of rejected tries, whether it was a corner step, the bound test it was
+    aimed at (or None) and ``interp``, the distance from its cubic Hermite arc to the curve
+    (:func:`interpolation_error`).
 
-    Built once per step with ``tuple.__new__`` (all nine fields, in order): half the cost
+    Built once per step with ``tuple.__new__`` (all ten fields, in order): half the cost
     of the NamedTuple constructor, which shows in the step's time on small problems."""
 
     res: NewtonResult
@@ -119,6 +122,7 @@ class Trial(NamedTuple):
     rejected: int
     corner: bool
     aimed: BoundTest | None
+    interp: float
 
 
 class Failure(NamedTuple):
@@ -332,52 +336,16 @@ def _try(
     factor, guard = guard_factor(o, res.contraction, distance, ds, angle, res.iterations)
     if guard:
         return res, guard, factor
-    if used_fallback:
-        logger.info("step accepted by the damped fallback corrector at ds=%g", ds)
     # the pseudo-arclength of the step: row·(z1 − z) = ds·(row·direction) = ds, as the
     # corrector satisfies the (linear) hyperplane equation to rounding
-    return _new_tuple(Trial, (res, t_new, factor, ds, ds, rt, 0, False, None))
-
-
-def guard_factor(
-    o: ContinuationOptions,
-    contraction: float,
-    distance: float,
-    ds: float,
-    angle: float,
-    iterations: int,
-) -> tuple[float, str]:
-    """The factor by which the step's guards would scale ``ds``, and why the step is
-    rejected (``""`` when it is accepted).
-
-    Each guard compares what the step measured with its nominal value and gives the factor
-    that would bring it there, from how the measure grows with ds (Allgower & Georg §6.1):
-
-    - Newton's first contraction κ = |Δz₂|/|Δz₁| grows like ds²: ``√(κ̄/κ)``, κ̄ =
-      ``target_contraction``;
-    - the predictor–corrector distance δ grows like ds²: ``target_distance·ds/δ`` (δ/ds, the
-      curve's bending within the step, grows like ds) and ``√(curve_tol/δ)``;
-    - the tangent's turn α grows like ds: ``target_angle/α``;
-    - the Newton count: ``target_newton_iterations/iterations``.
-
-    The step is rejected when one of the first three asks for less than half of ``ds`` (κ over
-    4κ̄, δ over 2·target_distance·ds or 4·curve_tol, α over 2·target_angle) or the turn
-    exceeds ``max_angle``; the next ``ds`` is the accepted one times the smallest factor (see
-    :func:`next_step_size`)."""
-    f_kappa = math.sqrt(o.target_contraction / contraction) if contraction > 0.0 else math.inf
-    if distance > 0.0:
-        f_delta = min(o.target_distance * ds / distance, math.sqrt(o.curve_tol / distance))
-    else:
-        f_delta = math.inf
-    f_angle = o.target_angle / angle if angle > 0.0 else math.inf
-    worst = min(f_kappa, f_delta, f_angle)
-    if worst < 0.5 or angle > o.max_angle:
-        if angle > o.max_angle or worst == f_angle:
-            return worst, f"angle: the tangent turned {angle:.3g} degrees"
-        if worst == f_kappa:
-            return worst, f"contraction: Newton's first contraction was {contraction:.3g}"
-        return worst, f"distance: the corrector moved {distance:.3g} from the predictor"
-    return min(worst, o.target_newton_iterations / max(iterations, 1)), ""
+    interp = interpolation_error(system, z, t, res.z, t_new, ds, res.lu)
+    f_interp, guard = interpolation_factor(o, interp)
+    if guard and ds > o.ds_min:  # (at ds_min, a kink: kept, its arc marked inexact)
+        return res, guard, f_interp
+    if used_fallback:
+        logger.info("step accepted by the damped fallback corrector at ds=%g", ds)
+    factor = min(factor, f_interp)
+    return _new_tuple(Trial, (res, t_new, factor, ds, ds, rt, 0, False, None, interp))
 
 
 def _failure(
@@ -496,9 +464,11 @@ def _natural_step(
     row = W * t_new
     ds = wnorm(res.z - z, W)
     h = float(row.dot(res.z - z))
-    # past a corner the turn says nothing of the curve's bending: Newton's count decides
+    # past a corner the turn says nothing of the curve's bending (nor does the arc across
+    # it say anything of the curve beyond): Newton's count decides
     factor = o.target_newton_iterations / max(res.iterations, 1)
-    return _new_tuple(Trial, (res, t_new, factor, ds, h, row.dot(t_new), 0, True, None))
+    interp = interpolation_error(system, z, t, res.z, t_new, h, res.lu)
+    return _new_tuple(Trial, (res, t_new, factor, ds, h, row.dot(t_new), 0, True, None, interp))
 
 
 def aim_at_bound(
@@ -576,20 +546,13 @@ def _aimed(
     )
     if guard:
         return None
-    return _new_tuple(Trial, (res, t_new, factor, h, h, rt, 0, False, tt))
-
-
-def next_step_size(options: ContinuationOptions, factor: float, rejected: int, ds: float) -> float:
-    """The ``ds`` after an accepted step of size ``ds`` whose guards ask for ``factor``
-    (:func:`guard_factor`): scaled by it within ``[0.5, growth]`` (not above 1 after
-    ``rejected`` tries) and ``[ds_min, ds_max]``."""
-    o = options
-    factor = min(o.growth, max(0.5, factor))
-    if rejected:
-        factor = min(factor, 1.0)
-    return min(o.ds_max, max(o.ds_min, ds * factor))
+    interp = interpolation_error(system, z, t, z1, t_new, h, res.lu)
+    f_interp, guard = interpolation_factor(o, interp)
+    if guard:
+        return None
+    return _new_tuple(Trial, (res, t_new, min(factor, f_interp), h, h, rt, 0, False, tt, interp))
 
 
 __all__ = [
-    "Failure", "StepRules", "Trial", "advance", "confirm_step", "guard_factor", "next_step_size",
+    "Failure", "StepRules", "Trial", "advance", "confirm_step",
 ]  # fmt: skip

@@ -4,10 +4,10 @@ A step has five phases:
 
 1. **predict and correct** (:func:`~.stepping.advance`): tangent (or secant) predictor,
    Newton corrector on the bordered system and the three guards (first contraction,
-   predictor-corrector distance, tangent turn; :func:`~.stepping.guard_factor`), a shorter
+   predictor-corrector distance, tangent turn; :func:`~.stepcontrol.guard_factor`), a shorter
    step on rejection; the corner step and the step aimed at a bound are variants of it;
 2. **accept and adapt**: the curve system is refreshed at the new point (augmented systems
-   update their borders) and the next step size is set (:func:`~.stepping.next_step_size`);
+   update their borders) and the next step size is set (:func:`~.stepcontrol.next_step_size`);
 3. **evaluate** the test functions the curve system defines
    (:meth:`~.system.CurveSystem.test_functions`) at the new point
    (:func:`~.crossings.evaluate`); when a test of the curve's geometry changed sign the step
@@ -51,6 +51,7 @@ from .problem import as_problem
 from .scaling import diverged, given_scales, grown_sizes, out_of_range, typical_sizes
 from .start import correct_start
 from .state import Point, TracerState, assemble_branch
+from .stepcontrol import next_step_size
 from .stepping import (
     STALL_FACTOR,
     Failure,
@@ -58,7 +59,6 @@ from .stepping import (
     Trial,
     advance,
     confirm_step,
-    next_step_size,
     wnorm,
 )
 from .system import BranchSystem, CurveSystem
@@ -284,7 +284,7 @@ class Tracer:
             for t in self.tests
         )
         record: Record = ("endpoint", start_label, None, "converged", None, details)
-        first = Point(z0, t0, 0.0, iters, 0, residual, o.ds, (record,), None)
+        first = Point(z0, t0, 0.0, iters, 0, residual, o.ds, (record,), None, 0.0)
         self._check_start_in_bounds(z0)
         return TracerState(first, system, o.ds, tests, 0)
 
@@ -355,7 +355,7 @@ class Tracer:
         """Link the located points between the last point and the step's end, and end the
         branch on a terminal test or ``max_steps``."""
         o = self.options
-        res, t1, factor, ds, h, _, rejected, _, aimed = trial
+        res, t1, factor, ds, h, _, rejected, _, aimed, interp = trial
         last = state.last
         prev, n_points = last, state.n_points
         status, message = None, ""
@@ -369,7 +369,7 @@ class Tracer:
             if tt is aimed:  # the step's own end point
                 end_special = records
                 break
-            prev = self._located_point(system, last, loc, records, br, prev)
+            prev = self._located_point(system, last, loc, records, br, prev, interp)
             n_points += 1
             if tt.terminal:
                 break
@@ -412,7 +412,7 @@ class Tracer:
                 Point,
                 (
                     res.z, t1, last.s + h, res.iterations, rejected, res.residual_norm, ds,
-                    end_special, prev,
+                    end_special, prev, interp,
                 ),
             )  # fmt: skip
             n_points += 1
@@ -431,6 +431,7 @@ class Tracer:
         records: tuple[Record, ...],
         br: Bracket | None,
         prev: Point,
+        interp: float,
     ) -> Point:
         tan = loc.tangent
         if tan is None:
@@ -439,7 +440,9 @@ class Tracer:
         rn = loc.residual_norm
         if rn is None:
             rn = max_abs(system.residual(loc.z))
-        return Point(loc.z, tan, last.s + loc.sigma, loc.iterations, 0, rn, 0.0, records, prev)
+        return Point(
+            loc.z, tan, last.s + loc.sigma, loc.iterations, 0, rn, 0.0, records, prev, interp
+        )
 
     def _fail(self, state: TracerState, failure: Failure) -> TracerState:
         if self.throw:
@@ -452,7 +455,7 @@ class Tracer:
     def result(self, state: TracerState) -> Branch:
         """Assemble the :class:`~.branch.Branch` (column arrays and special points) of a
         state (finished or not)."""
-        return assemble_branch(state, {"direction": self.direction})
+        return assemble_branch(state, {"direction": self.direction, "rtol": self.options.rtol})
 
 
 def _by_index(system: CurveSystem, sizes: Mapping[str, float] | None) -> dict[int, float]:

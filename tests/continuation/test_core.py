@@ -391,8 +391,10 @@ def test_guard_failure_is_typed_and_keeps_the_partial_branch():
     prob = _wrong_jacobian_beyond(0.5, 0.6)
     br = trace(prob, [0.0], free="b", bounds={"b": (-1.0, 1.0)}, throw=False)
     assert br.status == "guard_failure" and not br.success
-    # the partial branch: every point on the curve, up to where the Jacobian goes wrong
-    assert 0.45 < br["b"][-1] <= 0.5 + 1e-12
+    # the partial branch: every point on the curve (Newton with the wrong Jacobian still
+    # converges on steps short enough, so it may end a little past b = 0.5), and it ends
+    # soon after the Jacobian goes wrong
+    assert 0.45 < br["b"][-1] <= 0.6
     assert np.allclose(br["x"] ** 3 + br["x"], br["b"], rtol=0, atol=1e-10)
     # the message names the point, the guard and a remedy
     assert "contraction guard" in br.message and "check_jacobian" in br.message
