@@ -16,11 +16,18 @@ if TYPE_CHECKING:
 
 def arc_length(dz: np.ndarray, t0: np.ndarray, t1: np.ndarray, w: np.ndarray) -> float:
     """The arclength of the circular arc with chord ``dz`` and unit end tangents ``t0``,
-    ``t1`` (weighted norm ``w``): ``c·(α/2)/sin(α/2)``."""
-    c = math.sqrt(float(dz.dot(w * dz)))
-    cos_a = max(-1.0, min(1.0, float(t0.dot(w * t1))))
-    half = 0.5 * math.acos(cos_a)
-    return c if half < 1e-8 else c * half / math.sin(half)
+    ``t1`` in the weighted norm ``w``: :func:`arc_from`."""
+    return arc_from(math.sqrt(dz.dot(w * dz)), float(t0.dot(w * t1)))
+
+
+def arc_from(chord: float, cos_a: float) -> float:
+    """The arclength of a circular arc from its ``chord`` and the cosine of the angle α
+    between its end tangents: ``c·(α/2)/sin(α/2)``."""
+    s2 = 0.5 * (1.0 - max(-1.0, min(1.0, cos_a)))  # sin²(α/2)
+    if s2 < 0.07:  # α < 30°: asin(x)/x = 1 + x²/6 + 3x⁴/40 + 5x⁶/112, to 1e-6
+        return chord * (1.0 + s2 * (1.0 / 6.0 + s2 * (3.0 / 40.0 + s2 * (5.0 / 112.0))))
+    x = math.sqrt(s2)
+    return chord * math.asin(x) / x
 
 
 def hermite(z0, t0, z1, t1, length: float, theta: np.ndarray) -> np.ndarray:
@@ -42,28 +49,26 @@ def interpolation_error(
     t: np.ndarray,
     z1: np.ndarray,
     t1: np.ndarray,
-    h: float,
+    length: float,
     lu: Any,
 ) -> float:
     """The distance from the step's interpolant to the curve: the midpoint of the cubic
     Hermite arc from ``z`` (unit tangent ``t``) to ``z1`` (``t1``), the one the branch's
-    dense output evaluates (:mod:`~.dense`: tangents scaled by the arc's length ``L``),
-    ``z_m = (z + z1)/2 + L/8·(t − t1)``, is projected onto the curve by one Newton update
-    with the step's last factorization ``lu`` (of ``[∂G/∂z; row]`` near ``z1``):
-    ``|lu⁻¹·[G(z_m); 0]|`` in the weighted norm. The arc's error is largest near its middle
-    (it grows like ``θ²(1−θ)²``, θ the fraction of the step, for a smooth curve), O(h⁴);
-    one residual and one solve with a factorization at hand. Infinite where the residual is
-    not finite at ``z_m``. (``h``, the step's pseudo-arclength, is unused: kept for the
-    callers' symmetry.)"""
-    W = system.weights
-    zm = 0.5 * (z + z1) + (0.125 * arc_length(z1 - z, t, t1, W)) * (t - t1)
+    dense output evaluates (:mod:`~.dense`: tangents scaled by the arc's ``length``,
+    :func:`arc_from`), ``z_m = (z + z1)/2 + L/8·(t − t1)``, is projected onto the curve by
+    one Newton update with the step's last factorization ``lu`` (of ``[∂G/∂z; row]`` near
+    ``z1``): ``|lu⁻¹·[G(z_m); 0]|`` in the weighted norm. The arc's error is largest near its
+    middle (it grows like ``θ²(1−θ)²``, θ the fraction of the step, for a smooth curve),
+    O(h⁴); one residual and one solve with a factorization at hand. Infinite where the
+    residual is not finite at ``z_m``."""
+    zm = (z + z1) * 0.5 + (t - t1) * (0.125 * length)
     g = system.residual(zm)
     rhs = np.empty(g.size + 1)
     rhs[:-1] = g
     rhs[-1] = 0.0
     d = lu.solve(rhs)
-    e = math.sqrt(float(d.dot(W * d)))
+    e = math.sqrt(d.dot(d) if system.unit_weights else d.dot(system.weights * d))
     return e if e == e else math.inf
 
 
-__all__ = ["arc_length", "hermite", "interpolation_error"]
+__all__ = ["arc_from", "arc_length", "hermite", "interpolation_error"]

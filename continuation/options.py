@@ -29,7 +29,7 @@ def _positive(name: str, value) -> None:
 
 _DS_MIN_DEFAULT = 1e-10
 
-RTOL_DEFAULT = 1e-4
+RTOL_DEFAULT = 1e-3
 """The default of :attr:`ContinuationOptions.rtol` (chosen from the work-precision fronts:
 docs/benchmarks/work-precision.md)."""
 
@@ -48,17 +48,17 @@ DERIVED = ("tol", "step_tol", "curve_tol", "locate_tol")
 
 def point_tol(rtol: float) -> float:
     """The error left in a point placed by Newton (a point of the branch, a located special
-    point, a polished point of a loading path) for a given ``rtol``: ``(rtol/100)²``, at least
+    point, a polished point of a loading path) for a given ``rtol``: ``(rtol/1000)²``, at least
     1e-16.
 
-    Newton stops when its update is below ``rtol/100`` relative to each component's
+    Newton stops when its update is below ``rtol/1000`` relative to each component's
     magnitude; under its quadratic convergence the error left is about the square of that.
     The points are the nodes of the interpolant and of every quadrature along the branch, so
-    they are kept two orders below ``rtol`` and more: squaring costs at most one more
-    iteration. At the default ``rtol`` = 1e-4 this is 1e-12, the step tolerance the solver
+    they are kept three orders below ``rtol`` and more: squaring costs at most one more
+    iteration. At the default ``rtol`` = 1e-3 this is 1e-12, the step tolerance the solver
     has always used."""
     # (rounded to 12 digits: the default is exactly 1e-12, not 1.0000000000000004e-12)
-    return max(float(f"{(0.01 * rtol) ** 2:.12g}"), _POINT_TOL_FLOOR)
+    return max(float(f"{(1e-3 * rtol) ** 2:.12g}"), _POINT_TOL_FLOOR)
 
 
 def quadrature_tol(rtol: float) -> float:
@@ -83,17 +83,18 @@ class ContinuationOptions:
     - the curve tolerance: the branch's interpolant (its cubic Hermite arcs between points,
       :meth:`Branch.interpolate`) is within ``rtol`` of the true curve (weighted norm,
       relative to the typical sizes), checked at every step; and the predictor–corrector
-      distance allowed per step, ``curve_tol = 2·√rtol``, which on a curve of unit
-      curvature keeps the interpolant within about ``rtol/24``;
-    - the Newton tolerances: updates below ``rtol/100`` relative, so the error left in a
-      point is about ``step_tol = (rtol/100)²`` (:func:`point_tol`), and a residual
+      distance allowed per step, ``curve_tol = 0.02·√(rtol/10⁻³)`` (the interpolant's error
+      grows like the square of that distance: on a curve of unit curvature, this keeps it
+      within about ``rtol/15`` by itself);
+    - the Newton tolerances: updates below ``rtol/1000`` relative, so the error left in a
+      point is about ``step_tol = (rtol/1000)²`` (:func:`point_tol`), and a residual
       max-norm ``tol = 100·step_tol``;
-    - the location tolerance of special points, ``locate_tol = (rtol/100)²``;
+    - the location tolerance of special points, ``locate_tol = (rtol/1000)²``;
     - the quadrature tolerance of energies and loci along a path (:func:`quadrature_tol`).
 
-    The default, 1e-4, keeps the solver's accuracy as it always was (points and special
-    points to 1e-12, quadratures to 1e-13) and puts the interpolant within 1e-4; 1e-2 or
-    1e-3 is enough for a figure and costs fewer steps; below 1e-6 the steps shrink like
+    The default, 1e-3, keeps the solver's accuracy as it always was (points and special
+    points to 1e-12, quadratures to 1e-13, the same steps) and puts the interpolant within
+    1e-3 of the curve, enough for any figure; below 1e-5 the steps shrink like
     ``rtol^(1/4)`` (see docs/continuation.md, "Choosing rtol"). ``tol``, ``step_tol``,
     ``curve_tol`` and ``locate_tol`` may still be given one by one: a value given overrides
     what ``rtol`` sets.
@@ -140,7 +141,7 @@ class ContinuationOptions:
     curve_tol: float = None  # type: ignore[assignment]
     """Nominal distance from the predictor to the corrected point, in the weighted norm
     (relative to the components' typical sizes): a step whose distance exceeds four times
-    this is rejected (default from ``rtol``: ``2·√rtol``, 0.02 at the default). The step's
+    this is rejected (default from ``rtol``: ``0.02·√(rtol/10⁻³)``, 0.02 at the default). The step's
     interpolant is checked against ``rtol`` itself as well."""
     growth: float = 2.0
     """Largest factor by which ds may grow in one step."""
@@ -152,7 +153,7 @@ class ContinuationOptions:
     detect_branch_points: bool = True
     locate_tol: float = None  # type: ignore[assignment]
     """Relative tolerance to which special points are located (default from ``rtol``:
-    ``(rtol/100)²``, 1e-12 at the default)."""
+    ``(rtol/1000)²``, 1e-12 at the default)."""
     max_locate_iterations: int = 40
     _from_rtol: frozenset[str] = field(default=frozenset(), init=False, repr=False, compare=False)
     """The tolerances that were not given and so follow ``rtol``."""
@@ -171,7 +172,7 @@ class ContinuationOptions:
         derived = {
             "tol": float(f"{100.0 * eps:.12g}"),
             "step_tol": eps,
-            "curve_tol": float(f"{2.0 * math.sqrt(self.rtol):.12g}"),
+            "curve_tol": float(f"{0.02 * math.sqrt(1e3 * self.rtol):.12g}"),
             "locate_tol": max(eps, _LOCATE_TOL_FLOOR),
         }
         unset = frozenset(name for name in DERIVED if getattr(self, name) is None)

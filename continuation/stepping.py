@@ -32,7 +32,7 @@ from .errors import (
     StepGuardError,
     format_values,
 )
-from .interpolant import interpolation_error
+from .interpolant import arc_from, arc_length, interpolation_error
 from .locate import Bracket, oriented_tangent
 from .stepcontrol import guard_factor, interpolation_factor
 
@@ -337,8 +337,10 @@ def _try(
     if guard:
         return res, guard, factor
     # the pseudo-arclength of the step: row·(z1 − z) = ds·(row·direction) = ds, as the
-    # corrector satisfies the (linear) hyperplane equation to rounding
-    interp = interpolation_error(system, z, t, res.z, t_new, ds, res.lu)
+    # corrector satisfies the (linear) hyperplane equation to rounding; the chord is then
+    # √(ds² + δ²) (the correction lies in the hyperplane, W-orthogonal to the direction)
+    length = arc_from(math.sqrt(ds * ds + distance * distance), cosang)
+    interp = interpolation_error(system, z, t, res.z, t_new, length, res.lu)
     f_interp, guard = interpolation_factor(o, interp)
     if guard and ds > o.ds_min:  # (at ds_min, a kink: kept, its arc marked inexact)
         return res, guard, f_interp
@@ -467,7 +469,8 @@ def _natural_step(
     # past a corner the turn says nothing of the curve's bending (nor does the arc across
     # it say anything of the curve beyond): Newton's count decides
     factor = o.target_newton_iterations / max(res.iterations, 1)
-    interp = interpolation_error(system, z, t, res.z, t_new, h, res.lu)
+    length = arc_length(res.z - z, t, t_new, W)
+    interp = interpolation_error(system, z, t, res.z, t_new, length, res.lu)
     return _new_tuple(Trial, (res, t_new, factor, ds, h, row.dot(t_new), 0, True, None, interp))
 
 
@@ -546,7 +549,8 @@ def _aimed(
     )
     if guard:
         return None
-    interp = interpolation_error(system, z, t, z1, t_new, h, res.lu)
+    length = arc_length(z1 - z, t, t_new, W)
+    interp = interpolation_error(system, z, t, z1, t_new, length, res.lu)
     f_interp, guard = interpolation_factor(o, interp)
     if guard:
         return None

@@ -24,22 +24,22 @@ B_FOLD = 2.0 / (3.0 * math.sqrt(3.0))
 
 def test_default_rtol_keeps_the_solver_tolerances_as_they_were():
     o = ContinuationOptions()
-    assert o.rtol == 1e-4
+    assert o.rtol == 1e-3
     assert (o.tol, o.step_tol, o.curve_tol, o.locate_tol, o.quad_tol) == (
         1e-10, 1e-12, 0.02, 1e-12, 1e-13,
     )  # fmt: skip
 
 
 def test_rtol_sets_the_tolerances_and_explicit_values_override():
-    o = ContinuationOptions(rtol=1e-2)
+    o = ContinuationOptions(rtol=1e-1)
     assert (o.tol, o.step_tol, o.curve_tol, o.locate_tol) == (1e-6, 1e-8, 0.2, 1e-8)
-    assert o.quad_tol == quadrature_tol(1e-2) == 1e-9
+    assert o.quad_tol == quadrature_tol(1e-1) == 1e-9
     # floors at the rounding level
-    assert point_tol(1e-13) == 1e-16 and ContinuationOptions(rtol=1e-13).locate_tol == 1e-15
+    assert point_tol(1e-6) == 1e-16 and ContinuationOptions(rtol=1e-13).locate_tol == 1e-15
     # a tolerance given stays; the others follow a new rtol through replace()
-    o = ContinuationOptions(locate_tol=1e-15).replace(rtol=1e-6)
+    o = ContinuationOptions(locate_tol=1e-15).replace(rtol=1e-5)
     assert o.locate_tol == 1e-15 and o.step_tol == 1e-16 and o.curve_tol == 2e-3
-    assert ContinuationOptions(rtol=1e-3) == ContinuationOptions().replace(rtol=1e-3)
+    assert ContinuationOptions(rtol=1e-5) == ContinuationOptions().replace(rtol=1e-5)
 
 
 @pytest.mark.parametrize("bad", [0.0, -1e-3, 0.5, 1e-14, math.nan, True, "1e-3"])
