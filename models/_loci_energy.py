@@ -26,9 +26,15 @@ from typing import Any
 import numpy as np
 
 from cusp.continuation import ChainPoint, ConvergenceError, PointChain, points_at
+from cusp.continuation.options import RTOL_DEFAULT, quadrature_tol
 
-#: two Gauss-Legendre rules agreeing to this (relative) end the doubling
-QUAD_RTOL = 1e-13
+#: two Gauss-Legendre rules agreeing to this (relative) end the doubling, unless told
+#: otherwise: the quadrature tolerance of the default ``rtol`` (1e-13); a path or a locus
+#: passes its options' :attr:`~cusp.continuation.ContinuationOptions.quad_tol`
+QUAD_RTOL = quadrature_tol(RTOL_DEFAULT)
+#: an energy whose error estimate exceeds this (relative) comes with a message (see
+#: :func:`flag_rtol`)
+ENERGY_RTOL = 1e-8
 _MAX_NODES = 512
 _EPS = np.finfo(float).eps
 _RULES: dict[int, tuple[np.ndarray, np.ndarray]] = {}
@@ -74,12 +80,25 @@ def _invert(fun: Callable[[float], tuple[float, float]], target: float, lo: floa
     return x
 
 
+def flag_rtol(quad_tol: float = QUAD_RTOL) -> float:
+    """The relative error estimate above which an energy is flagged (a message on a path,
+    an empty cell in a locus): :data:`ENERGY_RTOL`, or a hundred times the quadrature
+    tolerance asked for when that is looser (rtol above ~3e-3), so that an energy
+    integrated to the accuracy asked for is not flagged for it."""
+    return max(ENERGY_RTOL, 100.0 * quad_tol)
+
+
 def gauss_legendre(
-    f: Callable[[np.ndarray], np.ndarray], a: float, b: float, floor: float = 0.0
+    f: Callable[[np.ndarray], np.ndarray],
+    a: float,
+    b: float,
+    floor: float = 0.0,
+    rtol: float = QUAD_RTOL,
 ) -> tuple[float, float]:
     """∫_a^b f by Gauss–Legendre, nodes doubled from 8 until two rules agree to
-    QUAD_RTOL·|value| or to ``floor`` (the rounding level of the integrand); returns the value
-    and an error estimate (the last difference plus the floor)."""
+    ``rtol``·|value| or to ``floor`` (the rounding level of the integrand); returns the value
+    and an error estimate (the last difference, the error of the coarser rule, plus the
+    floor)."""
     if a == b:
         return 0.0, 0.0
     prev = None
@@ -89,7 +108,7 @@ def gauss_legendre(
         val = 0.5 * (b - a) * float(w @ f(0.5 * (b - a) * x + 0.5 * (a + b)))
         if prev is not None:
             diff = abs(val - prev)
-            if diff <= max(QUAD_RTOL * abs(val), floor) or n >= _MAX_NODES:
+            if diff <= max(rtol * abs(val), floor) or n >= _MAX_NODES:
                 return val, diff + floor
         prev = val
         n *= 2
@@ -133,10 +152,12 @@ def energies(
     mu0: float,
     g_A: float,
     state_tol: float,
+    quad_tol: float = QUAD_RTOL,
 ) -> dict[str, float]:
     """Snap-back (area ABD) and snap-through (area ABC) energies, nondimensional (times
     μ0 F_N0 g_A for N·µm), with error estimates (``*_error``); NaN where D or C is missing
-    from ``row`` or the levels do not resolve the legs.
+    from ``row`` or the levels do not resolve the legs. ``quad_tol``: the relative tolerance
+    of the quadratures (:func:`gauss_legendre`).
 
     The estimate adds to the quadrature's the rounding of the gap and the effect of the
     points' own error (``state_tol``, relative: the tolerance they were converged to), both
@@ -159,7 +180,7 @@ def energies(
         def gap(gs):
             return np.array([legs.t_ab(g) - legs.t_bc(g, q_D) for g in gs])
 
-        abd, abd_err = gauss_legendre(gap, g_B, 1.0, floor)
+        abd, abd_err = gauss_legendre(gap, g_B, 1.0, floor, quad_tol)
         abd_err += state
         out["snap_back"], out["snap_back_error"] = abd, abd_err
         if math.isfinite(row.get("C.q", math.nan)):  # C in the row: ABC too
@@ -169,7 +190,7 @@ def energies(
             def rest(gs):
                 return np.array([t_A - legs.t_bc(g, q_C) for g in gs])
 
-            extra, extra_err = gauss_legendre(rest, 1.0, g_C, floor_c)
+            extra, extra_err = gauss_legendre(rest, 1.0, g_C, floor_c, quad_tol)
             out["snap_through"] = abd + extra
             out["snap_through_error"] = (
                 abd_err + extra_err + state_tol * size * abs(t_A) * (g_C - 1.0)
@@ -177,6 +198,41 @@ def energies(
     except (ArithmeticError, ValueError):
         pass  # left NaN: the levels do not resolve this leg (the caller says so)
     return out
+
+
+def path_energies(model, A, B, C, D, quad_tol: float = QUAD_RTOL):
+    """Areas ABD and ABC [N·µm] of a path (:class:`~cusp.models.ContactLoss`, its points
+    ``A``...``D`` nondimensional, C and D None where missing) and their error estimates,
+    integrated on the legs AB and BC written explicitly in the levels between the points,
+    first polished to rounding (:func:`energies`, to ``quad_tol``); with a message where an
+    estimate exceeds :func:`flag_rtol` of its energy (a tiny reduction: the area shrinks
+    like ΔF_N², the rounding of the legs like ΔF_N). Returns (energies, errors, messages)."""
+    energy: dict[str, float | None] = {"snap_back": None, "snap_through": None}
+    error: dict[str, float | None] = {"snap_back": None, "snap_through": None}
+    notes: list[str] = []
+    if D is None:  # no D, hence no C either
+        return energy, error, notes
+    pts = {"A": A, "B": B, "D": D} | ({"C": C} if C is not None else {})
+    params = {"mu": model.mu0, "m_B": model.m_B}
+    chain = path_chain(model, params, A["q"], "".join(pts))
+    row = {f"{x}.{k}": v for x, pt in pts.items() for k, v in pt.items()} | params
+    row = polish_row(chain, row)
+    e = energies(model.levels, row, model.mu0, model.mu0, model.g_A, 64.0 * _EPS, quad_tol)
+    unit = model.scales["t"] * model.scales["g"]
+    flag = flag_rtol(quad_tol)
+    for kind in energy:
+        if not math.isfinite(e[kind]):
+            continue
+        value, err = float(e[kind] * unit), float(e[f"{kind}_error"] * unit)
+        energy[kind], error[kind] = value, err
+        if err > flag * abs(value):
+            notes.append(
+                f"the {kind.replace('_', '-')} energy's error bound is {err / abs(value):.1e}"
+                f" relative ({err:.3g} N·µm), above {flag:g}: the area is small "
+                f"against the rounding of the legs (a bound: the actual error is often "
+                f"far smaller)"
+            )
+    return energy, error, notes
 
 
 # ------------------------------------------------------------------------------------------
@@ -214,7 +270,13 @@ def polish_point(problem, br, name: str, value: float, o) -> dict[str, float]:
 def polish_row(chain: PointChain, row: dict[str, Any]) -> dict[str, Any]:
     """A row of a locus Newton-polished to rounding at its parameters: the tracer accepts
     points to its update tolerance, and the released energies (areas between legs that meet
-    at B) are sensitive to the frozen stick level to ~1e3 times that."""
+    at B) are sensitive to the frozen stick level to ~1e3 times that.
+
+    To rounding whatever the ``rtol`` of the trace: from a row within the update tolerance
+    (``(rtol/100)²``, 1e-6 at the loosest rtol) Newton reaches rounding in one or two
+    updates (most rows of Fig 9's locus need one at the default rtol, two at 1e-2), so a
+    looser stop would save at most one iteration per row, while the energies' error bounds
+    (``state_tol`` of :func:`energies`) would grow by the sensitivity above."""
     p = {k: row[k] for k in chain.params}
     u = np.array([row[k] for k in chain.unknowns])
     for _ in range(4):

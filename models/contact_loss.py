@@ -52,9 +52,13 @@ The released energies are the areas between the legs, ∫ (F_AB − F_BC) dg ove
 and on BC the contact level is fixed by F'_N, so between the traced points each leg is an
 explicit curve in its other level: Gauss–Legendre in g, the level at each node found from g
 by safeguarded Newton (:mod:`cusp.models._loci_energy`, shared with the loci of
-:mod:`cusp.models.manifold`), nodes doubled until two rules agree to 1e-13 relative, the
-points first Newton-polished to rounding. The error bound adds the rounding of the gap and
-of the points (the area shrinks like ΔF_N², the rounding like ΔF_N: a message beyond 1e-8).
+:mod:`cusp.models.manifold`), nodes doubled until two rules agree to the options'
+``quad_tol`` (1e-13 relative at the default ``rtol``), the points first Newton-polished to
+rounding. The error bound adds the rounding of the gap and of the points (the area shrinks
+like ΔF_N², the rounding like ΔF_N: a message beyond 1e-8, or beyond 100·``quad_tol`` at a
+loose ``rtol``). The options' ``rtol`` sets the accuracy of everything else too: the legs'
+steps and Newton tolerances, and the points A, B, C, D, polished on their legs to the
+options' ``step_tol``; their other settings (``ds_max`` = 0.05, ...) are the path's own.
 No closed form is evaluated to trace the path; those of the exponential surface
 (docs/physics.md §7) are test oracles only.
 
@@ -75,7 +79,7 @@ import numpy as np
 
 from cusp.continuation import Branch, ContinuationOptions, Problem, points_at, trace
 
-from ._loci_energy import energies, path_chain, polish_row
+from ._loci_energy import path_energies
 from ._loci_energy import polish_point as _polish
 from .errors import ModelParameterError, check_positive
 from .protocol import (
@@ -86,9 +90,6 @@ from .protocol import (
     require_path_body,
     stick_bounds,
 )
-
-#: an energy whose error estimate exceeds this (relative) comes with a message
-ENERGY_RTOL = 1e-8
 
 __all__ = [
     "ContactLoss",
@@ -105,7 +106,7 @@ VARIABLES = ("g", "t", "m", "A_SL", "p", "q")
 LEG_CONTROLS = {"OA": "g", "AB": "m", "BC": "g"}
 AREA_READINGS = ("printed", "consistent")
 
-#: default solver settings for the legs (nondimensional arclength)
+#: default solver settings for the legs (nondimensional arclength; the default ``rtol``)
 DEFAULT_OPTIONS = ContinuationOptions(ds=0.02, ds_max=0.05)
 
 
@@ -381,7 +382,10 @@ class ContactLoss:
 
     # -------------------------------------------------------------- the path
     def run(self, options: ContinuationOptions | None = None) -> ContactLossResult:
-        """Trace O→A→B→C (and D), locate the folds and integrate the released energies."""
+        """Trace O→A→B→C (and D), locate the folds and integrate the released energies.
+        ``options``: of the legs (default :data:`DEFAULT_OPTIONS`; for another accuracy,
+        ``DEFAULT_OPTIONS.replace(rtol=...)``: its ``rtol`` sets the legs' tolerances, the
+        polish of the points and the quadrature of the energies)."""
         o = options or DEFAULT_OPTIONS
         L = self.levels
         # O -> A: slip raised at F_N0
@@ -438,7 +442,7 @@ class ContactLoss:
         D = _polish(prob_bc, bc, "g", 1.0, o) if d_exists else None
         messages = self._gross_sliding_messages(A["t"], c_exists, d_exists)
         legs = {"OA": oa, "AB": ab, "BC": bc}
-        energy, error, notes = self._energies(A, B, C, D)
+        energy, error, notes = path_energies(self, A, B, C, D, o.quad_tol)
         messages += notes
         raw = {"O": oa.point(0), "A": A, "B": B, "C": C, "D": D}
         points = {
@@ -476,39 +480,6 @@ class ContactLoss:
                 f"point D and no snap-back energy"
             )
         return messages
-
-    def _energies(self, A, B, C, D):
-        """Areas ABD and ABC [N·µm] and their error estimates, integrated on the legs AB and
-        BC written explicitly in the levels between the points, first polished to rounding
-        (:func:`~._loci_energy.energies`); with a message where an estimate exceeds
-        :data:`ENERGY_RTOL` of its energy (a tiny reduction: the area shrinks like ΔF_N²,
-        the rounding of the legs like ΔF_N)."""
-        energy: dict[str, float | None] = {"snap_back": None, "snap_through": None}
-        error: dict[str, float | None] = {"snap_back": None, "snap_through": None}
-        notes: list[str] = []
-        if D is None:  # no D, hence no C either
-            return energy, error, notes
-        pts = {"A": A, "B": B, "D": D} | ({"C": C} if C is not None else {})
-        params = {"mu": self.mu0, "m_B": self.m_B}
-        chain = path_chain(self, params, A["q"], "".join(pts))
-        row = {f"{x}.{k}": v for x, pt in pts.items() for k, v in pt.items()} | params
-        row = polish_row(chain, row)
-        tol = 64.0 * float(np.finfo(float).eps)
-        e = energies(self.levels, row, self.mu0, self.mu0, self.g_A, tol)
-        unit = self.scales["t"] * self.scales["g"]
-        for kind in energy:
-            if not math.isfinite(e[kind]):
-                continue
-            value, err = float(e[kind] * unit), float(e[f"{kind}_error"] * unit)
-            energy[kind], error[kind] = value, err
-            if err > ENERGY_RTOL * abs(value):
-                notes.append(
-                    f"the {kind.replace('_', '-')} energy's error bound is {err / abs(value):.1e}"
-                    f" relative ({err:.3g} N·µm), above {ENERGY_RTOL:g}: the area is small "
-                    f"against the rounding of the legs (a bound: the actual error is often "
-                    f"far smaller)"
-                )
-        return energy, error, notes
 
     def _folds(self, legs, points) -> list[dict[str, Any]]:
         """Turning points of the controls g_T and F_T along the path."""

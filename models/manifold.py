@@ -44,8 +44,9 @@ from cusp.continuation import (
     trace,
 )
 
-from ._loci_energy import energies, path_chain, polish_row
-from .contact_loss import ENERGY_RTOL, ContactLoss
+from ._loci_energy import energies, flag_rtol, path_chain, polish_row
+from .contact_loss import DEFAULT_OPTIONS as PATH_OPTIONS
+from .contact_loss import ContactLoss
 from .errors import ModelParameterError
 from .protocol import stick_bounds
 
@@ -76,7 +77,8 @@ LOCI_UNITS = {
 }
 #: the bounds of a locus that are events of the path
 _BOUND_EVENTS = {"B.t": "F'_T = 0", "D.q": "D disappears", "A.q": "A slides"}
-_DEFAULT = ContinuationOptions(ds=0.02, ds_max=0.1)
+#: default solver settings of the loci (the default ``rtol``)
+DEFAULT_OPTIONS = ContinuationOptions(ds=0.02, ds_max=0.1)
 
 
 @dataclass(frozen=True)
@@ -159,9 +161,12 @@ def point_loci(
     reaches F'_T = 0, D disappears or A's stick zone vanishes (located, in ``events``, with
     the C boundary). A locus that stops for another reason (the levels of the body no longer
     resolve a point) is kept as far as it went, and ``messages`` says so. ``at``: values of
-    the parameter that must be rows of the loci (located exactly, as targets)."""
+    the parameter that must be rows of the loci (located exactly, as targets).
+    ``options``: of the loci (default :data:`DEFAULT_OPTIONS`); the path they start from is
+    traced with the path's own (:data:`cusp.models.contact_loss.DEFAULT_OPTIONS`) at their
+    ``rtol``."""
     _, lo, hi = _span(model, parameter, span)
-    res = model.run(options)
+    res = model.run(None if options is None else PATH_OPTIONS.replace(rtol=options.rtol))
     start = {name: res.legs[leg].point(row) for name, (leg, row) in res.point_rows.items()}
     start.pop("O", None)
     params = {"mu": model.mu0, "m_B": model.m_B}
@@ -180,10 +185,12 @@ def trace_loci(
     """:func:`point_loci` from given points: ``start`` holds each of A, B and D (if it
     exists) and C (if it exists) as ``{point: {variable: value}}`` (the nondimensional
     variables of the legs, as the rows of :attr:`Loci.rows`), at ``params`` (``mu`` and
-    ``m_B`` = 1 − F'_N/F_N0); ``span`` in the units of ``parameter``."""
+    ``m_B`` = 1 − F'_N/F_N0); ``span`` in the units of ``parameter``. ``options``: of the
+    loci (default :data:`DEFAULT_OPTIONS`); their ``rtol`` sets the tolerances of the
+    traces and the quadrature of the energies (``quad_tol``)."""
     free = LOCUS_PARAMETERS[parameter]
     lo, hi = sorted(_chain_value(model, free, float(v)) for v in span)
-    o = options or _DEFAULT
+    o = options or DEFAULT_OPTIONS
     # (a path started at the deepest reduction may have F'_T a rounding below 0)
     t_B, t_A = start["B"]["t"], start["A"]["t"]
     bounds = {free: (lo, hi), "B.t": (min(0.0, t_B) if t_B > -1e-9 * abs(t_A) else 0.0, math.inf)}
@@ -226,7 +233,7 @@ def trace_loci(
                 chain_c, seed[0], free=free, events=[near], scales=_sizes(model, "ABCD", free), **kw
             )
         chains["A-B-C-D"] = chain_c
-    return _assemble(model, parameter, free, branches, chains)
+    return _assemble(model, parameter, free, branches, chains, o.quad_tol)
 
 
 def _sizes(model: ContactLoss, names: str, free: str) -> dict[str, float]:
@@ -280,9 +287,10 @@ def _c_seed(model, start, params, main: Branch, o):
     return pt, params
 
 
-def _assemble(model: ContactLoss, parameter: str, free: str, branches, chains):
+def _assemble(model: ContactLoss, parameter: str, free: str, branches, chains, quad_tol: float):
     """The rows of the loci (the chain with C where it ran, the other beyond), polished to
-    rounding, their physical columns and energies, the events and how each locus ended."""
+    rounding, their physical columns and energies (to ``quad_tol``), the events and how each
+    locus ended."""
     main = branches[next(iter(branches))]
     with_c = branches.get("A-B-C-D")
     rows: list[dict[str, float]] = []
@@ -317,7 +325,7 @@ def _assemble(model: ContactLoss, parameter: str, free: str, branches, chains):
     ]
     rows.sort(key=lambda r: _user_value(model, free, r[free]))
     events.sort(key=lambda r: _user_value(model, free, r[free]))
-    tol = 64.0 * float(np.finfo(float).eps)  # the rows' error, relative, once polished
+    tol = (64.0 * float(np.finfo(float).eps), quad_tol)  # the rows' error once polished
     table = [_physical(model, row, tol, messages) for row in rows]
     columns = {key: np.array([r[key] for r in table]) for key in LOCI_UNITS}
     event_rows = [
@@ -338,22 +346,24 @@ def _events(br: Branch) -> list[dict[str, Any]]:
 
 
 def _physical(
-    model: ContactLoss, row: dict[str, float], tol: float, messages: list[str]
+    model: ContactLoss, row: dict[str, float], tol: tuple[float, float], messages: list[str]
 ) -> dict[str, float]:
     """One row of a locus in physical units (NaN for a point the row does not carry), with
-    the released energies at it (NaN where not resolved to :data:`ENERGY_RTOL`)."""
+    the released energies at it (``tol``: the row's relative error and the quadrature
+    tolerance; NaN where not resolved to :func:`~._loci_energy.flag_rtol`)."""
     sg, st = model.scales["g"], model.scales["t"]
     out = {"mu": row["mu"], "reduced_normal_load": _user_value(model, "m_B", row["m_B"])}
     for x in "ABCD":
         out[f"g_{x}"] = row.get(f"{x}.g", math.nan) * sg
         out[f"F_{x}"] = row.get(f"{x}.t", math.nan) * st
         out[f"A_SL_{x}"] = row.get(f"{x}.A_SL", math.nan)
-    e = energies(model.levels, row, row["mu"], model.mu0, model.g_A, tol)
+    e = energies(model.levels, row, row["mu"], model.mu0, model.g_A, *tol)
+    flag = flag_rtol(tol[1])
     for kind in ("snap_back", "snap_through"):
         value, error = e[kind] * st * sg, e[f"{kind}_error"] * st * sg
-        if error > ENERGY_RTOL * abs(value):
+        if error > flag * abs(value):
             note = (
-                f"{kind} energies below {ENERGY_RTOL:g} relative accuracy are left empty (an "
+                f"{kind} energies below {flag:g} relative accuracy are left empty (an "
                 f"area much smaller than F_T times the slip it spans, e.g. a tiny reduction): "
                 f"first at mu = {row['mu']!r}, F'_N = {out['reduced_normal_load']!r} N"
             )

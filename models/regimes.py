@@ -31,7 +31,7 @@ from cusp.continuation import ChainPoint, ContinuationOptions, PointChain, locus
 
 from .contact_loss import ContactLoss
 from .errors import ModelParameterError
-from .manifold import point_loci, trace_loci
+from .manifold import DEFAULT_OPTIONS, point_loci, trace_loci
 from .protocol import sliding_level
 
 __all__ = ["REGIMES", "RegimeMap", "regime_map"]
@@ -76,7 +76,9 @@ def regime_map(
 ) -> RegimeMap:
     """The regime map of ``model``'s body at its F_N0 and g_A over ``mu_span`` × ``load_span``
     (F'_N in N, up to F_N0). ``mus``, ``loads``: the grid (numbers of points spaced evenly,
-    μ logarithmically, or the values). The model's own μ must lie in ``mu_span``."""
+    μ logarithmically, or the values). The model's own μ must lie in ``mu_span``.
+    ``options``: of the loci (default :data:`cusp.models.manifold.DEFAULT_OPTIONS`; for
+    another accuracy, ``DEFAULT_OPTIONS.replace(rtol=...)``)."""
     lo, hi = (float(x) for x in load_span)
     if not 0.0 < lo < hi <= model.F_N0:
         raise ModelParameterError(
@@ -151,7 +153,7 @@ def _d_boundary(model: ContactLoss, spine, mu_span, load_span, options):
         "mu": tuple(float(x) for x in mu_span),
         "D.m_B": (0.0, (model.F_N0 - load_span[0]) / model.F_N0),
     }
-    o = options or ContinuationOptions(ds=0.02, ds_max=0.1)
+    o = options or DEFAULT_OPTIONS
     scales = {"D.m": 1.0, "D.m_B": 1.0}  # the size of F_N/F_N0, not of the reduction
     br = locus(chain, start, free="mu", bounds=bounds, scales=scales, options=o, throw=False)
     return np.asarray(br["mu"]), model.F_N0 * (1.0 - np.asarray(br["D.m_B"]))
