@@ -7,7 +7,7 @@ from typing import Any, NamedTuple
 
 from .scene import Scene, SceneError
 
-__all__ = ["Case", "build_body", "make_model", "solver_options"]
+__all__ = ["Case", "build_body", "make_model", "solver_options", "loci_options"]
 
 
 class Case(NamedTuple):
@@ -62,7 +62,9 @@ def make_model(scene: Scene, body: Any, load: float) -> Any:
 
 
 def solver_options(scene: Scene) -> Any:
-    """The continuation options of the paths: the defaults with the scene's [solver]."""
+    """The continuation options of the paths: the defaults
+    (:data:`cusp.models.contact_loss.DEFAULT_OPTIONS`) with the scene's [solver] (``rtol``,
+    and ``ds_max`` and ``tol`` when given)."""
     from cusp.models.contact_loss import DEFAULT_OPTIONS
 
     if not scene.solver:
@@ -71,3 +73,13 @@ def solver_options(scene: Scene) -> Any:
         return DEFAULT_OPTIONS.replace(**scene.solver)
     except ValueError as exc:
         raise SceneError(f"{scene.source}: [solver] {exc}") from None
+
+
+def loci_options(scene: Scene) -> Any:
+    """The continuation options of the loci of a [manifold] scene (and of its regime map):
+    their own defaults (:data:`cusp.models.manifold.DEFAULT_OPTIONS`) at the scene's
+    ``[solver] rtol``; ``ds_max`` and ``tol`` of [solver] are the paths' only."""
+    from cusp.models.manifold import DEFAULT_OPTIONS
+
+    rtol = scene.solver.get("rtol")
+    return DEFAULT_OPTIONS if rtol is None else DEFAULT_OPTIONS.replace(rtol=rtol)

@@ -21,18 +21,19 @@ __all__ = ["trace_loci", "loci_csv", "manifold_summary", "report"]
 
 
 def trace_loci(scene: Scene) -> Any:
-    """The loci of the scene's [manifold] section, from the case it starts from."""
+    """The loci of the scene's [manifold] section, from the case it starts from, at the
+    scene's ``[solver] rtol`` (:func:`cusp.app.cases.loci_options`)."""
     from cusp.models.errors import ModelParameterError
     from cusp.models.manifold import point_loci
 
-    from .cases import build_body, make_model
+    from .cases import build_body, loci_options, make_model
 
     man = scene.manifold
     assert man is not None
     mu, load = man["start"]
     model = make_model(scene, build_body(scene, mu), load)
     try:
-        return point_loci(model, man["parameter"], span=man["range"])
+        return point_loci(model, man["parameter"], span=man["range"], options=loci_options(scene))
     except ModelParameterError as exc:
         raise SceneError(f"{scene.source}: [manifold] {exc}") from None
 

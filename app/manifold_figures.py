@@ -215,14 +215,21 @@ def _regime(fig, run) -> None:
     point does not exist), boundaries as curves, the inadmissible region grey."""
     from cusp.models.regimes import regime_map
 
-    from .cases import build_body, make_model
+    from .cases import build_body, loci_options, make_model
 
     scene = run.scene
     mu, load = scene.manifold["start"]
     model = make_model(scene, build_body(scene, mu), load)
     mu_span, load_span = regime_spans(scene)
     n_loads, n_mus = REGIME_GRID
-    rm = regime_map(model, mu_span=mu_span, load_span=load_span, loads=n_loads, mus=n_mus)
+    rm = regime_map(
+        model,
+        mu_span=mu_span,
+        load_span=load_span,
+        loads=n_loads,
+        mus=n_mus,
+        options=loci_options(scene),
+    )
     axes = fig.subplots(1, 2, sharey=True)
     for ax, kind in zip(axes, ("snap_back", "snap_through")):
         values = np.ma.masked_invalid(np.asarray(getattr(rm, kind), dtype=float))

@@ -1,6 +1,9 @@
-"""``cusp run [SCENE] [--out DIR] [--no-plots]``: trace the contact-loss path of a scene.
+"""``cusp run [SCENE] [--out DIR] [--no-plots] [--rtol RTOL]``: trace the contact-loss path
+of a scene.
 
-``SCENE`` is a scene file or the name of a bundled scene (``fig9``; none: ``fig6``). Writes
+``SCENE`` is a scene file or the name of a bundled scene (``fig9``; none: ``fig6``);
+``--rtol`` overrides the scene's ``[solver] rtol`` (the relative accuracy of everything
+computed, in [1e-13, 0.1], default 1e-4; summary.json records it). Writes
 ``DIR/summary.json``, ``DIR/branch.csv``, for a scene with a ``[manifold]`` section
 ``DIR/loci.csv`` (:mod:`cusp.app.loci`) and, unless ``--no-plots``, the scene's figures as
 PNG and SVG. Everything is computed and rendered in memory first, then committed as one
@@ -32,7 +35,7 @@ import numpy as np
 
 from .cases import Case, build_body, make_model, solver_options
 from .output import OutDirError, check_out_dir, write_outputs
-from .scene import MANIFOLD_FIGURES, Scene, SceneError, check_title, load_scene
+from .scene import MANIFOLD_FIGURES, Scene, SceneError, check_title, load_scene, with_rtol
 
 __all__ = [
     "run_scene",
@@ -70,6 +73,13 @@ def add_arguments(parser) -> None:
         help="output directory (default: cusp-out/<scene name>)",
     )
     parser.add_argument("--no-plots", action="store_true", help="write no figures")
+    parser.add_argument(
+        "--rtol",
+        default=None,
+        metavar="RTOL",
+        help="relative accuracy of the paths, loci and energies, in [1e-13, 0.1] (overrides "
+        "the scene's [solver] rtol; default 1e-4; 1e-3 is enough for a figure)",
+    )
     parser.add_argument("--quiet", action="store_true", help="print only errors")
 
 
@@ -113,7 +123,8 @@ def resolve_scene(arg: str | None) -> tuple[Path, str | None]:
 class SceneRun:
     """The computed cases of a scene (:class:`Case`, one per listed μ or F'_N), the loci of
     a ``[manifold]`` scene (a :class:`cusp.models.manifold.Loci`, else None); ``timing``
-    holds the compute and render wall times [s]."""
+    holds the compute and render wall times [s]; ``options``: the continuation options of
+    the paths (:func:`~cusp.app.cases.solver_options`)."""
 
     scene: Scene
     cases: list[Case]
@@ -121,6 +132,7 @@ class SceneRun:
     loci: Any = None
     #: the warnings raised while computing (kept off stderr; listed in summary.json)
     warnings: list[str] = field(default_factory=list)
+    options: Any = None
 
 
 def run_scene(scene: Scene, *, plots: bool = True) -> tuple[SceneRun, dict]:
@@ -144,7 +156,7 @@ def run_scene(scene: Scene, *, plots: bool = True) -> tuple[SceneRun, dict]:
         with _failures(f"the loci in {scene.manifold['parameter']}: "):
             loci = trace_loci(scene)
     t1 = time.perf_counter()
-    run = SceneRun(scene, cases, {}, loci)
+    run = SceneRun(scene, cases, {}, loci, options=options)
     figures = {}
     path_figures = [f for f in scene.figures if f not in MANIFOLD_FIGURES]
     loci_figures = [f for f in scene.figures if f in MANIFOLD_FIGURES]
@@ -192,6 +204,7 @@ def summary(run: SceneRun) -> dict[str, Any]:
         "gross_sliding": first["gross_sliding"],
         "messages": first["messages"],
         "solver": first["solver"],
+        "accuracy": accuracy(run),
         "warnings": list(run.warnings),
         "cases": cases,
         "units": {
@@ -211,6 +224,15 @@ def summary(run: SceneRun) -> dict[str, Any]:
 
         out["manifold"] = manifold_summary(run.scene, run.loci)
     return out
+
+
+def accuracy(run: SceneRun) -> dict[str, float]:
+    """The ``accuracy`` entry of ``summary.json``: the ``rtol`` the scene was computed at
+    (``[solver] rtol`` or ``--rtol``, else the default) and the tolerances of the paths it
+    set or [solver] gave (Newton ``tol`` and ``step_tol``, ``locate_tol`` of the special
+    points, ``quad_tol`` of the energies)."""
+    o = run.options if run.options is not None else solver_options(run.scene)
+    return {k: float(getattr(o, k)) for k in ("rtol", "tol", "step_tol", "locate_tol", "quad_tol")}
 
 
 def _version() -> str:
@@ -323,6 +345,8 @@ def main(args) -> int:
     try:
         path, source = resolve_scene(args.scene)
         scene = load_scene(path, source=source)
+        if getattr(args, "rtol", None) is not None:
+            scene = with_rtol(scene, args.rtol)
         out = Path(args.out) if args.out is not None else Path("cusp-out") / scene.name
         out = check_out_dir(out)
         with warnings.catch_warnings(record=True) as caught, np.errstate(all="ignore"):

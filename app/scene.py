@@ -34,9 +34,12 @@ Schema (units in brackets)::
     [options]
     area_reading = "printed"      # Eq 32 as printed, or "consistent"
 
-    [solver]
-    ds_max = 0.05                 # largest continuation step (nondimensional)
-    tol = 1e-10                   # Newton residual tolerance
+    [solver]                      # optional
+    rtol = 1e-4                   # relative accuracy of everything computed, in
+                                  #  [1e-13, 0.1] (default 1e-4); ``cusp run --rtol``
+                                  #  overrides it
+    ds_max = 0.05                 # largest continuation step of the paths (nondimensional)
+    tol = 1e-10                   # Newton residual tolerance (default: from rtol)
 
     [manifold]                    # optional: the loci of A, B, C, D (Fig 9)
     parameter = "mu"              # "mu" or "reduced_normal_load"
@@ -55,6 +58,12 @@ registered with :func:`cusp.models.registry.register_body` is a model here at on
 cylinder and flat planes are registered but refused, with the registry's reason: the paper
 gives them no compliance law, so they have no load–displacement path.
 
+``[solver] rtol`` is the one accuracy knob (:class:`cusp.continuation.ContinuationOptions`):
+it sets the Newton, step and location tolerances of the paths and of the loci, the polish of
+their points and the quadrature of the energies; 1e-3 is plenty for a figure and faster,
+the default 1e-4 keeps the points to 1e-12. ``ds_max`` and ``tol`` apply to the paths only
+(the loci keep their own steps); ``tol``, when given, overrides what ``rtol`` sets.
+
 The cases of a scene are every listed μ with every listed F'_N; as at most one of the two
 is a list, that is one case per listed value. A ``[manifold]`` scene traces, besides its
 cases, the loci from the case of the first listed value that lies in ``range``.
@@ -63,7 +72,7 @@ cases, the loci from the case of the first listed value that lies in ``range``.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any, NoReturn
 
@@ -91,6 +100,7 @@ __all__ = [
     "load_scene",
     "parse_scene",
     "check_title",
+    "with_rtol",
     "FIGURES",
     "MANIFOLD_FIGURES",
 ]
@@ -105,6 +115,9 @@ DEFAULT_MANIFOLD_FIGURES = ("fig9", *MANIFOLD_FIGURES)
 #: the parameters a [manifold] locus can be traced in, and their units
 MANIFOLD_PARAMETERS = {"mu": "", "reduced_normal_load": "N"}
 
+#: the allowed ``rtol`` (those of :class:`cusp.continuation.ContinuationOptions`, not
+#: imported: reading a scene loads no solver)
+RTOL_RANGE = (1e-13, 0.1)
 #: the numbers of [loading] and [solver] (those of [surface] come from the body registry)
 _NUMBERS: dict[str, Parameter] = {
     p.name: p
@@ -114,6 +127,7 @@ _NUMBERS: dict[str, Parameter] = {
         Parameter("reduced_normal_load", "N"),
         Parameter("ds_max", "", 1e-10, 1.0, lower_inclusive=True, upper_inclusive=True),
         Parameter("tol", "", 0.0, 1e-4, upper_inclusive=True),
+        Parameter("rtol", "", RTOL_RANGE[0], RTOL_RANGE[1], True, True),
     )
 }
 
@@ -121,7 +135,7 @@ _SECTIONS = {
     "scene": {"name", "title"},
     "loading": {"normal_load", "max_slip", "reduced_normal_load"},
     "options": {"area_reading"},
-    "solver": {"ds_max", "tol"},
+    "solver": {"ds_max", "tol", "rtol"},
     "output": {"figures"},
     "manifold": {"parameter", "range"},
 }
@@ -177,7 +191,8 @@ class Scene:
         return tuple((mu, load) for mu in self.mus for load in self.reduced_normal_loads)
 
     def echo(self) -> dict[str, Any]:
-        """The scene as given, with units: ``{section: {key: {"value", "unit"}}}``."""
+        """The scene as given, with units: ``{section: {key: {"value", "unit"}}}`` (with
+        ``[solver] rtol`` as ``cusp run --rtol`` set it, :func:`with_rtol`)."""
         out: dict[str, Any] = {"source": self.source, "name": self.name, "title": self.title}
         for section in ("surface", "loading", "options", "solver"):
             block = getattr(self, section)
@@ -279,6 +294,21 @@ def parse_scene(text: str, *, source: str = "<scene>", default_name: str = "scen
         surface_units=surface_units,
         manifold=manifold,
     )
+
+
+def with_rtol(scene: Scene, text: str, *, flag: str = "--rtol") -> Scene:
+    """The scene with its ``[solver] rtol`` set to ``text`` (a command-line value, named
+    ``flag`` in messages), checked as the scene's own would be."""
+    spec = _NUMBERS["rtol"]
+    try:
+        value = float(text)
+    except ValueError:
+        raise SceneError(
+            f"{flag} = {show(text)} is not a number; allowed: {spec.allowed()}"
+        ) from None
+    if not spec.accepts(value):
+        raise SceneError(f"{flag} = {show(text)}; allowed: {spec.allowed()}")
+    return replace(scene, solver={**scene.solver, "rtol": value})
 
 
 def _check_name(chk: _Checker, value: Any) -> str:
