@@ -168,7 +168,7 @@ _VALUES = st.one_of(
 _FIELDS = {
     "surface": ["model", "sigma", "nu", "mu", "E", "radius", "density", "nominal_area", "shape"],
     "loading": ["normal_load", "max_slip", "reduced_normal_load"],
-    "solver": ["ds_max", "tol"],
+    "solver": ["ds_max", "tol", "rtol"],
     "options": ["area_reading"],
     "scene": ["name", "title"],
     "manifold": ["parameter", "range"],
