@@ -35,8 +35,8 @@ Schema (units in brackets)::
     area_reading = "printed"      # Eq 32 as printed, or "consistent"
 
     [solver]                      # optional
-    rtol = 1e-4                   # relative accuracy of everything computed, in
-                                  #  [1e-13, 0.1] (default 1e-4); ``cusp run --rtol``
+    rtol = 1e-3                   # relative accuracy of everything computed, in
+                                  #  [1e-13, 0.1] (default 1e-3); ``cusp run --rtol``
                                   #  overrides it
     ds_max = 0.05                 # largest continuation step of the paths (nondimensional)
     tol = 1e-10                   # Newton residual tolerance (default: from rtol)
@@ -60,9 +60,10 @@ gives them no compliance law, so they have no load–displacement path.
 
 ``[solver] rtol`` is the one accuracy knob (:class:`cusp.continuation.ContinuationOptions`):
 it sets the Newton, step and location tolerances of the paths and of the loci, the polish of
-their points and the quadrature of the energies; 1e-3 is plenty for a figure and faster,
-the default 1e-4 keeps the points to 1e-12. ``ds_max`` and ``tol`` apply to the paths only
-(the loci keep their own steps); ``tol``, when given, overrides what ``rtol`` sets.
+their points and the quadrature of the energies. The default, 1e-3, keeps the points to
+1e-12 and the energies to 1e-13 relative; 1e-2 is enough for a figure, smaller values cost
+more steps. ``ds_max`` and ``tol`` apply to the paths only (the loci keep their own steps);
+``tol``, when given, overrides what ``rtol`` sets.
 
 The cases of a scene are every listed μ with every listed F'_N; as at most one of the two
 is a list, that is one case per listed value. A ``[manifold]`` scene traces, besides its

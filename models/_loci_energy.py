@@ -83,7 +83,7 @@ def _invert(fun: Callable[[float], tuple[float, float]], target: float, lo: floa
 def flag_rtol(quad_tol: float = QUAD_RTOL) -> float:
     """The relative error estimate above which an energy is flagged (a message on a path,
     an empty cell in a locus): :data:`ENERGY_RTOL`, or a hundred times the quadrature
-    tolerance asked for when that is looser (rtol above ~3e-3), so that an energy
+    tolerance asked for when that is looser (rtol above ~3e-2), so that an energy
     integrated to the accuracy asked for is not flagged for it."""
     return max(ENERGY_RTOL, 100.0 * quad_tol)
 
@@ -273,10 +273,11 @@ def polish_row(chain: PointChain, row: dict[str, Any]) -> dict[str, Any]:
     at B) are sensitive to the frozen stick level to ~1e3 times that.
 
     To rounding whatever the ``rtol`` of the trace: from a row within the update tolerance
-    (``(rtol/100)²``, 1e-6 at the loosest rtol) Newton reaches rounding in one or two
-    updates (most rows of Fig 9's locus need one at the default rtol, two at 1e-2), so a
-    looser stop would save at most one iteration per row, while the energies' error bounds
-    (``state_tol`` of :func:`energies`) would grow by the sensitivity above."""
+    (:func:`~cusp.continuation.options.point_tol`, 1e-8 at the loosest rtol) Newton reaches
+    rounding in one or two updates (on Fig 9's locus in μ most rows need one at the default
+    rtol, two at 0.1), so a looser stop would save at most one iteration per row, while the
+    energies' error bounds (``state_tol`` of :func:`energies`) would grow by the
+    sensitivity above."""
     p = {k: row[k] for k in chain.params}
     u = np.array([row[k] for k in chain.unknowns])
     for _ in range(4):

@@ -41,15 +41,15 @@ def _run(capsys, *argv) -> tuple[int, str, str]:
 
 # ------------------------------------------------------------------ the scene field
 def test_scene_rtol_sets_the_paths_tolerances():
-    scene = parse_scene(_solver("rtol = 1e-3"))
-    assert scene.solver == {"rtol": 1e-3}
-    assert scene.echo()["solver"] == {"rtol": {"value": 1e-3, "unit": ""}}
+    scene = parse_scene(_solver("rtol = 1e-2"))
+    assert scene.solver == {"rtol": 1e-2}
+    assert scene.echo()["solver"] == {"rtol": {"value": 1e-2, "unit": ""}}
     o = solver_options(scene)
-    # options.py: step_tol = (rtol/100)² = 1e-10, tol = 100·step_tol, quad_tol = step_tol/10
-    assert (o.rtol, o.step_tol, o.tol, o.quad_tol) == (1e-3, 1e-10, 1e-8, 1e-11)
+    # options.py: step_tol = (rtol/1000)² = 1e-10, tol = 100·step_tol, quad_tol = step_tol/10
+    assert (o.rtol, o.step_tol, o.tol, o.quad_tol) == (1e-2, 1e-10, 1e-8, 1e-11)
     assert (o.ds, o.ds_max) == (0.02, 0.05)  # the path's own steps are kept
     # an explicit tol overrides what rtol sets (step_tol still follows rtol)
-    given = solver_options(parse_scene(_solver("rtol = 1e-3\ntol = 1e-12")))
+    given = solver_options(parse_scene(_solver("rtol = 1e-2\ntol = 1e-12")))
     assert (given.tol, given.step_tol) == (1e-12, 1e-10)
 
 
@@ -60,10 +60,11 @@ def test_a_scene_without_rtol_keeps_the_defaults():
     scene = parse_scene(FIG6)
     assert "rtol" not in scene.solver
     assert solver_options(scene) is DEFAULT_OPTIONS and loci_options(scene) is LOCI
-    assert solver_options(scene).rtol == 1e-4  # ContinuationOptions' default
+    assert solver_options(scene).rtol == 1e-3  # ContinuationOptions' default
     # the loci follow the scene's rtol at their own steps (ds_max 0.1, not the paths' 0.05)
     o = loci_options(parse_scene(_solver("rtol = 1e-2\nds_max = 0.01")))
     assert (o.rtol, o.ds_max) == (1e-2, 0.1)
+    assert loci_options(parse_scene(_solver("rtol = 1e-3"))) == LOCI  # the default, given
 
 
 @pytest.mark.parametrize(
@@ -109,44 +110,46 @@ def _check_fig6(s: dict, rtol: float) -> None:
 
 def test_cli_rtol_is_used_and_recorded(tmp_path, capsys):
     out = tmp_path / "o"
-    status, _, err = _run(capsys, "run", "fig6", "--rtol", "1e-3", "--no-plots", "--out", out)
+    status, _, err = _run(capsys, "run", "fig6", "--rtol", "1e-2", "--no-plots", "--out", out)
     assert (status, err) == (0, "")
     s = _summary(out)
+    # options.py at rtol = 1e-2: step_tol = locate_tol = (rtol/1000)², tol = 100·step_tol,
+    # quad_tol = step_tol/10
     assert s["accuracy"] == {
-        "rtol": 1e-3,
+        "rtol": 1e-2,
         "tol": 1e-8,
         "step_tol": 1e-10,
         "locate_tol": 1e-10,
         "quad_tol": 1e-11,
     }
-    assert s["scene"]["solver"] == {"rtol": {"value": 1e-3, "unit": ""}}
-    _check_fig6(s, 1e-3)
+    assert s["scene"]["solver"] == {"rtol": {"value": 1e-2, "unit": ""}}
+    _check_fig6(s, 1e-2)
 
 
 def test_cli_rtol_overrides_the_scenes(tmp_path, capsys):
     scene = tmp_path / "s.toml"
     scene.write_text(_solver("rtol = 1e-2\ntol = 1e-9"), encoding="utf-8")
     out = tmp_path / "o"
-    status, _, err = _run(capsys, "run", scene, "--rtol", "1e-5", "--no-plots", "--out", out)
+    status, _, err = _run(capsys, "run", scene, "--rtol", "1e-4", "--no-plots", "--out", out)
     assert (status, err) == (0, "")
     s = _summary(out)
-    # options.py: step_tol = (1e-5/100)² = 1e-14; the scene's tol stays (given explicitly)
+    # options.py: step_tol = (1e-4/1000)² = 1e-14; the scene's tol stays (given explicitly)
     assert (s["accuracy"]["rtol"], s["accuracy"]["step_tol"], s["accuracy"]["tol"]) == (
-        1e-5,
+        1e-4,
         1e-14,
         1e-9,
     )
-    assert s["scene"]["solver"]["rtol"]["value"] == 1e-5
-    _check_fig6(s, 1e-5)
+    assert s["scene"]["solver"]["rtol"]["value"] == 1e-4
+    _check_fig6(s, 1e-4)
 
 
 def test_default_run_records_the_default_accuracy(tmp_path, capsys):
     out = tmp_path / "o"
     assert _run(capsys, "run", "fig6", "--no-plots", "--quiet", "--out", out)[0] == 0
     s = _summary(out)
-    # the defaults of ContinuationOptions (rtol 1e-4): the tolerances the solver always used
+    # the defaults of ContinuationOptions (rtol 1e-3): the tolerances the solver always used
     assert s["accuracy"] == {
-        "rtol": 1e-4,
+        "rtol": 1e-3,
         "tol": 1e-10,
         "step_tol": 1e-12,
         "locate_tol": 1e-12,
