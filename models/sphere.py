@@ -241,6 +241,74 @@ class SphereLevels:
         """κ(1 − p)² [µm]: the stick zone vanishes (gross sliding) at g_T = μκ(a/a0)²."""
         return self.kappa * (1.0 - p) ** 2
 
+    def leg_areas(self, p_A, q_A, p_B, q_D, q_C, level_rtol):
+        """The released areas in closed form, ∫ T ds between the legs [µm] with T = F_T/(μF_N0)
+        and s = g_T/μ: ``((ABD, error), (ABC − ABD, error))``, the second (NaN, NaN) when
+        ``q_C`` is NaN (no C). ``level_rtol``: each level's own error relative to itself.
+
+        With x = 1 − p and y = 1 − q, T = x³ − y³ and s = κ(x² − y²) on every leg, so the areas
+        are integrals of polynomials; written in the differences the path keeps
+        (:mod:`cusp.verification.sphere_energy` derives them) they are polynomials with
+        positive coefficients in positive variables, evaluated without cancellation:
+
+        * ABD = κ[AB(x_B, w, δ) + BD(y_D, e_D)],  ABC − ABD = κ DC(y_C, h_D),
+
+        x_B = 1 − p_B, w = q_A − p_B, δ = p_B − p_A, y_D = 1 − q_D, e_D = q_D − q_A,
+        y_C = 1 − q_C, h_D = q_C − q_D. The error: 16ε of the sum of the terms (their
+        rounding), plus each variable's error (its rounding, and ``level_rtol`` times the
+        levels it is formed from) times the polynomial's derivative in it, taken at the
+        variables' upper bounds (a bound, the coefficients being positive)."""
+        tol = level_rtol
+
+        def base(z):  # 1 − z and its error
+            return 1.0 - z, _EPS * abs(1.0 - z) + tol * abs(z)
+
+        def diff(hi, lo):  # hi − lo and its error
+            return hi - lo, _EPS * abs(hi - lo) + tol * (abs(hi) + abs(lo))
+
+        ab = _released(_AREA_AB, base(p_B), diff(q_A, p_B), diff(p_B, p_A))
+        bd = _released(_AREA_BD, base(q_D), diff(q_D, q_A))
+        abd = (self.kappa * (ab[0] + bd[0]), self.kappa * (ab[1] + bd[1]))
+        if math.isnan(q_C):
+            return abd, (math.nan, math.nan)
+        dc = _released(_AREA_DC, base(q_C), diff(q_C, q_D))
+        return abd, (self.kappa * dc[0], self.kappa * dc[1])
+
+
+_EPS = float(np.finfo(float).eps)
+#: the closed forms of :meth:`SphereLevels.leg_areas` as monomials (numerator, denominator,
+#: exponents), derived by :func:`cusp.verification.sphere_energy.sphere_released_areas`
+#: (a test checks they agree): AB in (x_B, w, δ), BD in (y_D, e_D), DC in (y_C, h_D)
+_AREA_AB = (
+    (2, 5, (0, 0, 5)),
+    (3, 4, (0, 1, 4)),
+    (1, 1, (2, 0, 3)),
+    (5, 4, (1, 0, 4)),
+    (3, 1, (1, 1, 3)),
+    (3, 1, (2, 1, 2)),
+)
+_AREA_BD = ((3, 20, (0, 5)), (3, 4, (1, 4)), (1, 1, (2, 3)))
+_AREA_DC = ((2, 5, (0, 5)), (2, 1, (1, 4)), (3, 1, (3, 2)), (4, 1, (2, 3)))
+
+
+def _released(table, *variables: tuple[float, float]) -> tuple[float, float]:
+    """Σ c Π zⱼ^kⱼ over the monomials of ``table`` at the (value, error) ``variables``, and a
+    bound on its error: 16ε Σ|terms| (the evaluation) plus Σⱼ ∂/∂zⱼ(|z| + Δz) Δzⱼ (the
+    variables' errors, by the mean-value theorem: every coefficient is positive)."""
+    z = [v for v, _ in variables]
+    dz = [e for _, e in variables]
+    top = [abs(v) + e for v, e in variables]
+    value = size = spread = 0.0
+    for num, den, ks in table:
+        term = num / den * math.prod(v**k for v, k in zip(z, ks))
+        value += term
+        size += abs(term)
+        for j, kj in enumerate(ks):
+            if kj:
+                rest = math.prod(t**k for i, (t, k) in enumerate(zip(top, ks)) if i != j)
+                spread += num / den * kj * top[j] ** (kj - 1) * rest * dz[j]
+    return value, 16.0 * _EPS * size + spread
+
 
 def _positive_load(F_N):
     F_N = check_finite_array("F_N", F_N, unit="N")

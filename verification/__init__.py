@@ -19,6 +19,9 @@ One module per job:
   (Sec. 2, Eqs 9-15) and its contact-loss path (Sec. 4: :func:`contact_loss_path`, ids
   ``"MD"``, ``"AB"``, ``"32"``; the events of its manifold: :func:`manifold_events`);
 - :mod:`~cusp.verification.smooth`: sphere, cylinder and flat planes (Sec. 3, Eqs 18-31);
+- :mod:`~cusp.verification.sphere_energy`: the sphere's released energies in closed form,
+  written in the small differences between the levels of A, B, C, D
+  (:func:`sphere_released_areas`), and their identity with the loop integrals;
 - :mod:`~cusp.verification.catalogue`: all records in paper order (:func:`derive_all`,
   :func:`derivation`);
 - :mod:`~cusp.verification.printed`: printed against derived (:func:`check_printed`);
@@ -41,6 +44,7 @@ from .implementation import (
     exact_value,
 )
 from .printed import check_printed
+from .sphere_energy import sphere_released_areas
 
 __all__ = [
     "Derivation",
@@ -57,4 +61,5 @@ __all__ = [
     "exact_value",
     "contact_loss_path",
     "manifold_events",
+    "sphere_released_areas",
 ]
