@@ -13,8 +13,13 @@ nodes doubled until two rules agree; at each node the level is found from g by s
 Newton inside the bracket the leg's end points give (g is monotone along each leg). No
 continuation problem is solved here: the locus supplies the end points, exact, and the legs
 between them are explicit. The gap is evaluated as a difference, so its rounding error
-(≈ ε·F·Δg, which dominates for very small reductions where the area shrinks like ΔF_N²) is
-added to the reported error estimate.
+(≈ ε·F·Δg, which dominates for very small reductions where the area shrinks like ΔF_N², and
+at small slips where the legs' slopes agree to ~g_A over the gross-sliding slip) is added to
+the reported error estimate.
+
+Levels that give the areas in closed form (the optional ``leg_areas`` of
+:mod:`cusp.models.protocol`: the sphere's, written in the differences between the levels of
+A, B, C, D so that nothing cancels) are used instead of the quadrature (:func:`energies`).
 """
 
 from __future__ import annotations
@@ -156,13 +161,48 @@ def energies(
 ) -> dict[str, float]:
     """Snap-back (area ABD) and snap-through (area ABC) energies, nondimensional (times
     μ0 F_N0 g_A for N·µm), with error estimates (``*_error``); NaN where D or C is missing
-    from ``row`` or the levels do not resolve the legs. ``quad_tol``: the relative tolerance
+    from ``row`` or the levels do not resolve the legs. ``state_tol``: the points' own error
+    (relative: the tolerance they were converged to). ``quad_tol``: the relative tolerance
     of the quadratures (:func:`gauss_legendre`).
 
+    Levels with ``leg_areas`` (the sphere's, :mod:`cusp.models.protocol`) give the areas in
+    closed form, with their own error bound (``state_tol`` relative to each level's size);
+    the others are integrated (:func:`quadrature_energies`)."""
+    out = dict.fromkeys(
+        ("snap_back", "snap_through", "snap_back_error", "snap_through_error"), math.nan
+    )
+    if "D.q" not in row or not math.isfinite(row["D.q"]):
+        return out
+    closed = getattr(levels, "leg_areas", None)
+    if closed is None:
+        return quadrature_energies(levels, row, mu, mu0, g_A, state_tol, quad_tol)
+    q_C = row.get("C.q", math.nan)  # NaN: no C (then no ABC)
+    abd, dc = closed(row["A.p"], row["A.q"], row["B.p"], row["D.q"], q_C, state_tol)
+    unit = (mu / mu0) * (mu / g_A)  # ∫ T ds [µm] -> ∫ t dg (LegCurves)
+    if math.isfinite(abd[0]):
+        out["snap_back"] = unit * abd[0]
+        out["snap_back_error"] = unit * abd[1] + 4.0 * _EPS * abs(out["snap_back"])
+    if math.isfinite(abd[0]) and math.isfinite(dc[0]):
+        out["snap_through"] = unit * (abd[0] + dc[0])
+        err = unit * (abd[1] + dc[1]) + 4.0 * _EPS * abs(out["snap_through"])
+        out["snap_through_error"] = err
+    return out
+
+
+def quadrature_energies(
+    levels,
+    row: Mapping[str, float],
+    mu: float,
+    mu0: float,
+    g_A: float,
+    state_tol: float,
+    quad_tol: float = QUAD_RTOL,
+) -> dict[str, float]:
+    """:func:`energies` by quadrature on the legs (module docstring), for any levels.
+
     The estimate adds to the quadrature's the rounding of the gap and the effect of the
-    points' own error (``state_tol``, relative: the tolerance they were converged to), both
-    of order F·Δg: an area much smaller than F·Δg (a tiny reduction) is resolved only to
-    their ratio."""
+    points' own error (``state_tol``, relative to max(1, |level|)), both of order F·Δg: an
+    area much smaller than F·Δg (a tiny reduction) is resolved only to their ratio."""
     out = dict.fromkeys(
         ("snap_back", "snap_through", "snap_back_error", "snap_through_error"), math.nan
     )

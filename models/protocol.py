@@ -48,6 +48,18 @@ small slips c, a and a0 agree to 1e-8 and more, and a − c must not be formed f
 * ``stick_bounds`` — (low, high), the range of q in which a stick zone exists; the end that
   is finite is the stick level of gross sliding. Without it, (0, inf).
 
+One optional member gives the released energies in closed form, for a body whose legs are
+explicit enough (the sphere's: polynomials in its levels):
+
+* ``leg_areas(p_A, q_A, p_B, q_D, q_C, level_rtol)`` — the areas ABD and ABC − ABD as
+  ∫ T ds between the legs [µm], T = exp(``log_normal_load``)·``tangential_ratio`` (F_T over
+  μF_N0) and s = ``slip``, from the levels of the points A, B, D and C (``q_C`` NaN when
+  there is no C), each with an error bound: ``((abd, abd_error), (abc_minus_abd, error))``,
+  the second (NaN, NaN) without C. ``level_rtol`` is the points' own error (the tolerance
+  they were converged to), relative to each level's own size. Without it, the energies are
+  integrated along the legs by Gauss–Legendre (:mod:`cusp.models._loci_energy`), whose
+  accuracy is limited to about ε over the relative gap between the legs.
+
 To add a body: write its module (the body class with ``mu``, ``tangential_force`` and
 ``contact_levels``, and its levels class), then register it with one line,
 :func:`cusp.models.registry.register_body`, so that scenes can name it.

@@ -269,7 +269,7 @@ class SphereLevels:
         ab = _released(_AREA_AB, base(p_B), diff(q_A, p_B), diff(p_B, p_A))
         bd = _released(_AREA_BD, base(q_D), diff(q_D, q_A))
         abd = (self.kappa * (ab[0] + bd[0]), self.kappa * (ab[1] + bd[1]))
-        if math.isnan(q_C):
+        if not math.isfinite(q_C):
             return abd, (math.nan, math.nan)
         dc = _released(_AREA_DC, base(q_C), diff(q_C, q_D))
         return abd, (self.kappa * dc[0], self.kappa * dc[1])
