@@ -36,7 +36,7 @@ Schema (units in brackets)::
 
     [solver]                      # optional
     rtol = 1e-3                   # relative accuracy of everything computed, in
-                                  #  [1e-13, 0.1] (default 1e-3); ``cusp run --rtol``
+                                  #  [1e-13, 1e-2] (default 1e-3); ``cusp run --rtol``
                                   #  overrides it
     ds_max = 0.05                 # largest continuation step of the paths (nondimensional)
     tol = 1e-10                   # Newton residual tolerance (default: from rtol)
@@ -77,6 +77,7 @@ from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any, NoReturn
 
+from cusp.continuation.options import RTOL_MAX, RTOL_MIN
 from cusp.models import registry
 from cusp.models.registry import Parameter
 
@@ -118,7 +119,7 @@ MANIFOLD_PARAMETERS = {"mu": "", "reduced_normal_load": "N"}
 
 #: the allowed ``rtol`` (those of :class:`cusp.continuation.ContinuationOptions`, not
 #: imported: reading a scene loads no solver)
-RTOL_RANGE = (1e-13, 0.1)
+RTOL_RANGE = (RTOL_MIN, RTOL_MAX)  # ContinuationOptions.rtol's
 #: the numbers of [loading] and [solver] (those of [surface] come from the body registry)
 _NUMBERS: dict[str, Parameter] = {
     p.name: p

@@ -360,6 +360,7 @@ class Tracer:
         prev, n_points = last, state.n_points
         status, message = None, ""
         end_special = special
+        ends_inside = False  # a terminal point located inside the step, before its end
         for tt, loc, br in located:
             interval = (last.s, last.s + h)
             records: tuple[Record, ...] = (tt.record(system, loc, br, system.weights, interval),)
@@ -372,11 +373,12 @@ class Tracer:
             prev = self._located_point(system, last, loc, records, br, prev, interp)
             n_points += 1
             if tt.terminal:
+                ends_inside = True
                 break
         steps = state.steps + 1
         if status is not None:
             values = state.tests  # irrelevant once finished
-        if status is not None and aimed is None:  # the branch ends at a located point
+        if ends_inside:  # (also in a step aimed at a bound beyond another one it crossed)
             end = prev
         else:
             if status is None and steps >= o.max_steps:

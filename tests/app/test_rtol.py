@@ -45,8 +45,9 @@ def test_scene_rtol_sets_the_paths_tolerances():
     assert scene.solver == {"rtol": 1e-2}
     assert scene.echo()["solver"] == {"rtol": {"value": 1e-2, "unit": ""}}
     o = solver_options(scene)
-    # options.py: step_tol = (rtol/1000)² = 1e-10, tol = 100·step_tol, quad_tol = step_tol/10
-    assert (o.rtol, o.step_tol, o.tol, o.quad_tol) == (1e-2, 1e-10, 1e-8, 1e-11)
+    # options.py: step_tol = (rtol/1000)² = 1e-10, tol = 100·step_tol (at most 1e-10),
+    # quad_tol = step_tol/10
+    assert (o.rtol, o.step_tol, o.tol, o.quad_tol) == (1e-2, 1e-10, 1e-10, 1e-11)
     assert (o.ds, o.ds_max) == (0.02, 0.05)  # the path's own steps are kept
     # an explicit tol overrides what rtol sets (step_tol still follows rtol)
     given = solver_options(parse_scene(_solver("rtol = 1e-2\ntol = 1e-12")))
@@ -72,9 +73,9 @@ def test_a_scene_without_rtol_keeps_the_defaults():
     [
         ('rtol = "1e-3"', "[solver] rtol = '1e-3' has the wrong type (str)"),
         ("rtol = true", "[solver] rtol = True has the wrong type (bool)"),
-        ("rtol = 0.5", "[solver] rtol = 0.5; allowed: a finite number [1e-13, 0.1]"),
-        ("rtol = 1e-14", "[solver] rtol = 1e-14; allowed: a finite number [1e-13, 0.1]"),
-        ("rtol = 0", "[solver] rtol = 0; allowed: a finite number [1e-13, 0.1]"),
+        ("rtol = 0.5", "[solver] rtol = 0.5; allowed: a finite number [1e-13, 0.01]"),
+        ("rtol = 1e-14", "[solver] rtol = 1e-14; allowed: a finite number [1e-13, 0.01]"),
+        ("rtol = 0", "[solver] rtol = 0; allowed: a finite number [1e-13, 0.01]"),
         ("rtol = -1e-3", "[solver] rtol = -0.001; allowed"),
         ("rtol = nan", "[solver] rtol = nan; allowed"),
         ("rtol = inf", "[solver] rtol = inf; allowed"),
@@ -86,7 +87,7 @@ def test_a_bad_scene_rtol_is_refused_naming_the_field_value_and_range(line, expe
     assert str(info.value).startswith("s.toml: ") and expect in str(info.value)
 
 
-@pytest.mark.parametrize("value", [1e-13, 0.1])
+@pytest.mark.parametrize("value", [1e-13, 0.01])
 def test_the_bounds_of_rtol_are_allowed(value):
     from cusp.continuation.options import RTOL_MIN
 
@@ -113,11 +114,11 @@ def test_cli_rtol_is_used_and_recorded(tmp_path, capsys):
     status, _, err = _run(capsys, "run", "fig6", "--rtol", "1e-2", "--no-plots", "--out", out)
     assert (status, err) == (0, "")
     s = _summary(out)
-    # options.py at rtol = 1e-2: step_tol = locate_tol = (rtol/1000)², tol = 100·step_tol,
-    # quad_tol = step_tol/10
+    # options.py at rtol = 1e-2: step_tol = locate_tol = (rtol/1000)², tol = 100·step_tol
+    # within [1e-12, 1e-10], quad_tol = step_tol/10
     assert s["accuracy"] == {
         "rtol": 1e-2,
-        "tol": 1e-8,
+        "tol": 1e-10,
         "step_tol": 1e-10,
         "locate_tol": 1e-10,
         "quad_tol": 1e-11,
@@ -161,8 +162,8 @@ def test_default_run_records_the_default_accuracy(tmp_path, capsys):
 @pytest.mark.parametrize(
     "value, expect",
     [
-        ("abc", "--rtol = 'abc' is not a number; allowed: a finite number [1e-13, 0.1]"),
-        ("0.5", "--rtol = '0.5'; allowed: a finite number [1e-13, 0.1]"),
+        ("abc", "--rtol = 'abc' is not a number; allowed: a finite number [1e-13, 0.01]"),
+        ("0.5", "--rtol = '0.5'; allowed: a finite number [1e-13, 0.01]"),
         ("1e-14", "--rtol = '1e-14'; allowed"),
         ("nan", "--rtol = 'nan'; allowed"),
         ("-inf", "--rtol = '-inf'; allowed"),

@@ -32,13 +32,15 @@ def test_default_rtol_keeps_the_solver_tolerances_as_they_were():
 
 def test_rtol_sets_the_tolerances_and_explicit_values_override():
     o = ContinuationOptions(rtol=1e-1)
-    assert (o.tol, o.step_tol, o.curve_tol, o.locate_tol) == (1e-6, 1e-8, 0.2, 1e-8)
+    # (the residual tolerance within [1e-12, 1e-10]; curve_tol is a safety guard, fixed)
+    assert (o.tol, o.step_tol, o.curve_tol, o.locate_tol) == (1e-10, 1e-8, 0.02, 1e-8)
     assert o.quad_tol == quadrature_tol(1e-1) == 1e-9
     # floors at the rounding level
     assert point_tol(1e-6) == 1e-16 and ContinuationOptions(rtol=1e-13).locate_tol == 1e-15
+    assert ContinuationOptions(rtol=1e-6).tol == 1e-12
     # a tolerance given stays; the others follow a new rtol through replace()
     o = ContinuationOptions(locate_tol=1e-15).replace(rtol=1e-5)
-    assert o.locate_tol == 1e-15 and o.step_tol == 1e-16 and o.curve_tol == 2e-3
+    assert o.locate_tol == 1e-15 and o.step_tol == 1e-16 and o.tol == 1e-12
     assert ContinuationOptions(rtol=1e-5) == ContinuationOptions().replace(rtol=1e-5)
 
 

@@ -51,7 +51,7 @@ def fig6_closed():
     return _fig6_closed()
 
 
-@pytest.mark.parametrize("rtol", [1e-3, 1e-2, 0.1])
+@pytest.mark.parametrize("rtol", [1e-3, 3e-3, 1e-2])
 def test_fig6_at_a_loose_rtol_is_within_ten_rtol_of_the_closed_forms(fig6_closed, rtol):
     pts, energy = fig6_closed
     res = _model().run(DEFAULT_OPTIONS.replace(rtol=rtol))
