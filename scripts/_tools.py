@@ -11,8 +11,8 @@ folds ``[(x, lam), ...]`` in path order. Optional: ``bounds`` (ours; default the
 range), ``stop(x, lam)`` (the end of the branch when it is not the parameter range: the other
 tools stop at the first point where it holds), ``sparse`` (the Jacobian is scipy.sparse:
 pacopy and the SciPy loop solve with SuperLU), ``residual_scale`` (the size of the
-residual's terms: the absolute tolerances of contique, pacopy and the SciPy loop are given
-relative to it).
+residual's terms, 1 by default: the SciPy loop's acceptance of hybr's answer is relative to
+it), ``up`` (whether the parameter increases at the start; default: ``lam1 > lam0``).
 
 Each runner solves and returns a function that summarises the run as dict(points, newton
 (total or None), nfev, jev (Jacobian evaluations), folds=[lam estimate], located, ok, and
@@ -123,9 +123,9 @@ def run_ours(pb, analytic, api=None, **options):
 
 
 def run_contique(pb, analytic, contique, *, tol=TOL, dmax=0.05, maxsteps=2000):
-    """`contique.solve` on problem ``pb``: residual tolerance ``tol`` (its 2-norm, times
-    ``pb["residual_scale"]``), largest increment ``dmax`` of every unknown and of the
-    parameter (its ``dxmax`` and ``dlpfmax``; its default 0.05); stopped at the end."""
+    """`contique.solve` on problem ``pb``: residual tolerance ``tol`` (on its 2-norm),
+    largest increment ``dmax`` of every unknown and of the parameter (its ``dxmax`` and
+    ``dlpfmax``; its default 0.05); stopped at the end."""
     cnt = {"f": 0, "J": 0}
     res, jac_u, pjac, free, p = functions(pb)
 
@@ -157,7 +157,7 @@ def run_contique(pb, analytic, contique, *, tol=TOL, dmax=0.05, maxsteps=2000):
             x0=start(pb),
             lpf0=pb["lam0"],
             jac=jac,
-            tol=tol * pb.get("residual_scale", 1.0),
+            tol=tol,
             dxmax=dmax,
             dlpfmax=dmax,
             maxsteps=maxsteps,
@@ -237,8 +237,9 @@ def _pacopy_problem(pb, pacopy, cnt):
 
 def run_pacopy(pb, pacopy, *, newton_tol=TOL, stepsize_max=0.5, max_steps=2000):
     """`pacopy.euler_newton` (0.1.x) on problem ``pb`` with the analytic Jacobian:
-    ``newton_tol`` (times ``pb["residual_scale"]``) and ``stepsize_max``, otherwise its
-    defaults (see bench_trace's docstring); stopped by a callback at the end."""
+    ``newton_tol`` (on the 2-norm of the residual and the arclength equation) and
+    ``stepsize_max``, otherwise its defaults (see bench_trace's docstring); stopped by a
+    callback at the end."""
     cnt = {"f": 0, "J": 0}
     problem = _pacopy_problem(pb, pacopy, cnt)
     done = past_end(pb)
@@ -278,7 +279,7 @@ def run_pacopy(pb, pacopy, *, newton_tol=TOL, stepsize_max=0.5, max_steps=2000):
                 max_steps=max_steps,
                 max_num_retries=50,
                 verbose=False,
-                newton_tol=newton_tol * pb.get("residual_scale", 1.0),
+                newton_tol=newton_tol,
                 stepsize0=min(0.5, stepsize_max) if up else -min(0.5, stepsize_max),
                 stepsize_max=stepsize_max,
             )
@@ -345,11 +346,12 @@ def _hybr(pb, analytic, cnt, tol):
 
 
 def _sparse_newton(pb, cnt, tol, max_iter=20):
-    """``solve(lam, guess) -> (x, good)`` by Newton with SuperLU (`scipy.sparse.linalg`): a
-    residual max-norm below ``tol`` times the residual's scale and an update below ``tol``
-    relative; it gives up after ``max_iter`` iterations or three without progress."""
+    """``solve(lam, guess) -> (x, good)`` by Newton with SuperLU (`scipy.sparse.linalg`),
+    converged when the update is below ``sqrt(tol)`` relative (the error left is then about
+    ``tol``, Newton converging quadratically); it gives up after ``max_iter`` iterations or
+    three without halving the residual."""
     res, jac_u, _, free, params = functions(pb)
-    scale = pb.get("residual_scale", 1.0)
+    step_tol = math.sqrt(tol)
 
     def solve(lam, guess):
         p = dict(params)
@@ -367,7 +369,7 @@ def _sparse_newton(pb, cnt, tol, max_iter=20):
             rn = float(np.max(np.abs(r)))
             if not math.isfinite(rn):
                 return z, False
-            if rn <= tol * scale and np.max(np.abs(dz)) <= 1e-6 * (1.0 + np.max(np.abs(z))):
+            if np.max(np.abs(dz)) <= step_tol * (1.0 + np.max(np.abs(z))):
                 return z, True
             stalled = stalled + 1 if rn >= 0.5 * best else 0
             best = min(best, rn)
@@ -390,8 +392,7 @@ def run_scipy(pb, analytic, *, steps=200):
     cnt = {"f": 0, "J": 0}
     solve = _sparse_newton(pb, cnt, TOL) if pb.get("sparse") else _hybr(pb, analytic, cnt, TOL)
     lam_grid = np.linspace(pb["lam0"], pb["lam1"], steps + 1)
-    keep = start(pb).size <= PATH_UNKNOWNS
-    folds, path, points, ok = [], [], 0, True
+    folds, points, ok = [], 0, True
     x = start(pb)
     for grid in (lam_grid, lam_grid[::-1]):
         x_prev, lam_prev, step = x, grid[0], np.zeros_like(x)
@@ -406,8 +407,6 @@ def run_scipy(pb, analytic, *, steps=200):
             step = x - x_prev
             x_prev, lam_prev = x, lam
             points += 1
-            if keep:
-                path.append(np.append(x, lam))
         if not ok:
             break
     return lambda: {
@@ -419,7 +418,7 @@ def run_scipy(pb, analytic, *, steps=200):
         "located": f"failure (Δ = 1/{steps} of range)",
         "ok": ok,
         "status": "end" if ok else "stopped at a fold",
-        "path": np.array(path) if path else None,
+        "path": None,  # its sheets only, joined across the jumps: not the branch
     }
 
 

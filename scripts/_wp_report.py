@@ -1,0 +1,317 @@
+"""The report of the work–precision benchmark (`bench_work_precision.py`): the tables, the
+fronts and who dominates them, "Choosing rtol", all computed from the measured rows."""
+
+from __future__ import annotations
+
+import math
+import sys
+from datetime import datetime, timezone
+from pathlib import Path
+
+from _report import commit_and_load, write_report
+from _wp_figures import GROUPS, MEASURES, draw_group
+from _wp_problems import dense_output
+from bench_trace import machine
+
+#: errors below this are rounding: they compare equal
+FLOOR = 1e-15
+DEFAULT_RTOL = 1e-4
+
+
+def finite(x) -> bool:
+    return x is not None and math.isfinite(x)
+
+
+def cost(row, axis: str) -> float:
+    """A row's cost on ``axis``: "time" (s) or "nfev" (residual evaluations)."""
+    value = row.time if axis == "time" else row.nfev
+    return math.inf if value is None or not finite(value) else float(value)
+
+
+def fmt_err(e) -> str:
+    if e is None:
+        return "—"
+    if not math.isfinite(e):
+        return "none"
+    return "0" if e == 0 else f"{e:.1e}"
+
+
+def fmt_ms(t) -> str:
+    if not finite(t):
+        return "—"
+    ms = t * 1e3
+    return f"{ms:.3g}" if ms < 1000 else f"{ms:.0f}"
+
+
+def rtol_of(row) -> float:
+    return float(row.label.split("=")[1])
+
+
+def measures_of(rows) -> list[str]:
+    seen: list[str] = []
+    for r in rows:
+        seen += [m for m in r.errors if m not in seen]
+    return [m for m in MEASURES if m in seen]
+
+
+# ----------------------------------------------------------------------------- tables
+
+
+def table(task, rows) -> list[str]:
+    ms = measures_of(rows)
+    head = "| tool | setting | time (ms) | rounds | points | f-evals | J-evals | "
+    head += " | ".join(f"error: {m}" for m in ms) + " | status |"
+    lines = [head, "|---|---|---:|---:|---:|---:|---:|" + "---:|" * len(ms) + "---|"]
+    for r in rows:
+        errs = " | ".join(fmt_err(r.errors.get(m)) for m in ms)
+        status = (
+            r.status if not r.ok else ("ok" if r.status in ("bound", "end", "ok") else r.status)
+        )
+        lines.append(
+            f"| {r.tool} | {r.label} | {fmt_ms(r.time)} | {r.rounds or '—'} | "
+            f"{'—' if r.points is None else r.points} | {'—' if r.nfev is None else r.nfev} | "
+            f"{'—' if r.jev is None else r.jev} | {errs} | {status} |"
+        )
+    return lines
+
+
+# ----------------------------------------------------------------------------- fronts
+
+
+def dominated(row, ours, measure: str, axis: str) -> bool:
+    """Whether one of ``ours`` costs no more than ``row`` on ``axis`` and is at least as
+    accurate in ``measure`` (errors below :data:`FLOOR` compare equal)."""
+    e = max(row.errors[measure], FLOOR)
+    return any(
+        cost(o, axis) <= cost(row, axis) and max(o.errors[measure], FLOOR) <= e for o in ours
+    )
+
+
+def _why_not(row, ours, measure, axis) -> str:
+    c = cost(row, axis)
+    unit = (lambda v: f"{v * 1e3:.3g} ms") if axis == "time" else (lambda v: f"{v:.0f} f-evals")
+    cheaper = [o for o in ours if cost(o, axis) <= c]
+    if not cheaper:
+        first = min(ours, key=lambda o: cost(o, axis))
+        return (
+            f"{row.label} ({unit(c)}, error {fmt_err(row.errors[measure])}) is cheaper than "
+            f"our cheapest run ({unit(cost(first, axis))}, error {fmt_err(first.errors[measure])})"
+        )
+    best = min(cheaper, key=lambda o: o.errors[measure])
+    return (
+        f"{row.label} reaches {fmt_err(row.errors[measure])} at {unit(c)}; at that cost ours "
+        f"reaches {fmt_err(best.errors[measure])} ({best.label})"
+    )
+
+
+def dominance(task, rows) -> list[str]:
+    """The "Does our front dominate?" paragraph of a task, from its rows."""
+    ours = [r for r in rows if r.tool == "ours"]
+    others = [t for t in dict.fromkeys(r.tool for r in rows) if t != "ours"]
+    lines = [_ours_failures(ours)] if _ours_failures(ours) else []
+    if not others:
+        return lines + ["No other tool computes this: the front is ours alone."] + _trend(ours)
+    for m in measures_of(rows):
+        mine = [o for o in ours if finite(o.errors.get(m))]
+        for tool in others:
+            theirs = [r for r in rows if r.tool == tool]
+            valid = [r for r in theirs if finite(r.errors.get(m))]
+            if not valid:
+                if any(m in r.errors for r in theirs):
+                    lines.append(f"- {m}, {tool}: no estimate in any of its {len(theirs)} runs.")
+                continue
+            lines.append(_verdict(m, tool, theirs, valid, mine))
+    return lines + _fold_note(rows)
+
+
+def _verdict(m, tool, theirs, valid, mine) -> str:
+    parts = []
+    for axis, name in (("time", "time"), ("nfev", "f-evals")):
+        beaten = [r for r in valid if mine and dominated(r, mine, m, axis)]
+        text = f"{len(beaten)} of {len(valid)} by {name}"
+        rest = [r for r in valid if r not in beaten]
+        if rest and mine:
+            why = "; ".join(_why_not(r, mine, m, axis) for r in rest[:3])
+            more = f" (and {len(rest) - 3} more)" if len(rest) > 3 else ""
+            text += f" — not dominated: {why}{more}"
+        parts.append(text)
+    verdict = "**yes**" if all(p.startswith(f"{len(valid)} of") for p in parts) else "**no**"
+    failed = len(theirs) - len(valid)
+    tail = f" {failed} of its runs gave no estimate (failed or not run)." if failed else ""
+    return f"- {m}, {tool}: {verdict}. Ours dominates {'; '.join(parts)}.{tail}"
+
+
+def _ours_failures(ours) -> str:
+    bad = [o for o in ours if not o.ok]
+    if not bad:
+        return ""
+    what = ", ".join(f"{o.label} ({o.status.split(':')[0]})" for o in bad)
+    return f"- Ours did not complete at: {what}."
+
+
+def _fold_note(rows) -> list[str]:
+    ours = [r for r in rows if r.tool == "ours" and finite(r.errors.get("fold"))]
+    if not ours:
+        return []
+    worst = max(r.errors["fold"] for r in ours)
+    return [
+        f"- Why: ours locates each fold by Newton on the fold conditions (error ≤ "
+        f"{fmt_err(worst)} at every rtol it completed); contique, pacopy and the SciPy loop "
+        "only bracket folds between computed points, so their error is that of their step "
+        "(or grid) and falls only as they take more steps. On the fold alone ours is "
+        "cheapest at its coarsest rtol; rtol buys the curve between the points."
+    ]
+
+
+def _trend(ours) -> list[str]:
+    lines = []
+    for m in measures_of(ours):
+        pts = sorted((rtol_of(o), o) for o in ours if finite(o.errors.get(m)))
+        if not pts:
+            continue
+        (r1, a), (r2, b) = pts[-1], pts[0]
+        lines.append(
+            f"- {m}: error {fmt_err(a.errors[m])} at rtol = {r1:.0e} ({fmt_ms(a.time)} ms) and "
+            f"{fmt_err(b.errors[m])} at rtol = {r2:.0e} ({fmt_ms(b.time)} ms)."
+        )
+    return lines
+
+
+# ----------------------------------------------------------------------------- choosing rtol
+
+
+def choosing_rtol(results) -> list[str]:
+    """The cost and the errors of ours per rtol over every task, and what they say."""
+    ours = {task.key: [r for r in rows if r.tool == "ours"] for task, rows in results}
+    rtols = sorted({rtol_of(r) for rows in ours.values() for r in rows}, reverse=True)
+    head = "| | " + " | ".join(f"{r:.0e}" for r in rtols) + " |"
+    rule = "|---|" + "---:|" * len(rtols)
+    cost_lines = ["Time per run (ms; — not run, ✗ did not complete):", "", head, rule]
+    err_lines = ["Errors (largest; 'none': no estimate):", "", head, rule]
+    prose = []
+    for key, rows in ours.items():
+        by = {rtol_of(r): r for r in rows}
+        cells = [
+            "—"
+            if r not in by or not by[r].rounds
+            else fmt_ms(by[r].time) + ("" if by[r].ok else " ✗")
+            for r in rtols
+        ]
+        cost_lines.append(f"| {key} | " + " | ".join(cells) + " |")
+        for m in measures_of(rows):
+            cells = [fmt_err(by[r].errors.get(m)) if r in by else "—" for r in rtols]
+            err_lines.append(f"| {key}: {m} | " + " | ".join(cells) + " |")
+        prose.append(_advice(key, by))
+    return cost_lines + [""] + err_lines + ["", *prose]
+
+
+def _advice(key, by) -> str:
+    """One computed sentence per task: which errors do not depend on rtol (within 10× of
+    their best at every completed rtol), from which rtol on each other error is below
+    1e-2, 1e-4, ..., and what a run costs at the default and at the extremes."""
+    done = {r: row for r, row in by.items() if row.ok and row.errors}
+    if not done:
+        return f"- {key}: no run of ours completed."
+    ms = measures_of(list(done.values()))
+    errs = {m: {r: row.errors.get(m, math.inf) for r, row in done.items()} for m in ms}
+    best = {m: min(errs[m].values()) for m in ms}
+    flat = [m for m in ms if max(errs[m].values()) <= 10 * max(best[m], FLOOR)]
+    parts = []
+    if flat:
+        worst = max(max(errs[m].values()) for m in flat)
+        parts.append(
+            f"{', '.join(flat)}: ≤ {fmt_err(worst)} whatever rtol (the coarsest is enough)"
+        )
+    for m in (m for m in ms if m not in flat):
+        reach = []
+        for target in (1e-2, 1e-4, 1e-6, 1e-8, 1e-10):
+            good = [r for r, e in errs[m].items() if e <= target]
+            if good:
+                r = max(good)
+                reach.append(f"≤ {target:.0e} from rtol = {r:.0e} ({fmt_ms(done[r].time)} ms)")
+        ratio = [e / r for r, e in errs[m].items() if finite(e)]
+        parts.append(
+            f"{m}: "
+            + (", ".join(reach) or "above 1e-2 at every rtol")
+            + f" (error/rtol from {min(ratio):.2g} to {max(ratio):.2g})"
+        )
+    times = {r: row.time for r, row in done.items()}
+    lo, hi = max(times), min(times)
+    text = f"- {key}: " + "; ".join(parts) + ". A run costs "
+    if DEFAULT_RTOL in times:
+        text += f"{fmt_ms(times[DEFAULT_RTOL])} ms at the default 1e-04, "
+    text += f"{fmt_ms(times[lo])} ms at {lo:.0e} and {fmt_ms(times[hi])} ms at {hi:.0e}"
+    failed = sorted((r for r, row in by.items() if row.rounds and not row.ok), reverse=True)
+    if failed:
+        text += f"; it did not complete at rtol = {', '.join(f'{r:.0e}' for r in failed)}"
+    return text + "."
+
+
+# ----------------------------------------------------------------------------- the report
+
+
+def _header(args, argv, rounds, notes, elapsed) -> list[str]:
+    commit, load = commit_and_load()
+    now = datetime.now(timezone.utc).strftime("%Y-%m-%d %H:%M UTC")
+    given = sys.argv[1:] if argv is None else argv
+    command = "python scripts/bench_work_precision.py" + "".join(f" {a}" for a in given)
+    dense = (
+        "Dense output: `Branch.interpolate` is in this build; the `dense` errors are those of "
+        "our interpolant."
+        if dense_output()
+        else "Dense output: `Branch.interpolate` is not in this build, so there are no "
+        "`dense` errors; the `curve` errors of ours are those of its points joined by "
+        "straight lines, as for the other tools."
+    )
+    return [
+        "# Work–precision: speed against accuracy",
+        "",
+        f"Measured {now} at commit `{commit}` on {machine()}; load average {load:.2f}. "
+        f"The whole run took {elapsed:.0f} s.",
+        "",
+        f"Reproduce from the repository root: `{command}` (contique 1.1.1 and pacopy 0.1.9 are "
+        "optional, not dependencies: see `scripts/bench_trace.py` for how to install them).",
+        "",
+        "Each setting runs once first (its errors and counts come from that run; settings go "
+        f"coarse to fine per tool, and a tool whose run takes over {args.max_run:g} s skips its "
+        f"finer ones); runs shorter than {args.long:g} s are then timed timeit-style, best of "
+        f"{rounds} round(s) of a loop of at least 0.05 s, rounds interleaved across all runs "
+        "of the problem, so that load from other jobs hits every tool alike; longer runs keep "
+        "their first time (rounds = 1). All tools get the analytic Jacobian. f-evals: "
+        "residual evaluations, counted by wrapping the residual (J-evals: Jacobian "
+        "evaluations or solves with it); for (c) and (d), evaluations of the body's "
+        "tangential equilibrium F̂_T (one per leg residual and one per quadrature node). "
+        f"Errors below {FLOOR:.0e} count as equal (rounding); the figures draw errors below "
+        "1e-16 at 1e-16.",
+        "",
+        dense,
+        "",
+        *[f"Note: {n}" for n in notes],
+    ]
+
+
+def write_all(results, args, argv, rounds, notes, elapsed) -> Path:
+    """Write the figures and the report; returns the report's path."""
+    out = Path(args.out)
+    figures = Path(args.figures)
+    lines = _header(args, argv, rounds, notes, elapsed)
+    for group, (title, stem) in GROUPS.items():
+        these = [(t, rows) for t, rows in results if t.group == group]
+        if not these:
+            continue
+        paths = draw_group(these, figures / stem)
+        lines += ["", f"## ({group}) {title}", ""]
+        lines += [f"![{title}: {axis}]({_relative(p, out.parent)})" for axis, p in paths]
+        for task, rows in these:
+            lines += ["", f"### {task.name}", "", f"Reference: {task.reference}.", ""]
+            lines += [f"Measures: {', '.join(f'`{m}`: {MEASURES[m]}' for m in measures_of(rows))}."]
+            lines += ["", *table(task, rows), "", "**Does our front dominate?**", ""]
+            lines += dominance(task, rows)
+    lines += ["", "## Choosing rtol", "", *choosing_rtol(results), ""]
+    return write_report(out, "\n".join(lines))
+
+
+def _relative(path: Path, start: Path) -> str:
+    import os
+
+    return os.path.relpath(path, start).replace(os.sep, "/")
