@@ -112,6 +112,7 @@ def run_ours(pb, analytic, api=None, **options):
             "ok": bool(br.success) and ended,
             "status": br.status,
             "branch": br,
+            "max_turn_deg": _max_turn(br.tangents),
             "path": (
                 np.column_stack([br[u] for u in unknowns] + [br[free]])
                 if n <= PATH_UNKNOWNS
@@ -120,6 +121,14 @@ def run_ours(pb, analytic, api=None, **options):
         }
 
     return summary
+
+
+def _max_turn(tangents) -> float:
+    """The largest angle (degrees) between consecutive tangents of a branch."""
+    if len(tangents) < 2:
+        return 0.0
+    t = tangents / np.linalg.norm(tangents, axis=1)[:, None]
+    return float(np.degrees(np.arccos(np.clip(np.sum(t[:-1] * t[1:], axis=1), -1.0, 1.0))).max())
 
 
 def run_contique(pb, analytic, contique, *, tol=TOL, dmax=0.05, maxsteps=2000):

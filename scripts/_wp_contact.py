@@ -154,8 +154,10 @@ def _locus_run(rtol):
         "points": len(loci.columns["mu"]),
         "nfev": cnt["f"],
         "jev": None,
-        "ok": all(math.isfinite(v) for v in loci.columns["mu"]),
-        "status": "; ".join(loci.messages) or "ok",
+        "ok": all(b.success for b in loci.branches.values()),
+        "status": "ok"
+        if all(b.success for b in loci.branches.values())
+        else "; ".join(f"{name}: {b.status}" for name, b in loci.branches.items()),
         "result": loci,
     }
 

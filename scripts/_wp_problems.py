@@ -210,7 +210,9 @@ def fold_measure(pb) -> Callable[[dict], dict[str, float]]:
 
     def measure(summary):
         out = {"fold": _fold_error(summary["folds"], pb["folds"])}
-        if "curve" in pb and summary.get("path") is not None and len(summary["path"]) > 1:
+        if "curve" in pb and not summary["ok"]:  # a partial branch: no curve
+            out["curve"] = math.inf
+        elif "curve" in pb and summary.get("path") is not None and len(summary["path"]) > 1:
             out["curve"] = _distance(pb, polyline(summary["path"]))
             br = summary.get("branch")
             if br is not None and dense_output():
@@ -298,8 +300,8 @@ def co_measure(summary) -> dict[str, float]:
     ``curve``: the largest distance of the fold curve's points joined by straight lines to
     the exact fold curve (double roots of the quartic), ``dense`` that of the interpolant."""
     fc = summary["branch"]
-    if fc is None:
-        return {"cusp": math.inf}
+    if fc is None or not summary["ok"]:
+        return {"cusp": math.inf, "curve": math.inf}
     cusps = [c for c in fc.special("cusp") if c.status == "converged"]
     out = {"cusp": math.inf}
     if cusps:

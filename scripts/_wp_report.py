@@ -64,9 +64,8 @@ def table(task, rows) -> list[str]:
     lines = [head, "|---|---|---:|---:|---:|---:|---:|" + "---:|" * len(ms) + "---|"]
     for r in rows:
         errs = " | ".join(fmt_err(r.errors.get(m)) for m in ms)
-        status = (
-            r.status if not r.ok else ("ok" if r.status in ("bound", "end", "ok") else r.status)
-        )
+        status = "ok" if r.ok and r.status in ("bound", "end", "ok") else r.status
+        status = status if len(status) <= 80 else status[:79] + "…"
         lines.append(
             f"| {r.tool} | {r.label} | {fmt_ms(r.time)} | {r.rounds or '—'} | "
             f"{'—' if r.points is None else r.points} | {'—' if r.nfev is None else r.nfev} | "
@@ -121,7 +120,7 @@ def dominance(task, rows) -> list[str]:
                     lines.append(f"- {m}, {tool}: no estimate in any of its {len(theirs)} runs.")
                 continue
             lines.append(_verdict(m, tool, theirs, valid, mine))
-    return lines + _fold_note(rows)
+    return lines + _fold_note(rows) + _curve_note(rows)
 
 
 def _verdict(m, tool, theirs, valid, mine) -> str:
@@ -135,10 +134,42 @@ def _verdict(m, tool, theirs, valid, mine) -> str:
             more = f" (and {len(rest) - 3} more)" if len(rest) > 3 else ""
             text += f" — not dominated: {why}{more}"
         parts.append(text)
-    verdict = "**yes**" if all(p.startswith(f"{len(valid)} of") for p in parts) else "**no**"
+    verdict = "**yes**"
+    if not all(p.startswith(f"{len(valid)} of") for p in parts):
+        low = all(
+            cost(r, axis) < min(cost(o, axis) for o in mine)
+            for axis in ("time", "nfev")
+            for r in valid
+            if mine and not dominated(r, mine, m, axis)
+        )
+        verdict = "**no**, only by runs cheaper than our cheapest" if low else "**no**"
     failed = len(theirs) - len(valid)
     tail = f" {failed} of its runs gave no estimate (failed or not run)." if failed else ""
     return f"- {m}, {tool}: {verdict}. Ours dominates {'; '.join(parts)}.{tail}"
+
+
+def _curve_note(rows) -> list[str]:
+    """Why ours can lose on the curve between points: the tangent turn of its steps."""
+    ours = sorted(
+        (rtol_of(r), r) for r in rows
+        if r.tool == "ours" and r.ok and finite(r.errors.get("curve")) and r.turn is not None
+    )  # fmt: skip
+    if not ours:
+        return []
+    turns = ", ".join(f"{r.turn:.2g}° at {x:.0e}" for x, r in ours[::-1])
+    text = (
+        f"- Why (curve): ours takes long steps. Its largest tangent turn in one step is {turns} "
+        "(its step guard allows 30°, `max_angle`, and aims at 15°; the curve tolerance "
+        "2√rtol binds only at small rtol); a straight segment of length h turning by θ "
+        "misses the curve by about hθ/8, whereas contique's increment limit per component "
+        "and pacopy's stepsize_max keep their segments short."
+    )
+    if not dense_output():
+        text += (
+            " Our dense output (`Branch.interpolate`), the way to get the curve between our"
+            " points, is not in this build."
+        )
+    return [text]
 
 
 def _ours_failures(ours) -> str:
@@ -206,41 +237,35 @@ def choosing_rtol(results) -> list[str]:
 
 
 def _advice(key, by) -> str:
-    """One computed sentence per task: which errors do not depend on rtol (within 10× of
-    their best at every completed rtol), from which rtol on each other error is below
-    1e-2, 1e-4, ..., and what a run costs at the default and at the extremes."""
+    """One computed sentence per task: the errors that do not depend on rtol (within 10× of
+    their best already at the coarsest rtol that completed), from which rtol on each other
+    error falls below 1e-2, 1e-4, ..., and what a run costs at the default and the ends."""
     done = {r: row for r, row in by.items() if row.ok and row.errors}
     if not done:
         return f"- {key}: no run of ours completed."
-    ms = measures_of(list(done.values()))
-    errs = {m: {r: row.errors.get(m, math.inf) for r, row in done.items()} for m in ms}
-    best = {m: min(errs[m].values()) for m in ms}
-    flat = [m for m in ms if max(errs[m].values()) <= 10 * max(best[m], FLOOR)]
+    coarse = max(done)
     parts = []
-    if flat:
-        worst = max(max(errs[m].values()) for m in flat)
-        parts.append(
-            f"{', '.join(flat)}: ≤ {fmt_err(worst)} whatever rtol (the coarsest is enough)"
-        )
-    for m in (m for m in ms if m not in flat):
-        reach = []
-        for target in (1e-2, 1e-4, 1e-6, 1e-8, 1e-10):
-            good = [r for r, e in errs[m].items() if e <= target]
-            if good:
+    for m in measures_of(list(done.values())):
+        errs = {r: row.errors.get(m, math.inf) for r, row in done.items()}
+        best = min(errs.values())
+        if errs[coarse] <= 10 * max(best, FLOOR):
+            parts.append(f"{m} ≤ {fmt_err(max(errs.values()))} at every rtol (take the coarsest)")
+            continue
+        text = f"{m} {fmt_err(errs[coarse])} at rtol = {coarse:.0e}"
+        for target in (1e-2, 1e-4, 1e-6, 1e-8, 1e-10, 1e-12, 1e-14):
+            good = [r for r, e in errs.items() if e <= target]
+            if target < errs[coarse] and good:
                 r = max(good)
-                reach.append(f"≤ {target:.0e} from rtol = {r:.0e} ({fmt_ms(done[r].time)} ms)")
-        ratio = [e / r for r, e in errs[m].items() if finite(e)]
-        parts.append(
-            f"{m}: "
-            + (", ".join(reach) or "above 1e-2 at every rtol")
-            + f" (error/rtol from {min(ratio):.2g} to {max(ratio):.2g})"
-        )
+                text += f", ≤ {target:.0e} from rtol = {r:.0e} ({fmt_ms(done[r].time)} ms)"
+        if m == "dense":  # the interpolant's promise: within rtol
+            text += f"; at most {max(e / r for r, e in errs.items()):.2g}× rtol"
+        parts.append(text)
     times = {r: row.time for r, row in done.items()}
-    lo, hi = max(times), min(times)
+    fine = min(times)
     text = f"- {key}: " + "; ".join(parts) + ". A run costs "
-    if DEFAULT_RTOL in times:
+    if DEFAULT_RTOL in times and DEFAULT_RTOL not in (coarse, fine):
         text += f"{fmt_ms(times[DEFAULT_RTOL])} ms at the default 1e-04, "
-    text += f"{fmt_ms(times[lo])} ms at {lo:.0e} and {fmt_ms(times[hi])} ms at {hi:.0e}"
+    text += f"{fmt_ms(times[coarse])} ms at {coarse:.0e} and {fmt_ms(times[fine])} ms at {fine:.0e}"
     failed = sorted((r for r, row in by.items() if row.rounds and not row.ok), reverse=True)
     if failed:
         text += f"; it did not complete at rtol = {', '.join(f'{r:.0e}' for r in failed)}"

@@ -78,6 +78,7 @@ class Row:
     errors: dict[str, float] = field(default_factory=dict)
     ok: bool = False
     status: str = ""
+    turn: float | None = None  # ours: the largest tangent turn of a step (degrees)
 
 
 @contextlib.contextmanager
@@ -164,6 +165,7 @@ def first_runs(task: Task, max_run: float) -> list[Row]:
         else:
             row.points, row.nfev, row.jev = summary["points"], summary["nfev"], summary["jev"]
             row.ok, row.status = bool(summary["ok"]), str(summary["status"])
+            row.turn = summary.get("max_turn_deg")
         if row.time > max_run:
             capped.add(s.tool)
     return rows
