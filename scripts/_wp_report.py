@@ -77,16 +77,16 @@ def table(task, rows) -> list[str]:
 # ----------------------------------------------------------------------------- fronts
 
 
-def dominated(row, ours, measure: str, axis: str) -> bool:
+def dominated(row, ours, measure: str, axis: str, mine: str | None = None) -> bool:
     """Whether one of ``ours`` costs no more than ``row`` on ``axis`` and is at least as
-    accurate in ``measure`` (errors below :data:`FLOOR` compare equal)."""
+    accurate, ``row`` in ``measure`` and ours in ``mine`` (default the same; errors below
+    :data:`FLOOR` compare equal)."""
     e = max(row.errors[measure], FLOOR)
-    return any(
-        cost(o, axis) <= cost(row, axis) and max(o.errors[measure], FLOOR) <= e for o in ours
-    )
+    mine = mine or measure
+    return any(cost(o, axis) <= cost(row, axis) and max(o.errors[mine], FLOOR) <= e for o in ours)
 
 
-def _why_not(row, ours, measure, axis) -> str:
+def _why_not(row, ours, measure, axis, mine) -> str:
     c = cost(row, axis)
     unit = (lambda v: f"{v * 1e3:.3g} ms") if axis == "time" else (lambda v: f"{v:.0f} f-evals")
     cheaper = [o for o in ours if cost(o, axis) <= c]
@@ -94,24 +94,29 @@ def _why_not(row, ours, measure, axis) -> str:
         first = min(ours, key=lambda o: cost(o, axis))
         return (
             f"{row.label} ({unit(c)}, error {fmt_err(row.errors[measure])}) is cheaper than "
-            f"our cheapest run ({unit(cost(first, axis))}, error {fmt_err(first.errors[measure])})"
+            f"our cheapest run ({unit(cost(first, axis))}, error {fmt_err(first.errors[mine])})"
         )
-    best = min(cheaper, key=lambda o: o.errors[measure])
+    best = min(cheaper, key=lambda o: o.errors[mine])
     return (
         f"{row.label} reaches {fmt_err(row.errors[measure])} at {unit(c)}; at that cost ours "
-        f"reaches {fmt_err(best.errors[measure])} ({best.label})"
+        f"reaches {fmt_err(best.errors[mine])} ({best.label})"
     )
 
 
 def dominance(task, rows) -> list[str]:
-    """The "Does our front dominate?" paragraph of a task, from its rows."""
+    """The "Does our front dominate?" paragraph of a task, from its rows: each measure of
+    each other tool against ours, and their curves against our dense output if there is
+    one."""
     ours = [r for r in rows if r.tool == "ours"]
     others = [t for t in dict.fromkeys(r.tool for r in rows) if t != "ours"]
     lines = [_ours_failures(ours)] if _ours_failures(ours) else []
     if not others:
         return lines + ["No other tool computes this: the front is ours alone."] + _trend(ours)
-    for m in measures_of(rows):
-        mine = [o for o in ours if finite(o.errors.get(m))]
+    pairs = [(m, m) for m in measures_of(rows) if m != "dense"]
+    if any(finite(o.errors.get("dense")) for o in ours):
+        pairs.append(("curve", "dense"))
+    for m, m_ours in pairs:
+        mine = [o for o in ours if finite(o.errors.get(m_ours))]
         for tool in others:
             theirs = [r for r in rows if r.tool == tool]
             valid = [r for r in theirs if finite(r.errors.get(m))]
@@ -119,18 +124,18 @@ def dominance(task, rows) -> list[str]:
                 if any(m in r.errors for r in theirs):
                     lines.append(f"- {m}, {tool}: no estimate in any of its {len(theirs)} runs.")
                 continue
-            lines.append(_verdict(m, tool, theirs, valid, mine))
+            lines.append(_verdict(m, m_ours, tool, theirs, valid, mine))
     return lines + _fold_note(rows) + _curve_note(rows)
 
 
-def _verdict(m, tool, theirs, valid, mine) -> str:
+def _verdict(m, m_ours, tool, theirs, valid, mine) -> str:
     parts = []
     for axis, name in (("time", "time"), ("nfev", "f-evals")):
-        beaten = [r for r in valid if mine and dominated(r, mine, m, axis)]
+        beaten = [r for r in valid if mine and dominated(r, mine, m, axis, m_ours)]
         text = f"{len(beaten)} of {len(valid)} by {name}"
         rest = [r for r in valid if r not in beaten]
         if rest and mine:
-            why = "; ".join(_why_not(r, mine, m, axis) for r in rest[:3])
+            why = "; ".join(_why_not(r, mine, m, axis, m_ours) for r in rest[:3])
             more = f" (and {len(rest) - 3} more)" if len(rest) > 3 else ""
             text += f" — not dominated: {why}{more}"
         parts.append(text)
@@ -140,12 +145,13 @@ def _verdict(m, tool, theirs, valid, mine) -> str:
             cost(r, axis) < min(cost(o, axis) for o in mine)
             for axis in ("time", "nfev")
             for r in valid
-            if mine and not dominated(r, mine, m, axis)
+            if mine and not dominated(r, mine, m, axis, m_ours)
         )
         verdict = "**no**, only by runs cheaper than our cheapest" if low else "**no**"
     failed = len(theirs) - len(valid)
     tail = f" {failed} of its runs gave no estimate (failed or not run)." if failed else ""
-    return f"- {m}, {tool}: {verdict}. Ours dominates {'; '.join(parts)}.{tail}"
+    what = m if m == m_ours else f"{m} (ours: {m_ours})"
+    return f"- {what}, {tool}: {verdict}. Ours dominates {'; '.join(parts)}.{tail}"
 
 
 def _curve_note(rows) -> list[str]:
