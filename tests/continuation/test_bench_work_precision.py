@@ -59,7 +59,7 @@ def test_quick_mode_writes_the_report_and_the_figures(tmp_path, monkeypatch):
     assert text.startswith("# Work–precision: speed against accuracy")
     assert "at commit `" in text and "load average" in text
     assert "`python scripts/bench_work_precision.py --quick --only cusp,co" in text
-    for heading in ("## (a) ", "## (b) ", "## Choosing rtol"):
+    for heading in ("## Summary", "## (a) ", "## (b) ", "## Choosing rtol"):
         assert heading in text
     assert text.count("**Does our front dominate?**") == 2
     # two figures per group, linked from the report, written atomically
@@ -89,3 +89,6 @@ def test_quick_mode_writes_the_report_and_the_figures(tmp_path, monkeypatch):
     co = _rows(text, "### CO oxidation")
     assert all(float(r[9]) <= 1e-11 for r in co), co
     assert "| cusp: fold |" in text and "| co: cusp |" in text
+    summary = text.split("## Summary", 1)[1].split("## (a)", 1)[0]
+    assert "| cusp: fold | " in summary and "| cusp: curve (ours: dense) | " in summary
+    assert "co:" not in summary  # ours only: nothing to compare
