@@ -52,7 +52,6 @@ import argparse
 import contextlib
 import datetime
 import importlib.metadata
-import io
 import math
 import os
 import platform
@@ -62,17 +61,25 @@ from pathlib import Path
 
 import numpy as np
 import scipy
-import scipy.optimize
 from scipy.linalg import lapack
 
 import cusp.examples as ex
-from cusp.continuation import Problem, trace
 
 from _report import write_report
+from _tools import (
+    TOL,
+    best_times,
+    fold_errors,
+    functions,
+    import_contique,
+    import_pacopy,
+    run_contique,
+    run_ours,
+    run_pacopy,
+    run_scipy,
+)
 
 ROOT = Path(__file__).resolve().parents[1]
-
-TOL = 1e-10
 
 # ----------------------------------------------------------------------------- problems
 # Each problem: an example of `cusp.examples` with one unknown x and one free parameter lam
@@ -111,221 +118,16 @@ def _truss():
 PROBLEMS = [_cusp(), _truss()]
 
 
-def _functions(pb):
-    """The example's residual, Jacobian and parameter derivative, its free parameter's name,
-    and its parameters at the start (a fresh dict)."""
-    example = pb["example"]
-    params = dict(example.params)
-    params[example.free] = pb["lam0"]
-    return example.residual, example.jacobian, example.param_jacobian, example.free, params
-
-
 # ----------------------------------------------------------------------------- runners
-# Each runner solves and returns a function that summarises the run as dict(points, newton
-# (total or None), nfev, folds=[lam estimate], located, ok): the timings cover the solve only,
-# not this harness's post-processing (which for contique scans every point for its folds)
-
-
-def _counted(fn, counter, key):
-    def wrapped(*a):
-        counter[key] += 1
-        return fn(*a)
-
-    return wrapped
-
-
-def run_ours(pb, analytic, api=None):
-    """``trace`` on problem ``pb``; ``api``: the module providing ``Problem`` and ``trace``
-    (default: this checkout's ``continuation``; `bench_ab.py` passes other revisions)."""
-    problem_cls, trace_fn = (Problem, trace) if api is None else (api.Problem, api.trace)
-    cnt = {"f": 0}
-    res, jac, pjac, free, params = _functions(pb)
-    unknowns = list(pb["example"].unknowns)
-
-    def residual(u, p):
-        cnt["f"] += 1
-        return res(u, p)
-
-    if analytic:
-        prob = problem_cls(
-            residual, unknowns=unknowns, params=params, jacobian=jac, param_jacobian=pjac
-        )
-    else:
-        prob = problem_cls(residual, unknowns=unknowns, params=params, derivatives="central")
-    lo, hi = sorted((pb["lam0"], pb["lam1"]))
-    br = trace_fn(prob, u0=[pb["x0"]], free=free, bounds={free: (lo, hi)})
-
-    def summary():
-        folds = [
-            sp.values[free]
-            for sp in br.special_points
-            if sp.kind == "fold" and sp.status == "converged"
-        ]
-        return {
-            "points": len(br[free]),
-            "newton": int(np.sum(br.stats["newton_iterations"])),
-            "nfev": cnt["f"],
-            "folds": folds,
-            "located": "refined (Newton)",
-            "ok": bool(br.success) and br[free][-1] == pb["lam1"],
-        }
-
-    return summary
-
-
-def run_contique(pb, analytic, contique):
-    cnt = {"f": 0}
-    res, jac_u, pjac, free, p = _functions(pb)
-
-    def fun(x, lpf):
-        cnt["f"] += 1
-        p[free] = lpf
-        return res(x, p)
-
-    jac = None
-    if analytic:
-
-        def jac_x(x, lpf, *_):
-            p[free] = lpf
-            return jac_u(x, p)
-
-        def jac_lpf(x, lpf, *_):
-            p[free] = lpf
-            return pjac(x, p, free)
-
-        # contique calls the Jacobian parts with its `args` (default (None,)) appended
-        jac = (jac_x, jac_lpf)
-    lam1 = pb["lam1"]
-    up = lam1 > pb["lam0"]
-    lams, newton = [], 0
-    with contextlib.redirect_stdout(io.StringIO()):
-        for res_ in contique.solve(
-            fun, x0=np.array([pb["x0"]]), lpf0=pb["lam0"], jac=jac, tol=TOL, maxsteps=2000
-        ):
-            lams.append(res_.x[-1])
-            newton += res_.niterations
-            if (res_.x[-1] >= lam1) if up else (res_.x[-1] <= lam1):
-                break
-
-    return lambda: _bracketed_summary(lams, newton, cnt["f"], lam1, up)
-
-
-def _bracketed_summary(lams, newton, nfev, lam1, up):
-    """The summary of a tool that does not locate folds (contique, pacopy): its parameter
-    values ``lams`` along the branch, folds bracketed where the parameter turns."""
-    return {
-        "points": len(lams),
-        "newton": newton,
-        "nfev": nfev,
-        "folds": _bracketed_folds(np.asarray(lams)),
-        "located": "bracketed (extreme point)",
-        "ok": bool(len(lams)) and ((lams[-1] >= lam1) if up else (lams[-1] <= lam1)),
-    }
-
-
-class _PacopyStop(Exception):
-    """Raised by our callback to end `pacopy.euler_newton` once the parameter passes the end."""
-
-
-def run_pacopy(pb, pacopy):
-    """`pacopy.euler_newton` (0.1.x) on problem ``pb`` with the analytic Jacobian (see the
-    module docstring for the settings)."""
-    cnt = {"f": 0}
-    res, jac_u, pjac, free, p = _functions(pb)
-    gesv = lapack.dgesv
-    solver_error = pacopy.JacobianSolverError
-
-    class PacopyProblem:
-        # the interface of pacopy 0.1.x: inner, norm2_r, f, df_dlmbda, jacobian_solver
-        def inner(self, a, b):
-            return a.dot(b)
-
-        def norm2_r(self, a):
-            return a.dot(a)
-
-        def f(self, u, lmbda):
-            cnt["f"] += 1
-            p[free] = lmbda
-            return res(u, p)
-
-        def df_dlmbda(self, u, lmbda):
-            p[free] = lmbda
-            return pjac(u, p, free)
-
-        def jacobian_solver(self, u, lmbda, rhs):
-            p[free] = lmbda
-            _, _, x, info = gesv(jac_u(u, p), rhs)
-            if info:
-                raise solver_error  # pacopy halves the step
-            return x
-
-    lam1 = pb["lam1"]
-    up = lam1 > pb["lam0"]
-    lams, newton, last = [], 0, [0]
-
-    def callback(k, lmbda, u):
-        nonlocal newton
-        lams.append(lmbda)
-        newton += last[0]  # the corrector that produced this (accepted) point
-        last[0] = 0
-        if (lmbda >= lam1) if up else (lmbda <= lam1):
-            raise _PacopyStop
-
-    module = importlib.import_module("pacopy.euler_newton")
-    corrector = module._newton_corrector
-
-    def counted_corrector(*a):
-        out = corrector(*a)
-        last[0] = out[2]  # num_newton_steps
-        return out
-
-    module._newton_corrector = counted_corrector
-    try:
-        with contextlib.redirect_stdout(io.StringIO()), contextlib.suppress(_PacopyStop):
-            pacopy.euler_newton(
-                PacopyProblem(),
-                np.array([pb["x0"]], dtype=float),  # pacopy updates u in place
-                pb["lam0"],
-                callback,
-                max_steps=2000,
-                max_num_retries=50,
-                verbose=False,
-                newton_tol=TOL,
-                stepsize0=0.5 if up else -0.5,
-                stepsize_max=0.5,
-            )
-    finally:
-        module._newton_corrector = corrector
-
-    return lambda: _bracketed_summary(lams, newton, cnt["f"], lam1, up)
-
-
-def _import_pacopy():
-    """pacopy if version 0.1.x is installed, else None, and a note for the report."""
-    try:
-        import pacopy
-    except ImportError:
-        return None, "pacopy is not installed: no rows."
-    version = importlib.metadata.version("pacopy")
-    if not version.startswith("0.1."):
-        return None, f"pacopy {version} is installed, but this script drives the 0.1.x API."
-    return pacopy, None
-
-
-def _bracketed_folds(lams):
-    d = np.diff(lams)
-    out = []
-    for i in range(1, d.size):
-        if d[i - 1] != 0 and d[i] != 0 and np.sign(d[i]) != np.sign(d[i - 1]):
-            out.append(lams[i])  # the extreme parameter value among the computed points
-    return out
+# The tools' runners are in _tools.py (shared with bench_work_precision.py); here only the
+# floor, which no other script uses.
 
 
 def run_floor(pb):
     """The bare loop (see the module docstring): defaults of `ContinuationOptions`."""
     gesv, getrs = lapack.dgesv, lapack.dgetrs
     cnt = {"f": 0}
-    res, jac, pjac, free, params = _functions(pb)
+    res, jac, pjac, free, params = functions(pb)
 
     def residual(z):
         cnt["f"] += 1
@@ -391,60 +193,6 @@ def run_floor(pb):
         "folds": [],
         "located": "none (no special points)",
         "ok": True,
-    }
-
-
-def run_scipy(pb, analytic):
-    """Natural-parameter continuation with `scipy.optimize.root` (hybr) at steps of 1% of the
-    range, forward and then backward from the end state (a hysteresis sweep). Past a fold
-    hybr fails (it stalls at the residual minimum, which is the fold itself): the fold is
-    detected by that failure and estimated by the midpoint of the last converged parameter and
-    the failed one; the loop then jumps to the other sheet by retrying from guesses further
-    along the last direction of motion of x."""
-    cnt = {"f": 0}
-    res, jac_u, _, free, params = _functions(pb)
-    lam_grid = np.linspace(pb["lam0"], pb["lam1"], 201)
-    folds, points, ok = [], 0, True
-    x = pb["x0"]
-
-    def solve(lam, guess):
-        p = dict(params)
-        p[free] = lam
-
-        def fun(z):
-            cnt["f"] += 1
-            return res(z, p)
-
-        jac = (lambda z: jac_u(z, p)) if analytic else None
-        sol = scipy.optimize.root(fun, [guess], jac=jac, method="hybr", tol=TOL)
-        good = sol.success and abs(res(sol.x, p)[0]) <= 1e-9
-        return float(sol.x[0]), good
-
-    for grid in (lam_grid, lam_grid[::-1]):
-        x_prev, lam_prev, step = x, grid[0], 0.0
-        for lam in grid:
-            x, good = solve(lam, x_prev)
-            if not good:
-                folds.append(0.5 * (lam_prev + lam))
-                direction = math.copysign(1.0, step) if step else 1.0
-                for jump in (0.5, 1.0, 2.0, 4.0):
-                    x, good = solve(lam, x_prev + direction * jump * max(1.0, abs(x_prev)))
-                    if good:
-                        break
-                if not good:
-                    ok = False
-                    break
-            step = x - x_prev if good else step
-            x_prev, lam_prev = x, lam
-            points += 1
-        ok = ok and good
-    return lambda: {
-        "points": points,
-        "newton": None,
-        "nfev": cnt["f"],
-        "folds": folds,
-        "located": "failure (Δ = 1% of range)",
-        "ok": ok,
     }
 
 
@@ -516,44 +264,6 @@ def _phases_once(pb, rounds):
     return total / rounds, out
 
 
-def autorange(fn):
-    """timeit-style loop count: the smallest 1, 10, 100, ... giving >= 0.05 s."""
-    number = 1
-    while True:
-        t0 = time.perf_counter()
-        for _ in range(number):
-            fn()
-        if time.perf_counter() - t0 >= 0.05 or number >= 1000:
-            return number
-        number *= 10
-
-
-def best_times(fns, repeat):
-    """Best per-call time of each function over `repeat` rounds. The rounds are interleaved
-    (every function once per round) so that load from other jobs on a shared machine hits all
-    tools alike and the ratios stay fair."""
-    numbers = [autorange(fn) for fn in fns]
-    best = [math.inf] * len(fns)
-    for _ in range(repeat):
-        for i, (fn, number) in enumerate(zip(fns, numbers, strict=True)):
-            t0 = time.perf_counter()
-            for _ in range(number):
-                fn()
-            best[i] = min(best[i], (time.perf_counter() - t0) / number)
-    return best
-
-
-def fold_errors(found, exact):
-    """Error of each exact fold's parameter vs the nearest reported estimate (None if none)."""
-    errs = []
-    for _, lam in exact:
-        if not found:
-            errs.append(None)
-            continue
-        errs.append(min(abs(v - lam) for v in found))
-    return errs
-
-
 def machine():
     cpu = platform.processor() or platform.machine()
     with contextlib.suppress(OSError):
@@ -587,11 +297,8 @@ def main(argv=None):
     ap.add_argument("--out", default=str(ROOT / "docs" / "benchmarks" / "trace.md"))
     args = ap.parse_args(argv)
 
-    try:
-        import contique
-    except ImportError:
-        contique = None
-    pacopy, pacopy_note = _import_pacopy()
+    contique = import_contique()
+    pacopy, pacopy_note = import_pacopy()
 
     variants = [
         ("ours", "analytic", lambda pb: run_ours(pb, True)),

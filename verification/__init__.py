@@ -26,7 +26,10 @@ One module per job:
   :func:`derivation`);
 - :mod:`~cusp.verification.printed`: printed against derived (:func:`check_printed`);
 - :mod:`~cusp.verification.implementation`: derived against the float models
-  (:func:`exact_value`, :func:`check_implementation`).
+  (:func:`exact_value`, :func:`check_implementation`);
+- :mod:`~cusp.verification.oracles`: independent references of the whole contact-loss path,
+  the test oracles of the models (the exponential closed forms evaluated exactly, the
+  Gaussian and sphere paths in mpmath).
 
 Equation ids are the paper's numbers ("9", "12", ...) plus ``"MD"``, ``"AB"`` and ``"32"``
 for Section 4; ids of the form ``"12 (reading b)"`` are alternative readings of a garbled
