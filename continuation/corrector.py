@@ -58,6 +58,12 @@ def _floor_step_tol(system: Any, step_tol: float) -> float:
     return step_tol if system.derivatives_exact else max(step_tol, _FD_STEP_TOL)
 
 
+def _at_floor(system: Any, a: Any, z: np.ndarray, rn: float) -> bool:
+    """True if the residual max-norm ``rn`` at ``z`` is at the rounding level of its own
+    terms (``a``: the last bordered matrix): as small as it gets in floating point."""
+    return rn <= system.residual_floor(a[:-1], z)
+
+
 def _sparse_step(a: Any, rhs: np.ndarray) -> tuple[Any, Any, str]:
     """A sparse Newton matrix factored and solved for ``rhs``: ``(LU, solution, "")``, or the
     reason it failed last."""
@@ -81,7 +87,9 @@ def newton(
     """Solve ``G(z) = 0``, ``row·z = c`` by Newton's method from ``z0`` (``c`` None: the
     hyperplane through ``z0``, ``c = row·z0``).
 
-    Converged when the max-norm of ``G`` is ≤ ``tol`` and the last update is
+    Converged when the max-norm of ``G`` is ≤ ``tol`` (or at the rounding level of its own
+    terms, ``system.residual_floor``: a tight ``tol`` cannot be met by a residual whose terms
+    are large, as on fine discretisations) and the last update is
     ≤ ``sqrt(step_tol)·(1 + |z|)``: under Newton's quadratic convergence the error left is
     then of order ``step_tol`` (the next update would be about the square of the last); or,
     whatever the residual, when the update is ≤ ``step_tol·(1 + |z|)`` (AUTO's test:
@@ -173,7 +181,7 @@ def newton(
         if rn_new != rn_new or sn != sn:
             rn, reason = rn_new, "nonfinite"
             break
-        if rn_new <= tol and sn <= sq_step_tol and not strict:
+        if sn <= sq_step_tol and not strict and (rn_new <= tol or _at_floor(system, a, z, rn_new)):
             rn, converged = rn_new, True
             break
         # AUTO's test, with the residual at its rounding floor (see above)
