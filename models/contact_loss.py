@@ -88,6 +88,7 @@ from .protocol import (
     level_lengths,
     require_levels,
     require_path_body,
+    slipped_area,
     stick_bounds,
 )
 
@@ -284,8 +285,7 @@ class ContactLoss:
         ell, dell = L.log_normal_load(p)
         F, dF_p, dF_q = L.tangential_ratio(p, q)
         s, ds_p, ds_q = L.slip(p, q)
-        ast, dast_p, dast_q = L.stick_area(p, q)
-        r, dr_p = L.area_ratio(p)
+        a, da_p, da_q = slipped_area(L, p, q, self.area_reading)
         k = self.mu0 / mu
         m = mu / self.g_A
         R = np.empty(5)
@@ -305,15 +305,10 @@ class ContactLoss:
         J[2, 4] = -m * ds_p
         J[2, 5] = -m * ds_q
         J[2, 6] = -s / self.g_A
+        R[3] = a_sl - a  # Eq 32 (protocol.slipped_area: without cancellation where it can)
         J[3, 3] = 1.0
-        if self.area_reading == "printed":
-            R[3] = a_sl - (2.0 - ast - r)
-            J[3, 4] = dast_p + dr_p
-            J[3, 5] = dast_q
-        else:
-            R[3] = a_sl - (1.0 - r * ast)
-            J[3, 4] = dr_p * ast + r * dast_p
-            J[3, 5] = r * dast_q
+        J[3, 4] = -da_p
+        J[3, 5] = -da_q
         if leg == "OA":
             R[4] = red
             J[4, 2] = 1.0

@@ -48,6 +48,21 @@ small slips c, a and a0 agree to 1e-8 and more, and a − c must not be formed f
 * ``stick_bounds`` — (low, high), the range of q in which a stick zone exists; the end that
   is finite is the stick level of gross sliding. Without it, (0, inf).
 
+Two optional members give the slipped area without cancellation, for a body whose Â_ST and
+area ratio are within rounding of 1 at small slips or small reductions (the sphere's:
+Â_ST = (c/a)² ≈ 1 − g_A/g_lim, so 1 − Â_ST formed from it keeps only ~ε over its size):
+
+* ``slip_area(p, q)`` — 1 − Â_ST and its derivatives ``(value, d/dp, d/dq)``, the slipped
+  share of the current real contact area, evaluated without forming Â_ST (the sphere's:
+  (a² − c²)/a² from q − p);
+* ``area_loss(p)`` — 1 − A_r(p)/A_r(p0) and d/dp, evaluated without forming the ratio.
+
+With either, Â_SL is (1 − Â_ST) + (1 − A_r/A_r0) as printed and
+(1 − A_r/A_r0) + (A_r/A_r0)(1 − Â_ST) in the consistent reading, a sum of the two
+(:func:`slipped_area`); the member that is absent is formed as 1 − ``stick_area`` or
+1 − ``area_ratio``. Without both, Â_SL is formed from ``stick_area`` and ``area_ratio`` as
+above. The derivatives enter the Jacobian like the others, and must be exact.
+
 One optional member gives the released energies in closed form, for a body whose legs are
 explicit enough (the sphere's: polynomials in its levels):
 
@@ -85,6 +100,7 @@ __all__ = [
     "level_lengths",
     "stick_bounds",
     "sliding_level",
+    "slipped_area",
     "RESERVED_COLUMNS",
 ]
 
@@ -202,6 +218,34 @@ def sliding_level(levels: Any) -> float:
     """The stick level of gross sliding: the finite end of :func:`stick_bounds`."""
     lo, hi = stick_bounds(levels)
     return lo if math.isfinite(lo) else hi
+
+
+def slipped_area(levels: Any, p: float, q: float, reading: str) -> tuple[float, float, float]:
+    """Â_SL (Eq 32) at the levels ``p``, ``q`` and its derivatives in p and q, ``reading``
+    ``"printed"`` or ``"consistent"`` (module docstring): from the body's ``slip_area`` and
+    ``area_loss`` where it has them, else from ``stick_area`` and ``area_ratio``."""
+    slip_area = getattr(levels, "slip_area", None)
+    area_loss = getattr(levels, "area_loss", None)
+    if slip_area is None and area_loss is None:
+        ast, dast_p, dast_q = levels.stick_area(p, q)
+        r, dr_p = levels.area_ratio(p)
+        if reading == "printed":
+            return 2.0 - ast - r, -(dast_p + dr_p), -dast_q
+        return 1.0 - r * ast, -(dr_p * ast + r * dast_p), -r * dast_q
+    if slip_area is not None:
+        sa, dsa_p, dsa_q = slip_area(p, q)
+    else:
+        ast, dast_p, dast_q = levels.stick_area(p, q)
+        sa, dsa_p, dsa_q = 1.0 - ast, -dast_p, -dast_q
+    if area_loss is not None:
+        al, dal_p = area_loss(p)
+    else:
+        r, dr_p = levels.area_ratio(p)
+        al, dal_p = 1.0 - r, -dr_p
+    if reading == "printed":
+        return sa + al, dsa_p + dal_p, dsa_q
+    r, dr_p = levels.area_ratio(p)
+    return al + r * sa, dal_p + dr_p * sa + r * dsa_p, r * dsa_q
 
 
 def require_path_body(body: object) -> PathBody:

@@ -172,7 +172,9 @@ class SphereLevels:
     * log(F_N/F_N0) = 3 log(1 − p)                 (Hertz, F_N ∝ a³)
     * F̂_T = 1 − (c/a)³ = r(3 − 3r + r²)            (Eq 19)
     * g_T = μκ(a² − c²)/a0² = μκ(q − p)(2 − p − q)  (Eq 2 with Hertz)
-    * Â_ST = (c/a)² = (1 − r)²,  A_r/A_r(F_N0) = (1 − p)²  (A_ST ∝ c², A_r ∝ a²)
+    * Â_ST = (c/a)² = (1 − r)²,  A_r/A_r(F_N0) = (1 − p)²  (A_ST ∝ c², A_r ∝ a²), and
+      the slipped shares 1 − Â_ST = (q − p)(2 − p − q)/(1 − p)² (``slip_area``) and
+      1 − A_r/A_r(F_N0) = p(2 − p) (``area_loss``), which keep their digits at small slips
 
     with κ = (2 − ν) E* a0² / (2 G R*) [µm]. The spheres slide as a whole when the stick zone
     vanishes, c = 0, i.e. q = 1 (``stick_bounds``), at g_T = μκ(1 − p)² (``slip_limit``). The
@@ -236,6 +238,18 @@ class SphereLevels:
     def area_ratio(self, p: float) -> tuple[float, float]:
         """A_r/A_r(F_N0) = (1 − p)² and its derivative."""
         return (1.0 - p) ** 2, -2.0 * (1.0 - p)
+
+    def slip_area(self, p: float, q: float) -> tuple[float, float, float]:
+        """1 − Â_ST = (a² − c²)/a² = (q − p)(2 − p − q)/(1 − p)² and its derivatives: at small
+        slips Â_ST ≈ 1 − g_T/g_lim, and 1 − Â_ST formed from it would keep only ~ε/f of its
+        digits; from q − p it keeps them all."""
+        w = 1.0 - p
+        k = (1.0 - q) / w  # c/a
+        return (q - p) * (2.0 - p - q) / (w * w), -2.0 * k * k / w, 2.0 * k / w
+
+    def area_loss(self, p: float) -> tuple[float, float]:
+        """1 − A_r/A_r(F_N0) = 1 − (1 − p)² = p(2 − p) and its derivative."""
+        return p * (2.0 - p), 2.0 * (1.0 - p)
 
     def slip_limit(self, p: float) -> float:
         """κ(1 − p)² [µm]: the stick zone vanishes (gross sliding) at g_T = μκ(a/a0)²."""

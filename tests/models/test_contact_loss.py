@@ -369,14 +369,53 @@ def test_sphere_at_tiny_slips_keeps_the_reduction_exact(f):
     # reduction 1e-9 at f = 1e-8 lost 7 digits in n_B = 1 - 1e-9 and B's g_T and F_T were
     # 3.7e-9 off; now every point's g_T and F_T is exact to rounding (measured ≤ 5.3e-16).
     # The energies are the sphere's closed form (test below): no message any more, where the
-    # quadrature's bound was 4.1e-5 (f = 1e-8) and 4.1e-4 (f = 1e-9) relative. A_SL
-    # (1 - Â_ST with Â_ST ≈ 1 - f) is still limited by that cancellation: 8.6e-9 (f = 1e-8)
-    # and 8.3e-8 (f = 1e-9) relative, measured against the same mpmath path.
+    # quadrature's bound was 4.1e-5 (f = 1e-8) and 4.1e-4 (f = 1e-9) relative. A_SL too
+    # (test below: the sphere's slip_area and area_loss).
     res, pts, energy = _sphere_small_slip(f)
     for key in "ABCD":
-        for q in ("g_T", "F_T", "F_N"):
+        for q in ("g_T", "F_T", "F_N", "A_SL"):
             assert res.points[key][q] == pytest.approx(float(pts[key][q]), rel=1e-14), (key, q)
     assert res.messages == []
+
+
+@pytest.mark.parametrize("reading", ["printed", "consistent"])
+@pytest.mark.parametrize("f", [1e-3, 1e-6, 1e-8, 1e-9])
+def test_sphere_slipped_area_at_small_slips_keeps_its_digits(f, reading):
+    # issue 17: Â_SL = (1 − Â_ST) + (1 − A_r/A_r0) with Â_ST = (c/a)² ≈ 1 − f, formed as
+    # 1 − Â_ST, kept ~ε/f of its digits: 2.2e-13 (f = 1e-3), 1.7e-10 (1e-6), 8.6e-9 (1e-8),
+    # 8.3e-8 (1e-9) relative at the worst of A–D, either reading. The sphere's slip_area
+    # ((q − p)(2 − p − q)/(1 − p)²) and area_loss (p(2 − p)) keep them: measured ≤ 2.1e-16
+    # at every point and f here, both readings. Reference: the 40-digit mpmath path of
+    # _contact_oracles, its A_SL (printed) or 1 − (c/a0)² (consistent: A_ST/A_r(F_N0)).
+    sph = Sphere(**SPHERE)
+    g_A = f * float(sph.slip_limit(1000.0))
+    F_Np = 1000.0 - 0.5 * float(sph.tangential_force(g_A, 1000.0)) / SPHERE["mu"]
+    res = ContactLoss(sph, 1000.0, g_A, F_Np, area_reading=reading).run()
+    pts, _ = oracles.sphere_path(**SPHERE, F_N0=1000.0, g_A=g_A, F_Np=F_Np)
+    with mp.workdps(oracles.DPS):
+        for key in "ABCD":
+            ref = pts[key]
+            want = ref["A_SL"] if reading == "printed" else 1 - (ref["c"] / pts["O"]["a"]) ** 2
+            assert res.points[key]["A_SL"] == pytest.approx(float(want), rel=1e-14), key
+
+
+def test_sphere_slip_area_is_one_minus_the_stick_area_closed_form():
+    # SphereLevels.slip_area and area_loss against Eq 22 (Â_ST = (1 − F̂_T)^{2/3},
+    # Sphere.stick_area_ratio at the levels' F̂_T) and (1 − p)²: at moderate levels nothing
+    # cancels and they agree to rounding (measured ≤ 5.2e-16 and 7.9e-16 relative); their
+    # derivatives are those of stick_area and area_ratio, negated (exactly).
+    L = Sphere(**SPHERE).contact_levels(1000.0, 2.0)
+    # (p, q) = (1 − a/a0, 1 − c/a0): a = 0.95 a0, c = 0.7 a0; a = 0.8 a0, c = 0.3 a0;
+    # a = 1.1 a0 (a load above F_N0), c = 0.5 a0
+    for p, q in ((0.05, 0.3), (0.2, 0.7), (-0.1, 0.5)):
+        sa, dsa_p, dsa_q = L.slip_area(p, q)
+        ast = float(Sphere.stick_area_ratio(L.tangential_ratio(p, q)[0]))
+        assert sa == pytest.approx(1.0 - ast, rel=1e-15), (p, q)
+        _, dast_p, dast_q = L.stick_area(p, q)
+        assert (dsa_p, dsa_q) == (-dast_p, -dast_q), (p, q)
+        al, dal_p = L.area_loss(p)
+        assert al == pytest.approx(1.0 - (1.0 - p) ** 2, rel=1e-15), p
+        assert dal_p == -L.area_ratio(p)[1], p
 
 
 @pytest.mark.parametrize("f", [1e-3, 1e-5, 1e-7, 1e-8, 1e-9])
