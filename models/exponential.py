@@ -199,6 +199,22 @@ class ExponentialLevels:
         e = math.exp(-x)
         return e * (1.0 + x), c * x * e, -c * x * e
 
+    def slip_area(self, p: float, q: float) -> tuple[float, float, float]:
+        """1 − Â_ST = 1 − e^{−x}(1 + x) = P(2, x), x = c(q − p) (the regularized lower
+        incomplete gamma function), and its derivatives: ≈ x²/2 at small slips, where forming
+        it from Â_ST would keep only ~ε/x² of its digits."""
+        c = self.c
+        x = c * (q - p)
+        e = math.exp(-x)
+        # (x < 0 only at a trial point off the path: the formula as written, defined there)
+        value = float(sc.gammainc(2.0, x)) if x >= 0.0 else 1.0 - e * (1.0 + x)
+        return value, -c * x * e, c * x * e
+
+    def area_loss(self, p: float) -> tuple[float, float]:
+        """1 − A_r/A_r(F_N0) = −expm1(−c(p − p0)) and its derivative."""
+        d = -self.c * (p - self.p0)
+        return -math.expm1(d), self.c * math.exp(d)
+
     def area_ratio(self, p: float) -> tuple[float, float]:
         """A_r/A_r(F_N0) = e^{−c(p − p0)} and its derivative (Eq 13)."""
         r = math.exp(-self.c * (p - self.p0))

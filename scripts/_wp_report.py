@@ -8,6 +8,8 @@ import sys
 from datetime import datetime, timezone
 from pathlib import Path
 
+from cusp.continuation import ContinuationOptions
+
 from _report import commit_and_load, write_report
 from _wp_figures import GROUPS, MEASURES, draw_group
 from _wp_problems import dense_output
@@ -15,7 +17,7 @@ from bench_trace import machine
 
 #: errors below this are rounding: they compare equal
 FLOOR = 1e-15
-DEFAULT_RTOL = 1e-4
+DEFAULT_RTOL = ContinuationOptions().rtol
 
 
 def finite(x) -> bool:
@@ -208,8 +210,9 @@ def _curve_note(rows) -> list[str]:
     turns = ", ".join(f"{r.turn:.2g}° at {x:.0e}" for x, r in ours[::-1])
     text = (
         f"- Why (curve): ours takes long steps. Its largest tangent turn in one step is {turns} "
-        "(its step guard allows 30°, `max_angle`, and aims at 15°; the curve tolerance "
-        "2√rtol binds only at small rtol); a straight segment of length h turning by θ "
+        "(its step guard allows 30°, `max_angle`, and aims at 15°; the check of the step's "
+        "cubic arc against rtol binds from about 1e-4 down); a straight segment of length h "
+        "turning by θ "
         "misses the curve by about hθ/8, whereas contique's increment limit per component "
         "and pacopy's stepsize_max keep their segments short."
     )
@@ -286,6 +289,37 @@ def choosing_rtol(results) -> list[str]:
     return cost_lines + [""] + err_lines + ["", *prose]
 
 
+def trade(results) -> list[str]:
+    """The trade the knob offers, in numbers: time and points at the loosest rtol against
+    1e-12 on the cusp, and at 1e-3 against 1e-12 on the fig6 path; and the default's cost
+    next to its neighbours on every task."""
+    ours = {task.key: {rtol_of(r): r for r in rows if r.tool == "ours" and r.ok}
+            for task, rows in results}  # fmt: skip
+    lines = []
+    for key, loose, fine in (("cusp", 1e-2, 1e-12), ("fig6", 1e-3, 1e-12)):
+        by = ours.get(key, {})
+        if loose in by and fine in by:
+            a, b = by[loose], by[fine]
+            lines.append(
+                f"- {key}: rtol = {loose:.0e} takes {fmt_ms(a.time)} ms and {a.points} points, "
+                f"rtol = {fine:.0e} {fmt_ms(b.time)} ms and {b.points} points: "
+                f"{b.time / a.time:.1f}× fewer seconds at {loose:.0e}."
+            )
+    near = []
+    for key, by in ours.items():
+        d = by.get(DEFAULT_RTOL)
+        lo, hi = by.get(10 * DEFAULT_RTOL), by.get(DEFAULT_RTOL / 10)
+        if d and lo and hi:
+            near.append(f"{key} {d.time / lo.time:.2f}× / {hi.time / d.time:.2f}×")
+    if near:
+        lines.append(
+            f"- The default rtol = {DEFAULT_RTOL:.0e} against {10 * DEFAULT_RTOL:.0e} and "
+            f"{DEFAULT_RTOL / 10:.0e} (time at the default over the looser one / time at the "
+            f"tighter one over the default): {'; '.join(near)}."
+        )
+    return lines
+
+
 def _advice(key, by) -> str:
     """One computed sentence per task: the errors that do not depend on rtol (within 10× of
     their best already at the coarsest rtol that completed), from which rtol on each other
@@ -314,7 +348,7 @@ def _advice(key, by) -> str:
     fine = min(times)
     text = f"- {key}: " + "; ".join(parts) + ". A run costs "
     if DEFAULT_RTOL in times and DEFAULT_RTOL not in (coarse, fine):
-        text += f"{fmt_ms(times[DEFAULT_RTOL])} ms at the default 1e-04, "
+        text += f"{fmt_ms(times[DEFAULT_RTOL])} ms at the default {DEFAULT_RTOL:.0e}, "
     text += f"{fmt_ms(times[coarse])} ms at {coarse:.0e} and {fmt_ms(times[fine])} ms at {fine:.0e}"
     failed = sorted((r for r, row in by.items() if row.rounds and not row.ok), reverse=True)
     if failed:
@@ -404,6 +438,7 @@ def write_all(results, args, argv, rounds, notes, elapsed) -> Path:
             lines += [f"Measures: {', '.join(f'`{m}`: {MEASURES[m]}' for m in measures_of(rows))}."]
             lines += ["", *table(task, rows), "", "**Does our front dominate?**", ""]
             lines += dominance(task, rows)
+    lines += ["", "## The trade", "", *trade(results)]
     lines += ["", "## Choosing rtol", "", *choosing_rtol(results), ""]
     return write_report(out, "\n".join(lines))
 

@@ -495,3 +495,17 @@ def test_the_reduction_leg_takes_ordinary_steps_from_a_rounding_zero():
     # path: the AB leg then crept in ~2,000 steps at some μ, e.g. this one)
     res = ContactLoss(ExponentialRoughSurface(2.0, 0.3, 0.37166054590330455), 1000.0, 0.34, 850.0)
     assert len(res.run().legs["AB"]) < 100
+
+
+@pytest.mark.parametrize("g_A", [3.4e-4, 3.4e-6, 3.4e-8])
+def test_exponential_slipped_area_at_small_slips_keeps_its_digits(g_A):
+    # 1 − Â_ST = P(2, x) ≈ x²/2 and 1 − A_r/A_r0 = −expm1(·) given directly by the levels
+    # (slip_area, area_loss): formed as 1 − Â_ST, Â_SL at A was 4.2e-11, 8.1e-7 and 3.1e-3
+    # off at these g_A. Reference: the sympy closed forms A_SL_A ... A_SL_D of
+    # cusp.verification.exponential (Eq 32, printed), evaluated exactly at the binary inputs.
+    F_A = closed_form("F_A", 0.1, 850.0, g_A=g_A)
+    F_Np = 1000.0 - 0.5 * F_A / 0.1
+    res = ContactLoss(ExponentialRoughSurface(2.0, 0.3, 0.1), 1000.0, g_A, F_Np).run()
+    for key in "ABCD":
+        want = closed_form(f"A_SL_{key}", 0.1, F_Np, g_A=g_A)
+        assert res.points[key]["A_SL"] == pytest.approx(want, rel=1e-14), key
