@@ -52,7 +52,7 @@ EXTREME = ["0", "-1", "5e-324", "2.2250738585072014e-308", "1e-300", "1e-12", "1
 KEYS = {
     "surface": ["sigma", "nu", "mu", "E", "radius", "density", "nominal_area", "shape", "model"],
     "loading": ["normal_load", "max_slip", "reduced_normal_load"],
-    "solver": ["ds_max", "tol"],
+    "solver": ["ds_max", "tol", "rtol"],
     "options": ["area_reading"],
     "scene": ["name", "title"],
     "manifold": ["parameter", "range"],
