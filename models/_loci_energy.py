@@ -313,9 +313,10 @@ def polish_row(chain: PointChain, row: dict[str, Any]) -> dict[str, Any]:
     at B) are sensitive to the frozen stick level to ~1e3 times that.
 
     To rounding whatever the ``rtol`` of the trace: from a row within the update tolerance
-    (:func:`~cusp.continuation.options.point_tol`, 1e-8 at the loosest rtol) Newton reaches
+    (:func:`~cusp.continuation.options.point_tol`, 1e-10 at the loosest rtol) Newton reaches
     rounding in one or two updates (on Fig 9's locus in μ most rows need one at the default
-    rtol, two at 0.1), so a looser stop would save at most one iteration per row, while the
+    rtol, two at 0.1, looser than rtol may now be), so a looser stop would save at most one
+    iteration per row, while the
     energies' error bounds (``state_tol`` of :func:`energies`) would grow by the
     sensitivity above."""
     p = {k: row[k] for k in chain.params}
