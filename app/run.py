@@ -3,7 +3,7 @@ of a scene.
 
 ``SCENE`` is a scene file or the name of a bundled scene (``fig9``; none: ``fig6``);
 ``--rtol`` overrides the scene's ``[solver] rtol`` (the relative accuracy of everything
-computed, in [1e-13, 0.1], default 1e-3; summary.json records it). Writes
+computed, in [1e-13, 1e-2], default 1e-3; summary.json records it). Writes
 ``DIR/summary.json``, ``DIR/branch.csv``, for a scene with a ``[manifold]`` section
 ``DIR/loci.csv`` (:mod:`cusp.app.loci`) and, unless ``--no-plots``, the scene's figures as
 PNG and SVG. Everything is computed and rendered in memory first, then committed as one
@@ -77,7 +77,7 @@ def add_arguments(parser) -> None:
         "--rtol",
         default=None,
         metavar="RTOL",
-        help="relative accuracy of the paths, loci and energies, in [1e-13, 0.1] (overrides "
+        help="relative accuracy of the paths, loci and energies, in [1e-13, 1e-2] (overrides "
         "the scene's [solver] rtol; default 1e-3)",
     )
     parser.add_argument("--quiet", action="store_true", help="print only errors")

@@ -177,7 +177,12 @@ class ContinuationOptions:
     def _follow_rtol(self) -> None:
         """Set the tolerances that were not given from ``rtol`` (see the class)."""
         _positive("rtol", self.rtol)
-        _check("rtol", self.rtol, RTOL_MIN <= self.rtol <= 0.1, f"within [{RTOL_MIN:g}, 0.1]")
+        _check(
+            "rtol",
+            self.rtol,
+            RTOL_MIN <= self.rtol <= RTOL_MAX,
+            f"within [{RTOL_MIN:g}, {RTOL_MAX:g}]",
+        )
         eps = point_tol(self.rtol)
         derived = {
             "tol": min(max(float(f"{100.0 * eps:.12g}"), _RESIDUAL_TOL_MIN), _RESIDUAL_TOL_MAX),

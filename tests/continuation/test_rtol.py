@@ -31,10 +31,11 @@ def test_default_rtol_keeps_the_solver_tolerances_as_they_were():
 
 
 def test_rtol_sets_the_tolerances_and_explicit_values_override():
-    o = ContinuationOptions(rtol=1e-1)
-    # (the residual tolerance within [1e-12, 1e-10]; curve_tol is a safety guard, fixed)
-    assert (o.tol, o.step_tol, o.curve_tol, o.locate_tol) == (1e-10, 1e-8, 0.02, 1e-8)
-    assert o.quad_tol == quadrature_tol(1e-1) == 1e-9
+    o = ContinuationOptions(rtol=1e-2)  # the loosest allowed
+    # step_tol = locate_tol = (1e-2/1000)²; tol = 100·step_tol = 1e-8, clipped to at most
+    # 1e-10; quad_tol = step_tol/10; curve_tol is a safety guard, fixed
+    assert (o.tol, o.step_tol, o.curve_tol, o.locate_tol) == (1e-10, 1e-10, 0.02, 1e-10)
+    assert o.quad_tol == quadrature_tol(1e-2) == 1e-11
     # floors at the rounding level
     assert point_tol(1e-6) == 1e-16 and ContinuationOptions(rtol=1e-13).locate_tol == 1e-15
     assert ContinuationOptions(rtol=1e-6).tol == 1e-12
@@ -44,7 +45,7 @@ def test_rtol_sets_the_tolerances_and_explicit_values_override():
     assert ContinuationOptions(rtol=1e-5) == ContinuationOptions().replace(rtol=1e-5)
 
 
-@pytest.mark.parametrize("bad", [0.0, -1e-3, 0.5, 1e-14, math.nan, True, "1e-3"])
+@pytest.mark.parametrize("bad", [0.0, -1e-3, 0.5, 0.05, 1e-14, math.nan, True, "1e-3"])
 def test_rtol_out_of_range_is_refused_by_name(bad):
     with pytest.raises(OptionsError, match="'rtol'"):
         ContinuationOptions(rtol=bad)
