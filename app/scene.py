@@ -77,7 +77,6 @@ from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any, NoReturn
 
-from cusp.continuation.options import RTOL_MAX, RTOL_MIN
 from cusp.models import registry
 from cusp.models.registry import Parameter
 
@@ -117,9 +116,9 @@ DEFAULT_MANIFOLD_FIGURES = ("fig9", *MANIFOLD_FIGURES)
 #: the parameters a [manifold] locus can be traced in, and their units
 MANIFOLD_PARAMETERS = {"mu": "", "reduced_normal_load": "N"}
 
-#: the allowed ``rtol`` (those of :class:`cusp.continuation.ContinuationOptions`, not
-#: imported: reading a scene loads no solver)
-RTOL_RANGE = (RTOL_MIN, RTOL_MAX)  # ContinuationOptions.rtol's
+#: the allowed ``rtol``: ContinuationOptions' RTOL_MIN and RTOL_MAX (written out, not
+#: imported: reading a scene loads no solver; tests/app/test_rtol.py checks they agree)
+RTOL_RANGE = (1e-13, 1e-2)
 #: the numbers of [loading] and [solver] (those of [surface] come from the body registry)
 _NUMBERS: dict[str, Parameter] = {
     p.name: p

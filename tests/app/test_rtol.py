@@ -208,3 +208,10 @@ def test_the_loci_follow_the_scenes_rtol(tmp_path, capsys, monkeypatch):
     events = {ev["event"]: ev["values"]["mu"] for ev in s["manifold"]["events"]}
     assert events["C boundary"] == pytest.approx(mu_c, rel=0.1)
     assert events["F'_T = 0"] == pytest.approx(mu_0, rel=0.1)
+
+
+def test_the_scene_range_of_rtol_is_the_solvers():
+    from cusp.app.scene import RTOL_RANGE
+    from cusp.continuation.options import RTOL_MAX, RTOL_MIN
+
+    assert RTOL_RANGE == (RTOL_MIN, RTOL_MAX)
