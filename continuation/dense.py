@@ -26,10 +26,6 @@ from numpy.typing import ArrayLike
 from .errors import AccuracyError, ProblemDefinitionError
 from .interpolant import arc_length, hermite
 
-#: a segment is evaluated when its arc's measured error is within this many rtol (the step
-#: accepts half of rtol; a located point splits a step in two, each with the step's error)
-_ACCEPT = 1.0
-
 
 def _arrays(branch: Any) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, float]:
     """The branch's points, unit tangents, weights, per-segment errors and rtol, or an
@@ -95,20 +91,26 @@ def interpolate_at(branch: Any, name: str, values: ArrayLike) -> dict[str, np.nd
         raise ProblemDefinitionError(f"values must be finite, got {vals!r}")
     out = np.empty((vals.size, Z.shape[1]))
     for j, v in enumerate(vals.tolist()):
-        d = x - v
-        hits = np.flatnonzero(d[:-1] * d[1:] <= 0.0)
-        if hits.size == 0:
-            raise ProblemDefinitionError(
-                f"{name} = {v!r} is not reached on this branch ({name} covers "
-                f"[{float(x.min())!r}, {float(x.max())!r}])"
-            )
-        i = int(hits[0])
+        i = crossing_segment(x, name, v)
         _check_segment(branch, i, errors[i + 1], rtol)
         length = arc_length(Z[i + 1] - Z[i], T[i], T[i + 1], w)
         theta = _root_theta(Z[i, k], length * T[i, k], Z[i + 1, k], length * T[i + 1, k], v)
         out[j] = hermite(Z[i], T[i], Z[i + 1], T[i + 1], length, np.array([theta]))[0]
         out[j, k] = v
     return _columns(branch, out)
+
+
+def crossing_segment(x: np.ndarray, name: str, v: float) -> int:
+    """The first segment (row index of its start) across which the column ``x`` of
+    component ``name`` takes the value ``v``; a ProblemDefinitionError if none does."""
+    d = x - v
+    hits = np.flatnonzero(d[:-1] * d[1:] <= 0.0)
+    if hits.size == 0:
+        raise ProblemDefinitionError(
+            f"{name} = {v!r} is not reached on this branch ({name} covers "
+            f"[{float(x.min())!r}, {float(x.max())!r}])"
+        )
+    return int(hits[0])
 
 
 def _root_theta(x0: float, m0: float, x1: float, m1: float, v: float) -> float:
@@ -128,7 +130,10 @@ def _root_theta(x0: float, m0: float, x1: float, m1: float, v: float) -> float:
 
 
 def _check_segment(branch: Any, i: int, error: float, rtol: float) -> None:
-    if not error <= _ACCEPT * rtol:
+    """Refuse segment ``i`` unless its arc's measured ``error`` is within ``rtol`` (the step
+    accepts half of it; a point located inside a step splits it, each part with the step's
+    error)."""
+    if not error <= rtol:
         raise AccuracyError(
             f"between rows {i} and {i + 1} of this branch (s in [{branch.s[i]:.6g}, "
             f"{branch.s[i + 1]:.6g}]) the interpolant is {error:.3g} off the curve, above "
@@ -146,4 +151,4 @@ def _columns(branch: Any, out: np.ndarray) -> dict[str, np.ndarray]:
     return cols
 
 
-__all__ = ["interpolate", "interpolate_at"]
+__all__ = ["crossing_segment", "interpolate", "interpolate_at"]

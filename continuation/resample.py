@@ -17,6 +17,7 @@ from numpy.typing import ArrayLike
 
 from .branch import Branch
 from .corrector import correct
+from .dense import crossing_segment
 from .errors import ConvergenceError, ProblemDefinitionError
 from .options import ContinuationOptions
 from .problem import as_problem
@@ -88,14 +89,8 @@ def points_at(
     e_k = np.zeros(Z.shape[1])
     e_k[k] = 1.0
     for i, v in enumerate(vals.tolist()):
+        j = crossing_segment(x, name, v)
         d = x - v
-        hits = np.flatnonzero(d[:-1] * d[1:] <= 0.0)
-        if hits.size == 0:
-            raise ProblemDefinitionError(
-                f"{name} = {v!r} is not reached on this branch ({name} covers "
-                f"[{float(x.min())!r}, {float(x.max())!r}])"
-            )
-        j = int(hits[0])
         span = d[j] - d[j + 1]
         frac = d[j] / span if span != 0.0 else 0.0
         z0 = Z[j] + frac * (Z[j + 1] - Z[j])
