@@ -88,8 +88,9 @@ def _invert(fun: Callable[[float], tuple[float, float]], target: float, lo: floa
 def flag_rtol(quad_tol: float = QUAD_RTOL) -> float:
     """The relative error estimate above which an energy is flagged (a message on a path,
     an empty cell in a locus): :data:`ENERGY_RTOL`, or a hundred times the quadrature
-    tolerance asked for when that is looser (rtol above ~3e-2), so that an energy
-    integrated to the accuracy asked for is not flagged for it."""
+    tolerance asked for when that is looser, so that an energy integrated to the accuracy
+    asked for is not flagged for it (only for a ``quad_tol`` above 1e-10: not reached within
+    ``rtol``'s range, whose loosest quadrature is 1e-11)."""
     return max(ENERGY_RTOL, 100.0 * quad_tol)
 
 
@@ -150,6 +151,18 @@ class LegCurves:
         return self.k * self.nB * self.L.tangential_ratio(self.pB, q)[0]
 
 
+def _no_energies() -> dict[str, float]:
+    """The energies and their errors, all NaN (not computed)."""
+    return dict.fromkeys(
+        ("snap_back", "snap_through", "snap_back_error", "snap_through_error"), math.nan
+    )
+
+
+def _has_d(row: Mapping[str, float]) -> bool:
+    """True if the row carries the point D (without it, no area ABD, hence none at all)."""
+    return "D.q" in row and math.isfinite(row["D.q"])
+
+
 def energies(
     levels,
     row: Mapping[str, float],
@@ -168,10 +181,8 @@ def energies(
     Levels with ``leg_areas`` (the sphere's, :mod:`cusp.models.protocol`) give the areas in
     closed form, with their own error bound (``state_tol`` relative to each level's size);
     the others are integrated (:func:`quadrature_energies`)."""
-    out = dict.fromkeys(
-        ("snap_back", "snap_through", "snap_back_error", "snap_through_error"), math.nan
-    )
-    if "D.q" not in row or not math.isfinite(row["D.q"]):
+    out = _no_energies()
+    if not _has_d(row):
         return out
     closed = getattr(levels, "leg_areas", None)
     if closed is None:
@@ -203,10 +214,8 @@ def quadrature_energies(
     The estimate adds to the quadrature's the rounding of the gap and the effect of the
     points' own error (``state_tol``, relative to max(1, |level|)), both of order F·Δg: an
     area much smaller than F·Δg (a tiny reduction) is resolved only to their ratio."""
-    out = dict.fromkeys(
-        ("snap_back", "snap_through", "snap_back_error", "snap_through_error"), math.nan
-    )
-    if "D.q" not in row or not math.isfinite(row["D.q"]):
+    out = _no_energies()
+    if not _has_d(row):
         return out
     legs = LegCurves(levels, row, mu, mu0, g_A)
     g_B, t_A, t_B = row["B.g"], row["A.t"], row["B.t"]
@@ -315,10 +324,8 @@ def polish_row(chain: PointChain, row: dict[str, Any]) -> dict[str, Any]:
     To rounding whatever the ``rtol`` of the trace: from a row within the update tolerance
     (:func:`~cusp.continuation.options.point_tol`, 1e-10 at the loosest rtol) Newton reaches
     rounding in one or two updates (on Fig 9's locus in μ most rows need one at the default
-    rtol, two at 0.1, looser than rtol may now be), so a looser stop would save at most one
-    iteration per row, while the
-    energies' error bounds (``state_tol`` of :func:`energies`) would grow by the
-    sensitivity above."""
+    rtol), so a looser stop would save at most one iteration per row, while the energies'
+    error bounds (``state_tol`` of :func:`energies`) would grow by the sensitivity above."""
     p = {k: row[k] for k in chain.params}
     u = np.array([row[k] for k in chain.unknowns])
     for _ in range(4):

@@ -55,10 +55,10 @@ by safeguarded Newton (:mod:`cusp.models._loci_energy`, shared with the loci of
 :mod:`cusp.models.manifold`), nodes doubled until two rules agree to the options'
 ``quad_tol`` (1e-13 relative at the default ``rtol``), the points first Newton-polished to
 rounding. The error bound adds the rounding of the gap and of the points (the area shrinks
-like ΔF_N², the rounding like ΔF_N: a message beyond 1e-8, or beyond 100·``quad_tol`` at a
-loose ``rtol``). The options' ``rtol`` sets the accuracy of everything else too: the legs'
-steps and Newton tolerances, and the points A, B, C, D, polished on their legs to the
-options' ``step_tol``; their other settings (``ds_max`` = 0.05, ...) are the path's own.
+like ΔF_N², the rounding like ΔF_N: a message beyond 1e-8). The options' ``rtol`` sets the
+accuracy of everything else too: the legs' steps and Newton tolerances, and the points A,
+B, C, D, polished on their legs to the options' ``step_tol``; their other settings
+(``ds_max`` = 0.05, ...) are the path's own.
 No closed form is evaluated to trace the path; those of the exponential surface
 (docs/physics.md §7) are test oracles only.
 
