@@ -20,10 +20,10 @@ from dataclasses import dataclass, field
 import numpy as np
 
 import cusp.examples as ex
-from cusp.continuation import Branch, Problem, fold_curve, trace
+from cusp.continuation import Problem, fold_curve, trace
 from cusp.examples.chemistry import CO_CUSP, co_quartic
 
-from _tools import counted, run_contique, run_ours, run_pacopy, run_scipy
+from _tools import counted, fold_errors, run_contique, run_ours, run_pacopy, run_scipy
 from bench_trace import PROBLEMS
 
 #: ours: every accuracy level the options allow, coarse to fine
@@ -31,11 +31,6 @@ RTOLS = tuple(float(f"1e-{k}") for k in range(2, 14))
 QUICK_RTOLS = (1e-2, 1e-4, 1e-7, 1e-10)
 #: samples per interval between two computed points when a curve's error is measured
 PER_SEGMENT = 16
-
-
-def dense_output() -> bool:
-    """Whether this build's branches have dense output (`Branch.interpolate`)."""
-    return hasattr(Branch, "interpolate")
 
 
 @dataclass
@@ -215,7 +210,7 @@ def fold_measure(pb) -> Callable[[dict], dict[str, float]]:
         elif "curve" in pb and summary.get("path") is not None and len(summary["path"]) > 1:
             out["curve"] = _distance(pb, polyline(summary["path"]))
             br = summary.get("branch")
-            if br is not None and dense_output():
+            if br is not None:
                 cols = br.interpolate(dense_arclengths(br.s))
                 free = pb["example"].free
                 rows = np.column_stack([cols[pb["example"].unknowns[0]], cols[free]])
@@ -226,12 +221,12 @@ def fold_measure(pb) -> Callable[[dict], dict[str, float]]:
 
 
 def _fold_error(found, exact) -> float:
-    worst = 0.0
-    for _, lam in exact:
-        if not found:
-            return math.inf
-        worst = max(worst, min(abs(v - lam) for v in found) / abs(lam))
-    return worst
+    """The largest relative error of the exact folds' parameters (:func:`_tools.fold_errors`,
+    each against the nearest estimate); inf if there is none."""
+    errs = fold_errors(found, exact)
+    if any(e is None for e in errs):
+        return math.inf
+    return max((e / abs(lam) for e, (_, lam) in zip(errs, exact)), default=0.0)
 
 
 def polyline(path: np.ndarray, per: int = PER_SEGMENT) -> np.ndarray:
@@ -311,9 +306,8 @@ def co_measure(summary) -> dict[str, float]:
     names = ("x", "q2", "k")
     sizes = [max(float(np.max(np.abs(fc[n]))), 1e-3) for n in names]
     out["curve"] = _co_distance(polyline(np.column_stack([fc[n] for n in names])), sizes)
-    if dense_output():
-        cols = fc.interpolate(dense_arclengths(fc.s))
-        out["dense"] = _co_distance(np.column_stack([cols[n] for n in names]), sizes)
+    cols = fc.interpolate(dense_arclengths(fc.s))
+    out["dense"] = _co_distance(np.column_stack([cols[n] for n in names]), sizes)
     return out
 
 

@@ -12,7 +12,6 @@ from cusp.continuation import ContinuationOptions
 
 from _report import commit_and_load, write_report
 from _wp_figures import GROUPS, MEASURES, draw_group
-from _wp_problems import dense_output
 from bench_trace import machine
 
 #: errors below this are rounding: they compare equal
@@ -216,11 +215,6 @@ def _curve_note(rows) -> list[str]:
         "misses the curve by about hθ/8, whereas contique's increment limit per component "
         "and pacopy's stepsize_max keep their segments short."
     )
-    if not dense_output():
-        text += (
-            " Our dense output (`Branch.interpolate`), the way to get the curve between our"
-            " points, is not in this build."
-        )
     return [text]
 
 
@@ -384,12 +378,8 @@ def _header(args, argv, rounds, notes, elapsed) -> list[str]:
     given = sys.argv[1:] if argv is None else argv
     command = "python scripts/bench_work_precision.py" + "".join(f" {a}" for a in given)
     dense = (
-        "Dense output: `Branch.interpolate` is in this build; the `dense` errors are those of "
-        "our interpolant."
-        if dense_output()
-        else "Dense output: `Branch.interpolate` is not in this build, so there are no "
-        "`dense` errors; the `curve` errors of ours are those of its points joined by "
-        "straight lines, as for the other tools."
+        "Dense output: the `dense` errors are those of our interpolant (`Branch.interpolate`); "
+        "the `curve` errors, of every tool's points joined by straight lines."
     )
     return [
         "# Work–precision: speed against accuracy",

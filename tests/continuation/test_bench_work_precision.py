@@ -9,10 +9,6 @@ import importlib.util
 import pathlib
 import sys
 
-import numpy as np
-
-from cusp.continuation import Branch
-
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 
 
@@ -34,18 +30,9 @@ def _rows(text: str, heading: str) -> list[list[str]]:
     return lines
 
 
-def _linear_interpolate(branch, s):
-    """A stand-in for dense output where the build has none: every column interpolated
-    linearly in the arclength (the script's dense-output path runs either way)."""
-    s = np.asarray(s, dtype=float)
-    return {k: np.interp(s, branch.s, branch[k]) for k in branch.keys()}
-
-
 def test_quick_mode_writes_the_report_and_the_figures(tmp_path, monkeypatch):
     # scripts import their siblings (`_report`, `_tools`, ...) from scripts/
     monkeypatch.syspath_prepend(str(ROOT / "scripts"))
-    if not hasattr(Branch, "interpolate"):
-        monkeypatch.setattr(Branch, "interpolate", _linear_interpolate, raising=False)
     spec = importlib.util.spec_from_file_location(
         "bench_work_precision", ROOT / "scripts" / "bench_work_precision.py"
     )
