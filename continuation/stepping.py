@@ -20,6 +20,7 @@ from __future__ import annotations
 
 import logging
 import math
+from collections.abc import Sequence
 from typing import TYPE_CHECKING, Any, NamedTuple
 
 import numpy as np
@@ -224,10 +225,9 @@ def _predictor(
 def confirm_step(
     rules: StepRules, state: TracerState, trial: Trial, br: Bracket | None = None
 ) -> Trial | None:
-    """Confirm a step across which a test function changed sign, before anything is located
-    in it: None if the half step from the same point lies on the step's cubic Hermite arc,
-    else the step to take instead (the half step, or a shorter one if the half step is
-    rejected).
+    """Confirm a step across which a test function changed sign: None if the half step from
+    the same point lies on the step's cubic Hermite arc, else the step to take instead (the
+    half step, or a shorter one if the half step is rejected).
 
     A step that jumped to a nearby branch (one whose tangent turned little and whose
     correction was small, as when two branches pass close and parallel) passes every guard
@@ -236,10 +236,11 @@ def confirm_step(
     distance between them, where a true step's arc is off the curve by its interpolation
     error, O(ds⁴) against the predictor's distance δ = O(ds²): the step is confirmed when the
     half step is within ``δ/10`` of the arc (on a circle turning 30° in the step, the arc is
-    off by δ/160). The half step is first corrected only to 1e-3·δ, which is all the
-    comparison needs; only when that point is off the arc (or its corrector fails) is the
-    half step taken as a step of its own, the one to take instead. ``br``: the step's
-    bracket, if the caller made it."""
+    off by δ/160; :func:`arc_limit`). The half step is first corrected only to 1e-3·δ,
+    which is all the comparison needs; only when that point is off the arc (or its corrector
+    fails) is the half step taken as a step of its own, the one to take instead. ``br``: the
+    step's bracket, if the caller made it. (A fold is confirmed more cheaply, after it is
+    located: :func:`located_on_arc`.)"""
     o = rules.options
     system = state.system
     W = system.weights
@@ -247,15 +248,9 @@ def confirm_step(
     z, t = last.z, last.t
     secant, direction, row = _predictor(o, system, z, t, None if last.prev is None else last.prev.z)
     ds = trial.ds
-    z1 = trial.res.z
-    delta = wnorm(z1 - (z + ds * direction), W)
     if br is None:
-        br = Bracket(system, z, t, z1, trial.t, W, o)
-
-    def off_arc(zh: np.ndarray) -> float:
-        return wnorm(zh - br.guess(br.sigma(zh) / br.h), W)
-
-    limit = 0.1 * delta + 1e-9 * ds
+        br = Bracket(system, z, t, trial.res.z, trial.t, W, o)
+    delta, limit = arc_limit(W, z, direction, trial)
 
     # First the half-step point alone, corrected only as far as the comparison needs: to
     # 1e-3·δ (an update that small, relative to the components' magnitudes, moves the point
@@ -268,14 +263,14 @@ def confirm_step(
             system, z_half, row, row.dot(z_half), tol=math.inf, step_tol=loose * loose,
             max_iter=o.max_newton_iterations, contract=True, max_first=ds,
         )  # fmt: skip
-        if res.converged and off_arc(res.z) <= limit:
+        if res.converged and off_arc(br, W, res.z) <= limit:
             return None
     # else the half step as a step of its own: the step to take instead if it is off the arc
     half = _try(rules, system, z, t, 0.5 * ds, direction, row, secant)
     if not isinstance(half, Trial):  # the half step fails where the whole one passed
         shorter = advance(rules, state._replace(ds=max(0.25 * ds, o.ds_min)))
         return shorter._replace(rejected=trial.rejected + 1) if isinstance(shorter, Trial) else None
-    off = off_arc(half.res.z)
+    off = off_arc(br, W, half.res.z)
     if off <= limit:
         return None
     logger.info(
@@ -284,6 +279,43 @@ def confirm_step(
         ds, off, delta,
     )  # fmt: skip
     return half._replace(rejected=trial.rejected + 1)
+
+
+def arc_limit(
+    W: np.ndarray, z: np.ndarray, direction: np.ndarray, trial: Trial
+) -> tuple[float, float]:
+    """The step's predictor distance δ (from ``z`` along ``direction``) and how far a point
+    of the curve inside the step may lie from the step's arc: ``δ/10`` (see
+    :func:`confirm_step`)."""
+    delta = wnorm(trial.res.z - (z + trial.ds * direction), W)
+    return delta, 0.1 * delta + 1e-9 * trial.ds
+
+
+def off_arc(br: Bracket, W: np.ndarray, zh: np.ndarray) -> float:
+    """The distance of ``zh`` from the step's cubic Hermite arc, at its pseudo-arclength."""
+    return wnorm(zh - br.guess(br.sigma(zh) / br.h), W)
+
+
+def located_on_arc(
+    rules: StepRules, state: TracerState, trial: Trial, br: Bracket, points: Sequence[Any]
+) -> bool:
+    """Whether each of ``points`` (the zeros of folds located inside the step) was located
+    (status ``"converged"``) and lies on the step's arc within the limit of
+    :func:`confirm_step`: the step is then confirmed without its half step.
+
+    A fold is located by Newton from the turning point of the step's arc; on a step that
+    jumped between two branches that arc runs between them, off the curve by about half
+    their distance, and Newton either fails or converges to a point of the curve away from
+    it (a true step's arc is off the curve by its interpolation error only). Where a point
+    is off the arc or not located, the half step decides (:func:`confirm_step`)."""
+    last = state.last
+    system = state.system
+    W = system.weights
+    _, direction, _ = _predictor(
+        rules.options, system, last.z, last.t, None if last.prev is None else last.prev.z
+    )
+    limit = arc_limit(W, last.z, direction, trial)[1]
+    return all(loc.status == "converged" and off_arc(br, W, loc.z) <= limit for loc in points)
 
 
 def _try(
@@ -561,5 +593,5 @@ def _aimed(
 
 
 __all__ = [
-    "Failure", "StepRules", "Trial", "advance", "confirm_step",
+    "Failure", "StepRules", "Trial", "advance", "confirm_step", "located_on_arc",
 ]  # fmt: skip

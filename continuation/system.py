@@ -197,7 +197,7 @@ class BranchSystem(CurveSystem):
         self.scales = np.ones(self.dim)
         self.base_weights = state_weights(self.n, 1, state_weight)
         self.weights = self.base_weights.copy()
-        self.unit_weights = bool((self.weights == 1.0).all())
+        self.unit_weights = all(w == 1.0 for w in self.weights.tolist())
         self.exact_jacobian = self.derivatives_exact = has_exact_jacobian(problem)
         self._bind_callbacks()
         self._shapes = ((self.n, self.n), (self.n,))

@@ -11,8 +11,10 @@ A step has five phases:
 3. **evaluate** the test functions the curve system defines
    (:meth:`~.system.CurveSystem.test_functions`) at the new point
    (:func:`~.crossings.evaluate`); when a test of the curve's geometry changed sign the step
-   is first confirmed by its half step (:func:`~.stepping.confirm_step`), and a sign change
-   that the half step does not reproduce was a jump: the step is redone shorter;
+   is confirmed by its half step (:func:`~.stepping.confirm_step`), and a sign change
+   that the half step does not reproduce was a jump: the step is redone shorter (a fold is
+   located first, and the step confirmed when the fold lies on the step's arc:
+   :func:`~.stepping.located_on_arc`; the half step decides otherwise);
 4. **locate and insert**: a sign change between the two ends of the step, or two zeros of
    one test inside it (:func:`~.crossings.pairs`), is located inside it
    (:func:`~.crossings.locate_crossings`) and the located points are linked in, in
@@ -59,6 +61,7 @@ from .stepping import (
     Trial,
     advance,
     confirm_step,
+    located_on_arc,
     wnorm,
 )
 from .system import BranchSystem, CurveSystem
@@ -310,24 +313,57 @@ class Tracer:
         trial = advance(self._rules, state)
         if isinstance(trial, Failure):
             return self._fail(state, trial)
-        confirmed = None  # the step's bracket, if it was confirmed
         while True:
-            # 2. accept: the system valid beyond the new point (the step size is set in 5.)
-            # 3. evaluate the test functions; those whose change counts are crossings
-            system, values, crossings = evaluate(self.tests, self._has_bp, state, trial)
-            if not crossings or trial.corner or trial.aimed is not None:
+            # 2.-3. accept, evaluate the test functions and confirm a sign change
+            trial, system, values, crossings, br, deferred = self._evaluate(state, trial)
+            # 4. locate the crossings inside the step (a corner's folds are only bracketed)
+            special, located = self._locate(state, system, trial, values, crossings, br)
+            if not deferred or located_on_arc(
+                self._rules, state, trial, br, [loc for tt, loc, _ in located if tt.confirm]
+            ):
                 break
-            if not any(c[0].confirm for c in crossings):
-                break
-            # a test of the curve's geometry changed sign: confirm the step first
-            confirmed = step_bracket(self.options, state.system, state.last, trial)
-            shorter = confirm_step(self._rules, state, trial, confirmed)
+            # a fold not located on the step's arc: the half step decides
+            shorter = confirm_step(self._rules, state, trial, br)
             if shorter is None:
                 break
-            trial, confirmed = shorter, None
-        if system is not state.system:  # (refreshed: the bracket is on the new system)
-            confirmed = None
-        # 4. locate the crossings inside the step (a corner's folds are only bracketed)
+            trial = shorter
+        # 5. insert the located points, adapt the step size, terminate
+        return self._finish(state, system, trial, values, special, located)
+
+    def _evaluate(self, state: TracerState, trial: Trial) -> tuple:
+        """The trial (or the shorter one that replaces a jump), the curve system at its end,
+        the test values there, the tests whose change counts (crossings), the step's bracket
+        if a test of the curve's geometry changed sign (else None) and whether its
+        confirmation is deferred until the crossings are located (folds only:
+        :func:`~.stepping.located_on_arc`; others are confirmed by the half step first)."""
+        while True:
+            system, values, crossings = evaluate(self.tests, self._has_bp, state, trial)
+            if not crossings or trial.corner or trial.aimed is not None:
+                return trial, system, values, crossings, None, False
+            confirm = [c[0] for c in crossings if c[0].confirm]
+            if not confirm:
+                return trial, system, values, crossings, None, False
+            br = step_bracket(self.options, state.system, state.last, trial)
+            if all(tt.kind == "fold" for tt in confirm):
+                return trial, system, values, crossings, br, True
+            shorter = confirm_step(self._rules, state, trial, br)
+            if shorter is None:
+                return trial, system, values, crossings, br, False
+            trial = shorter
+
+    def _locate(
+        self,
+        state: TracerState,
+        system: CurveSystem,
+        trial: Trial,
+        values: tuple,
+        crossings: list,
+        br: Bracket | None,
+    ) -> tuple[tuple[Record, ...] | None, Sequence[tuple[TestFunction, Located, Bracket | None]]]:
+        """The records of a corner's folds (else None) and the crossings located inside the
+        step (``br``: the step's bracket, if made)."""
+        if system is not state.system:  # (refreshed: the bracket is on the old system)
+            br = None
         special = None
         if trial.corner:
             special, crossings = corner_folds(crossings, state.last.s, trial.h)
@@ -336,12 +372,9 @@ class Tracer:
             if replaced:
                 crossings = [c for c in crossings if c[0] not in replaced] + parts
         located = (
-            locate_crossings(self.options, state, system, trial, crossings, confirmed)
-            if crossings
-            else ()
+            locate_crossings(self.options, state, system, trial, crossings, br) if crossings else ()
         )
-        # 5. insert the located points, adapt the step size, terminate
-        return self._finish(state, system, trial, values, special, located)
+        return special, located
 
     def _finish(
         self,
