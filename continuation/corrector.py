@@ -8,7 +8,15 @@ from typing import Any
 import numpy as np
 
 from .errors import SingularMatrixError
-from .linalg import DenseLU, _gesv, _getrs, factor, inverse_magnitudes, scaled_max
+from .linalg import (
+    DenseLU,
+    _gesv,
+    _getrs,
+    factor,
+    inverse_magnitudes,
+    scaled_max,
+    weighted_square,
+)
 from .linalg import max_abs as _norm
 
 
@@ -164,7 +172,7 @@ def newton(
                 lu, dz, why = _sparse_step(a, rhs)
                 if why:
                     return NewtonResult(z, False, k, rn, None, why)
-        if k == 1 and dz.dot(dz if weights is None else weights * dz) > max_first_sq:
+        if k == 1 and weighted_square(dz, weights) > max_first_sq:
             rn, reason = math.inf, "too_far"
             break
         z = z - dz

@@ -78,7 +78,11 @@ class DenseLU:
         return _getrs(self.lu, self.piv, b, 1 if trans else 0)[0]
 
     def sign_det(self) -> float:
-        if self.n <= 16:
+        if self.n == 2:  # (the bordered matrices of scalar problems, spelled out)
+            (a, _), (_, d) = self.lu.tolist()
+            p, q = self.piv.tolist()
+            odd = (a < 0) + (d < 0) + (p != 0) + (q != 1)
+        elif self.n <= 16:
             odd = 0
             for i, (x, q) in enumerate(zip(self.lu.diagonal().tolist(), self.piv.tolist())):
                 odd += (x < 0) + (i != q)
@@ -191,6 +195,19 @@ def max_abs(x: np.ndarray) -> float:
         return abs(hi) if hi >= -lo else -lo
     m = float(np.abs(x).max())
     return m if math.isfinite(m) else math.nan
+
+
+def weighted_square(x: np.ndarray, weights: np.ndarray | None) -> float:
+    """``Σ_i w_i x_i²``, the square of the weighted (arclength) norm (``weights`` None: all
+    1); spelled out in plain Python for the two components of scalar problems (state and
+    parameter), where numpy's two calls cost three times the arithmetic."""
+    if weights is None:
+        return float(x.dot(x))
+    if x.size == 2:
+        a, b = x.tolist()
+        p, q = weights.tolist()
+        return p * a * a + q * b * b
+    return float(x.dot(weights * x))
 
 
 def inverse_magnitudes(scales: np.ndarray, z: np.ndarray) -> Any:

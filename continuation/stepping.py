@@ -34,6 +34,7 @@ from .errors import (
     format_values,
 )
 from .interpolant import arc_from, arc_length, interpolation_error
+from .linalg import weighted_square
 from .locate import Bracket, oriented_tangent
 from .stepcontrol import guard_factor, interpolation_factor
 
@@ -98,7 +99,7 @@ class StepRules:
 
 def wnorm(x: np.ndarray, weights: np.ndarray) -> float:
     """The weighted (arclength) norm ``√(Σ w_i x_i²)``."""
-    return math.sqrt(x.dot(weights * x))
+    return math.sqrt(weighted_square(x, weights))
 
 
 class Trial(NamedTuple):
@@ -362,12 +363,12 @@ def _try(
     if not res.converged:
         return res, res.reason, 0.5
     t_new = res.lu.solve(rules.e_last)
-    t_new /= math.sqrt(t_new.dot(t_new if unit_w else W * t_new))
+    t_new /= math.sqrt(t_new.dot(t_new) if unit_w else weighted_square(t_new, W))
     rt = float(row.dot(t_new))  # (a float: the comparisons below cost less)
     cosang = rt if secant is None else float(t_new.dot(W * t))
     angle = math.degrees(math.acos(max(-1.0, min(1.0, cosang))))
     dc = res.z - z_pred
-    distance = math.sqrt(dc.dot(dc if unit_w else W * dc))
+    distance = math.sqrt(dc.dot(dc) if unit_w else weighted_square(dc, W))
     factor, guard = guard_factor(o, res.contraction, distance, ds, angle, res.iterations)
     if guard:
         return res, guard, factor

@@ -25,6 +25,9 @@ from .problem import as_matrix, as_vector, has_exact_jacobian
 from .scaling import out_of_range
 from .testfunctions import TestFunction, generic_tests
 
+_NDARRAY = np.ndarray
+_FLOAT = np.dtype(float)  # (the one float64 dtype numpy's arrays carry: tested by identity)
+
 if TYPE_CHECKING:
     from .events import Event
     from .options import ContinuationOptions
@@ -247,6 +250,8 @@ class BranchSystem(CurveSystem):
             r = self._residual(z[:-1], p)
         except ArithmeticError:  # a division by zero or overflow at a trial point: as NaN
             return np.full(self.n, np.nan)
+        if type(r) is _NDARRAY and r.dtype is _FLOAT and r.shape == self._shapes[1]:
+            return r  # (the common case, one test)
         if type(r) is not np.ndarray or r.dtype != float:
             r = as_vector(r, "the residual", lambda: self.values(z))
         if r.shape != self._shapes[1]:
@@ -265,9 +270,9 @@ class BranchSystem(CurveSystem):
             fp = self._param_jacobian(u, p, self.free)
         except ArithmeticError:  # as for the residual: a matrix the corrector finds non-finite
             j, fp = np.full(self._shapes[0], np.nan), np.full(self.n, np.nan)
-        if type(fp) is not np.ndarray or fp.dtype != float:
+        if type(fp) is not _NDARRAY or fp.dtype is not _FLOAT:
             fp = as_vector(fp, f"the param_jacobian (for {self.free!r})", lambda: self.values(z))
-        if type(j) is not np.ndarray or j.dtype != float:
+        if type(j) is not _NDARRAY or j.dtype is not _FLOAT:
             j = as_matrix(j, "the jacobian", lambda: self.values(z))
             if type(j) is not np.ndarray:
                 return _sparse_border(j, fp, row)
