@@ -9,7 +9,9 @@ import numpy as np
 
 from .errors import SingularMatrixError
 from .linalg import (
+    _EPS,
     DenseLU,
+    PairLU,
     _gesv,
     _getrs,
     factor,
@@ -127,12 +129,32 @@ def newton(
     of more than twice that (with a contraction below 1/2 the correction is at least half
     the first update) lands where the residual may not even be defined.
 
+    A curve of two components whose equation comes in plain floats (``system.scalar``: a
+    branch of one unknown) is corrected in floats (:func:`scalar_newton`), with the same
+    tests and results to rounding, for a third of the cost; anything that path cannot
+    decide is taken from the start by the general one.
+
     Implementation notes: dense matrices are factored and solved by one LAPACK gesv (the
     factors are wrapped in a DenseLU only for the result), sparse ones through ``factor``;
     the system is solved for minus the update (saves negating the residual; bitwise the
     same), and the bordering equation, being linear, holds to rounding after the first
     update, so its residual is computed once.
     """
+    if system.scalar:
+        found = scalar_newton(
+            system, z0, row, c, tol, step_tol, max_iter, g0, strict, contract, max_first
+        )
+        if found is not None:
+            return found
+    return _newton_arrays(
+        system, z0, row, c, tol, step_tol, max_iter, g0, strict, contract, max_first
+    )
+
+
+def _newton_arrays(
+    system, z0, row, c, tol, step_tol, max_iter, g0, strict, contract, max_first
+) -> NewtonResult:  # fmt: skip
+    """:func:`newton` on arrays (any size, dense or sparse)."""
     z = z0  # never changed in place: each update makes a new array
     g = system.residual(z) if g0 is None else g0
     rn = _norm(g)
@@ -207,6 +229,84 @@ def newton(
         sn_prev = sn
     lu = lu if f is None else DenseLU.from_factors(f, piv)
     return NewtonResult(z, converged, k, rn, lu, "" if converged else reason, theta, sn_first)
+
+
+def scalar_newton(
+    system, z0, row, c, tol, step_tol, max_iter, g0, strict, contract, max_first
+) -> NewtonResult | None:  # fmt: skip
+    """:func:`newton` for a curve of two components in plain floats: the residual and the
+    Jacobian row come from ``system.scalar_residual`` and ``system.scalar_jacobian``, the
+    2×2 bordered matrix is factored by :class:`~.linalg.PairLU`, and the tests are
+    :func:`newton`'s, the rounding floor ``100·eps·|∂G/∂u|·max(scale, |u|)`` included.
+    None where a value is not finite, a callback returns anything but a float array of the
+    right shape, or a matrix is singular: the general path then decides (and says why)."""
+    g = system.scalar_residual(z0) if g0 is None else _float_of(g0)
+    if g is None:
+        return None
+    x, lam = z0.tolist()
+    r0, r1 = row.tolist()
+    (s0, s1), (w0, w1) = system.scales.tolist(), system.weights.tolist()
+    i0 = 1.0 / max(s0, abs(x))
+    i1 = 1.0 / max(s1, abs(lam))
+    sq_step_tol = math.sqrt(step_tol)
+    rel_step_tol = _floor_step_tol(system, step_tol)
+    max_first_sq = math.inf if max_first is None else max_first * max_first
+    b2 = 0.0 if c is None else r0 * x + r1 * lam - c  # the border's residual, then 0
+    z, rn, a11, lu = z0, abs(g), 0.0, None
+    sn_prev = sn_first = math.inf
+    reason, converged, chord, k, theta = "max_iterations", False, False, 0, 0.0
+    for k in range(1, max_iter + 1):
+        if not chord:
+            jac = system.scalar_jacobian(z)
+            if jac is None:
+                return None
+            a11 = jac[0]
+            try:
+                lu = PairLU(a11, jac[1], r0, r1)
+            except SingularMatrixError:
+                return None
+        d0, d1 = lu.solve_pair(g, b2)  # type: ignore[union-attr]
+        b2 = 0.0
+        if k == 1 and w0 * d0 * d0 + w1 * d1 * d1 > max_first_sq:
+            rn, reason = math.inf, "too_far"
+            break
+        x, lam = x - d0, lam - d1
+        z = np.array((x, lam))
+        g_new = system.scalar_residual(z)
+        if g_new is None:
+            return None
+        rn_new, sn = abs(g_new), max(abs(d0) * i0, abs(d1) * i1)
+        if not sn < math.inf:
+            return None
+        if k == 1:
+            sn_first = sn
+        elif k == 2:
+            theta = sn / sn_first if sn_first > 0.0 else 0.0
+        floor = 100 * _EPS * abs(a11) * max(s0, abs(x))  # (CurveSystem.residual_floor)
+        if sn <= sq_step_tol and not strict and (rn_new <= tol or rn_new <= floor):
+            rn, converged = rn_new, True
+            break
+        if sn <= rel_step_tol and rn_new <= max(tol, floor):  # AUTO's test
+            rn, converged = rn_new, True
+            break
+        if k >= 3 and rn_new > 1e3 * max(rn, tol):
+            rn, reason = rn_new, "diverging"
+            break
+        if contract and sn > 0.5 * sn_prev and sn > sq_step_tol:
+            rn, reason = rn_new, "not_contracting"
+            break
+        rn, g = rn_new, g_new
+        chord = not chord and sn <= sq_step_tol
+        sn_prev = sn
+    return NewtonResult(z, converged, k, rn, lu, "" if converged else reason, theta, sn_first)
+
+
+def _float_of(g: Any) -> float | None:
+    """A residual given as an array of one finite float, as a float (else None)."""
+    if type(g) is np.ndarray and g.dtype == float and g.shape == (1,):
+        v = g.item()
+        return v if abs(v) < math.inf else None
+    return None
 
 
 def correct(

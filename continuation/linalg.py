@@ -95,6 +95,59 @@ class DenseLU:
         return float(np.sum(np.log(np.abs(np.diagonal(self.lu)))))
 
 
+class PairLU:
+    """The LU factorization (partial pivoting) of a 2×2 matrix ``[[a11, a12], [a21, a22]]``
+    held as plain floats: the bordered systems of scalar problems (one unknown and the
+    parameter), where LAPACK's wrappers cost several times the arithmetic. The operations
+    are getrf's and getrs's (the multiplier by the pivot's reciprocal), so the results agree
+    with :class:`DenseLU` to rounding. SingularMatrixError on a zero pivot.
+
+    >>> lu = PairLU(2.0, 1.0, 4.0, 3.0)  # det 2; rows swapped for the pivot 4
+    >>> lu.solve(np.array([1.0, 1.0])).tolist(), lu.solve(np.array([1.0, 1.0]), True).tolist()
+    ([1.0, -1.0], [-0.5, 0.5])
+    >>> lu.sign_det()
+    1.0
+    """
+
+    __slots__ = ("u11", "u12", "l21", "u22", "swapped")
+    n = 2
+
+    def __init__(self, a11: float, a12: float, a21: float, a22: float) -> None:
+        self.swapped = abs(a21) > abs(a11)
+        if self.swapped:
+            a11, a12, a21, a22 = a21, a22, a11, a12
+        if a11 == 0.0:
+            raise SingularMatrixError("matrix is singular (zero pivot 1)")
+        self.l21 = a21 * (1.0 / a11)
+        self.u11, self.u12, self.u22 = a11, a12, a22 - self.l21 * a12
+        if self.u22 == 0.0:
+            raise SingularMatrixError("matrix is singular (zero pivot 2)")
+
+    def solve_pair(self, b1: float, b2: float) -> tuple[float, float]:
+        """The solution for the right-hand side ``(b1, b2)``, as floats."""
+        if self.swapped:
+            b1, b2 = b2, b1
+        x2 = (b2 - self.l21 * b1) / self.u22
+        return (b1 - self.u12 * x2) / self.u11, x2
+
+    def solve(self, b: np.ndarray, trans: bool = False) -> np.ndarray:
+        b1, b2 = b.tolist()
+        if not trans:
+            return np.array(self.solve_pair(b1, b2))
+        # Aᵀ = Uᵀ Lᵀ P: Uᵀ y = b, Lᵀ w = y, x = P w
+        y1 = b1 / self.u11
+        w2 = (b2 - self.u12 * y1) / self.u22
+        w1 = y1 - self.l21 * w2
+        return np.array((w2, w1) if self.swapped else (w1, w2))
+
+    def sign_det(self) -> float:
+        odd = (self.u11 < 0.0) + (self.u22 < 0.0) + self.swapped
+        return -1.0 if odd % 2 else 1.0
+
+    def log_abs_det(self) -> float:
+        return math.log(abs(self.u11)) + math.log(abs(self.u22))
+
+
 class SparseLU:
     __slots__ = ("lu", "n")
 
@@ -213,6 +266,10 @@ def weighted_square(x: np.ndarray, weights: np.ndarray | None) -> float:
 def inverse_magnitudes(scales: np.ndarray, z: np.ndarray) -> Any:
     """``1/max(scales_i, |z_i|)`` per component: multiplies an update into relative terms
     (a Python list for the few components of most problems, an array otherwise)."""
+    if z.size == 2:  # (scalar problems, spelled out)
+        (s, r), (a, b) = scales.tolist(), z.tolist()
+        a, b = abs(a), abs(b)
+        return [1.0 / (s if s >= a else a), 1.0 / (r if r >= b else b)]
     if z.size <= 32:
         return [1.0 / (s if s >= a else a) for s, a in zip(scales.tolist(), map(abs, z.tolist()))]
     return 1.0 / np.maximum(scales, np.abs(z))

@@ -529,9 +529,10 @@ def aim_at_bound(
     tests = state.tests
     # within reach: the component moves by at most ds/√w_k along the unit tangent
     reach = _AIM_REACH * ds
+    w = W.tolist()
     for i, tt in rules.bound_tests:
         old = tests[i]
-        if old is None or old == 0.0 or abs(old) * math.sqrt(W[tt.k]) > reach:
+        if old is None or old == 0.0 or abs(old) * math.sqrt(w[tt.k]) > reach:
             continue
         k = tt.k
         tk = float(t[k])

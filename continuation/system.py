@@ -13,6 +13,7 @@ twice from the same state therefore gives the same points, bit for bit.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Mapping, Sequence
 from typing import TYPE_CHECKING, Any
 
@@ -62,6 +63,10 @@ class CurveSystem:
     refreshes: bool = False
     """True if the equations change along the curve, so that :meth:`refreshed` must be
     called after every accepted point (the tracer skips the call otherwise)."""
+    scalar: bool = False
+    """True if the curve has two components and :meth:`scalar_residual` and
+    :meth:`scalar_jacobian` give its equation in plain floats: the corrector then works in
+    floats (:func:`~.corrector.newton`), a third of the cost of numpy on such tiny systems."""
 
     def residual(self, z: np.ndarray) -> np.ndarray:  # pragma: no cover - interface
         raise NotImplementedError
@@ -205,6 +210,7 @@ class BranchSystem(CurveSystem):
         self._bind_callbacks()
         self._shapes = ((self.n, self.n), (self.n,))
         self.fold_components = (free,)
+        self.scalar = self.n == 1
 
     def _bind_callbacks(self) -> None:
         # bound once: the corrector's inner loop calls these for every iteration (a
@@ -291,6 +297,41 @@ class BranchSystem(CurveSystem):
         a[:n, :n] = j
         a[:n, n] = fp
         return a
+
+    def scalar_residual(self, z) -> float | None:
+        """The residual of a problem of one unknown at ``z`` as a float; None where it is not
+        a finite float array of one value (or raises an ArithmeticError): the general path
+        (:meth:`residual`) then says what is wrong."""
+        p = dict(self.params)
+        p[self.free] = z[-1]
+        try:
+            r = self._residual(z[:-1], p)
+        except ArithmeticError:
+            return None
+        if type(r) is _NDARRAY and r.dtype is _FLOAT and r.shape == (1,):
+            v = r.item()
+            return v if abs(v) < math.inf else None  # (NaN too)
+        return None
+
+    def scalar_jacobian(self, z) -> tuple[float, float] | None:
+        """``(∂R/∂u, ∂R/∂p_free)`` of a problem of one unknown at ``z`` as floats; None as
+        for :meth:`scalar_residual`."""
+        u = z[:-1]
+        p = dict(self.params)
+        p[self.free] = z[-1]
+        try:
+            j = self._jacobian(u, p)
+            fp = self._param_jacobian(u, p, self.free)
+        except ArithmeticError:
+            return None
+        if (
+            type(j) is _NDARRAY and j.dtype is _FLOAT and j.shape == (1, 1)
+            and type(fp) is _NDARRAY and fp.dtype is _FLOAT and fp.shape == (1,)
+        ):  # fmt: skip
+            a, b = j.item(), fp.item()
+            if abs(a) < math.inf and abs(b) < math.inf:
+                return a, b
+        return None
 
     def jacobian(self, z):
         return self.bordered_jacobian(z, None)
