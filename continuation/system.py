@@ -301,7 +301,8 @@ class BranchSystem(CurveSystem):
     def scalar_residual(self, z) -> float | None:
         """The residual of a problem of one unknown at ``z`` as a float; None where it is not
         a finite float array of one value (or raises an ArithmeticError): the general path
-        (:meth:`residual`) then says what is wrong."""
+        (:meth:`residual`) then says what is wrong. A result of another type (a list, another
+        dtype) turns :attr:`scalar` off: the array path converts it, every time."""
         p = dict(self.params)
         p[self.free] = z[-1]
         try:
@@ -311,6 +312,7 @@ class BranchSystem(CurveSystem):
         if type(r) is _NDARRAY and r.dtype is _FLOAT and r.shape == (1,):
             v = r.item()
             return v if abs(v) < math.inf else None  # (NaN too)
+        self.scalar = False  # (results of other types: the array path from now on)
         return None
 
     def scalar_jacobian(self, z) -> tuple[float, float] | None:
@@ -329,8 +331,8 @@ class BranchSystem(CurveSystem):
             and type(fp) is _NDARRAY and fp.dtype is _FLOAT and fp.shape == (1,)
         ):  # fmt: skip
             a, b = j.item(), fp.item()
-            if abs(a) < math.inf and abs(b) < math.inf:
-                return a, b
+            return (a, b) if abs(a) < math.inf and abs(b) < math.inf else None
+        self.scalar = False  # (as in scalar_residual)
         return None
 
     def jacobian(self, z):

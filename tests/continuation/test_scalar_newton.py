@@ -110,7 +110,9 @@ def test_what_the_float_path_cannot_decide_goes_to_the_array_path():
     )
     # callbacks returning lists: the general path converts them
     lists = _problem(lambda u, p: [u[0] ** 2 - 0.25], lambda u, p: [[2.0 * u[0]]])
+    assert lists.scalar
     assert scalar_newton(lists, np.array([0.6, 0.0]), row, None, *args) is None
+    assert not lists.scalar  # (the array path from now on: no call is made twice)
     res = newton(lists, np.array([0.6, 0.0]), row, None, tol=1e-10, step_tol=1e-12, max_iter=10)
     assert res.converged and res.z[0] == pytest.approx(0.5, rel=1e-14)
 
