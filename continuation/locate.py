@@ -22,6 +22,7 @@ import numpy as np
 from .corrector import correct
 from .errors import SingularMatrixError
 from .linalg import (
+    PairLU,
     bordered,
     bordered_square,
     delete_column,
@@ -332,6 +333,10 @@ def locate_fold(
         z, tangent = br.guess_and_derivative(br.turning_theta(k))
     if start is not None:
         z = start.copy()
+    if getattr(system, "scalar", False):  # a curve of two components: in plain floats
+        found = _locate_fold_pair(br, k, z, tangent)
+        if found is not _UNDECIDED:
+            return found
     # the components other than k (a slice for the usual fold in the last one)
     keep = slice(None, -1) if k == z.size - 1 else np.arange(z.size) != k
     v0 = tangent[keep].copy()
@@ -390,6 +395,79 @@ def locate_fold(
     # (from the last iterate, one update of ≤ locate_tol away)
     details = {"method": "minimally augmented Newton", "test_function": float(g)}
     return accept_located(br, z, dg, it, size, details, oriented_tangent(vt, br.row, br.weights))
+
+
+_UNDECIDED = object()
+
+
+def _locate_fold_pair(br: Bracket, k: int, z: np.ndarray, tangent: np.ndarray) -> Any:
+    """:func:`locate_fold` on a curve of two components in plain floats (``system.scalar``):
+    with one unknown the minimally augmented system has a closed form — ``M = ∂G/∂z_j``
+    (j ≠ k) is a number, ``v = 1/c``, ``w = 1/b``, ``g = −M/(bc)`` — and the Newton matrix
+    ``[∂G/∂z; w·D²G[v, ·]]`` is 2×2 (:class:`~.linalg.PairLU`); the second derivatives are
+    differenced as :func:`second_derivative_row` does, and the stopping test is the same.
+    The located point, or None if Newton fails; ``_UNDECIDED`` where a value is not finite,
+    a callback returns another type or a matrix is singular (the array path then runs)."""
+    o, system = br.options, br.system
+    j = 1 - k
+    if not abs(tangent[j]) > 0.0:
+        return _UNDECIDED
+    x = z.tolist()
+    s = system.scales.tolist()
+    b = c = 1.0 if tangent[j] > 0 else -1.0
+    exact = system.exact_jacobian
+    jac_row, res = system.scalar_jacobian, system.scalar_residual
+    converged, it, previous, size = False, 0, math.inf, math.inf
+    for it in range(1, o.max_locate_iterations + 1):
+        zz = np.array(x)
+        row0 = jac_row(zz)
+        G = res(zz)
+        if row0 is None or G is None:
+            return _UNDECIDED
+        v, w = 1.0 / c, 1.0 / b
+        g = -row0[j] * v / b
+        # w·D²G[v·e_j, ·] by differences of the Jacobian row along e_j (the step of
+        # second_derivative_row: forward for exact derivatives, central otherwise)
+        scale = 1.0 / (abs(v) * (1.0 / max(s[j], abs(x[j]))))
+        if exact:
+            z1 = list(x)
+            z1[j] = x[j] + (_SQRT_EPS * scale) * v
+            h = abs(z1[j] - x[j]) / abs(v)
+            up, down = jac_row(np.array(z1)), row0
+        else:
+            h = _CBRT_EPS * scale
+            zp, zm = list(x), list(x)
+            zp[j], zm[j] = x[j] + h * v, x[j] - h * v
+            up, down, h = jac_row(np.array(zp)), jac_row(np.array(zm)), 2.0 * h
+        if up is None or down is None:
+            return _UNDECIDED
+        try:
+            lu = PairLU(row0[0], row0[1], (up[0] - down[0]) * w / h, (up[1] - down[1]) * w / h)
+        except SingularMatrixError:
+            return None
+        d0, d1 = lu.solve_pair(G, -g)
+        size = max(abs(d0) / max(s[0], abs(x[0])), abs(d1) / max(s[1], abs(x[1])))
+        if not size < math.inf:
+            return None
+        x = [x[0] - d0, x[1] - d1]
+        b, c = (1.0 if w > 0 else -1.0), (1.0 if v > 0 else -1.0)
+        zk = abs(x[k])
+        if newton_done(
+            it, size, previous, o.locate_tol, stall=1e-6,
+            perturbation=_FORWARD_D2_ERROR if exact else None, k_ratio=zk / max(s[k], zk),
+        ):  # fmt: skip
+            converged = True
+            break
+        previous = size
+    if not converged:
+        return None
+    vt = np.zeros(2)
+    vt[j] = v
+    details = {"method": "minimally augmented Newton", "test_function": float(g)}
+    dg = np.array([row0])
+    return accept_located(
+        br, np.array(x), dg, it, size, details, oriented_tangent(vt, br.row, br.weights)
+    )
 
 
 def accept_located(

@@ -9,14 +9,20 @@ suite checks against closed forms."""
 
 from __future__ import annotations
 
+import copy
+import dataclasses
 import math
 
 import numpy as np
 import pytest
 
-from cusp.continuation import Problem
+import cusp.examples as ex
+from cusp.continuation import Problem, Tracer
 from cusp.continuation.corrector import _newton_arrays, newton, scalar_newton
+from cusp.continuation.crossings import evaluate, step_bracket
 from cusp.continuation.linalg import DenseLU, PairLU
+from cusp.continuation.locate import locate_fold
+from cusp.continuation.stepping import advance
 from cusp.continuation.system import BranchSystem
 
 
@@ -127,3 +133,62 @@ def test_pair_lu_matches_lapack():
             np.testing.assert_allclose(ours.solve(b, trans), ref.solve(b, trans), rtol=1e-8)
         assert ours.sign_det() == ref.sign_det() == np.sign(np.linalg.det(a))
         assert ours.log_abs_det() == pytest.approx(ref.log_abs_det(), rel=1e-12, abs=1e-12)
+
+
+def _fold_bracket(problem, u0, monitor=()):
+    """The bracket of the first step of a trace of ``problem`` (free b, from ``u0``) across
+    which a fold test changes sign, and the component it turns in."""
+    tracer = Tracer(problem, free="b", bounds={"b": (-1.0, 1.0)}, monitor=monitor)
+    state = tracer.init(u0)
+    while True:
+        trial = advance(tracer._rules, state)
+        _, _, crossings = evaluate(tracer.tests, tracer._has_bp, state, trial)
+        folds = [c for c in crossings if c[0].kind == "fold"]
+        if folds:
+            return step_bracket(tracer.options, state.system, state.last, trial), folds[0][0].k
+        state = tracer.step(state)
+
+
+FOLD_CASES = [
+    # the cusp x³ − x − b: the fold at x = −1/√3, b = 2/(3√3), exact and differenced
+    (ex.cusp_normal_form().problem, [-1.3247], (), (-1 / np.sqrt(3), 2 / (3 * np.sqrt(3))), 1e-12),
+    (
+        ex.cusp_normal_form(derivatives="central").problem,
+        [-1.3247],
+        (),
+        (-1 / np.sqrt(3), 2 / (3 * np.sqrt(3))),
+        1e-10,
+    ),
+    # the circle x² + b² = 1 from (0.6, −0.8): x turns at (1, 0) (a fold in the unknown)
+    (
+        Problem(
+            lambda u, p: np.array([u[0] ** 2 + p["b"] ** 2 - 1.0]), ["x"], {"b": -0.8},
+            jacobian=lambda u, p: np.array([[2.0 * u[0]]]),
+            param_jacobian=lambda u, p, name: np.array([2.0 * p["b"]]),
+        ),
+        [0.6],
+        ("x",),
+        (1.0, 0.0),
+        1e-12,
+    ),
+]  # fmt: skip
+
+
+@pytest.mark.parametrize("problem, u0, monitor, exact, tol", FOLD_CASES)
+def test_fold_located_in_floats_as_on_arrays(problem, u0, monitor, exact, tol):
+    """A fold located by the float path and by the array path (the same bracket on the
+    system with its scalar flag off): the same point, iterations and tangent to rounding,
+    and at the exact fold."""
+    br, k = _fold_bracket(problem, u0, monitor)
+    assert br.system.scalar
+    floats = locate_fold(br, k)
+    on_arrays = copy.copy(br.system)
+    on_arrays.scalar = False
+    arrays = locate_fold(dataclasses.replace(br, system=on_arrays), k)
+    assert floats is not None and arrays is not None
+    assert floats.status == arrays.status == "converged"
+    assert floats.iterations == arrays.iterations
+    np.testing.assert_allclose(floats.z, arrays.z, rtol=1e-12, atol=1e-14)
+    np.testing.assert_allclose(floats.tangent, arrays.tangent, rtol=1e-9, atol=1e-12)
+    # the exact fold (with differenced derivatives, to 1e-10)
+    np.testing.assert_allclose(floats.z, exact, atol=tol)
