@@ -131,7 +131,8 @@ def newton(
 
     A curve of two components whose equation comes in plain floats (``system.scalar``: a
     branch of one unknown) is corrected in floats (:func:`scalar_newton`), with the same
-    tests and results to rounding, for a third of the cost; anything that path cannot
+    tests and results to rounding, for three quarters of the time (the cusp's corrector:
+    20 µs against 27 µs, most of the rest the user's functions); anything that path cannot
     decide is taken from the start by the general one.
 
     Implementation notes: dense matrices are factored and solved by one LAPACK gesv (the

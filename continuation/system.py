@@ -65,8 +65,9 @@ class CurveSystem:
     called after every accepted point (the tracer skips the call otherwise)."""
     scalar: bool = False
     """True if the curve has two components and :meth:`scalar_residual` and
-    :meth:`scalar_jacobian` give its equation in plain floats: the corrector then works in
-    floats (:func:`~.corrector.newton`), a third of the cost of numpy on such tiny systems."""
+    :meth:`scalar_jacobian` give its equation in plain floats: the corrector and the fold
+    locator then work in floats (:func:`~.corrector.newton`), without numpy's and LAPACK's
+    per-call costs, which dominate on such tiny systems."""
 
     def residual(self, z: np.ndarray) -> np.ndarray:  # pragma: no cover - interface
         raise NotImplementedError
