@@ -46,6 +46,11 @@ if TYPE_CHECKING:
 
 logger = logging.getLogger("cusp.continuation.tracer")
 
+#: the cut of a step whose Newton matrix is singular: a trial point on a singular point of
+#: the curve (a step of exactly the distance to a branch point); halving would land on it
+#: again from every dyadic point before it, so the cut is not a power of 2
+_SINGULAR_CUT = 0.4
+
 _new_tuple = tuple.__new__  # builds a NamedTuple without its Python-level constructor
 
 _AIM_REACH = 1.25  # a bound within this many steps along the tangent is aimed at
@@ -282,9 +287,7 @@ def confirm_step(
     return half._replace(rejected=trial.rejected + 1)
 
 
-def arc_limit(
-    W: np.ndarray, z: np.ndarray, direction: np.ndarray, trial: Trial
-) -> tuple[float, float]:
+def arc_limit(W: np.ndarray, z: np.ndarray, direction: np.ndarray, trial: Trial) -> tuple:
     """The step's predictor distance δ (from ``z`` along ``direction``) and how far a point
     of the curve inside the step may lie from the step's arc: ``δ/10`` (see
     :func:`confirm_step`)."""
@@ -300,15 +303,13 @@ def off_arc(br: Bracket, W: np.ndarray, zh: np.ndarray) -> float:
 def located_on_arc(
     rules: StepRules, state: TracerState, trial: Trial, br: Bracket, points: Sequence[Any]
 ) -> bool:
-    """Whether each of ``points`` (the zeros of folds located inside the step) was located
-    (status ``"converged"``) and lies on the step's arc within the limit of
-    :func:`confirm_step`: the step is then confirmed without its half step.
-
-    A fold is located by Newton from the turning point of the step's arc; on a step that
-    jumped between two branches that arc runs between them, off the curve by about half
-    their distance, and Newton either fails or converges to a point of the curve away from
-    it (a true step's arc is off the curve by its interpolation error only). Where a point
-    is off the arc or not located, the half step decides (:func:`confirm_step`)."""
+    """Whether each of ``points`` (the folds located inside the step) converged and lies on
+    the step's arc within the limit of :func:`confirm_step`: the step is then confirmed
+    without its half step. A fold is located by Newton from the turning point of the step's
+    arc; on a step that jumped between two branches that arc runs between them, off the
+    curve by about half their distance, and Newton fails or converges to a point of the
+    curve away from it (a true step's arc is off the curve by its interpolation error only).
+    Where a point is off the arc or not located, the half step decides."""
     last = state.last
     system = state.system
     W = system.weights
@@ -361,7 +362,7 @@ def _try(
         )
         used_fallback = True
     if not res.converged:
-        return res, res.reason, 0.5
+        return res, res.reason, _SINGULAR_CUT if res.reason == "singular" else 0.5
     t_new = res.lu.solve(rules.e_last)
     t_new /= math.sqrt(t_new.dot(t_new) if unit_w else weighted_square(t_new, W))
     rt = float(row.dot(t_new))  # (a float: the comparisons below cost less)
@@ -515,11 +516,11 @@ def aim_at_bound(
 ) -> Trial | None:
     """A step that would cross a bound, or come within a quarter step of it, ends on it
     instead: from the tangent predictor's crossing of the bound, Newton with that component
-    fixed (one solve, where a step past
-    the bound and locating it would take two). Used only where the bound is transversal
-    with margin — the tangent within 90° − ``max_angle`` of the bound's normal (in the
-    weighted metric), so that the curve, turning by at most ``max_angle``, still crosses
-    it — and accepted under the same guards as any step; otherwise None (a normal step).
+    fixed (one solve, where a step past the bound and locating it would take two). Used only
+    where the bound is transversal with margin — the tangent within 90° − ``max_angle`` of
+    the bound's normal (in the weighted metric), so that the curve, turning by at most
+    ``max_angle``, still crosses it — and accepted under the same guards as any step;
+    otherwise None (a normal step).
 
     The trial's ``h`` is the pseudo-arclength of the end point along ``t`` (also its ``ds``),
     ``rt`` the factor by which det [∂G/∂z; (W t_new)ᵀ] differs in sign from the corrector's
@@ -594,6 +595,4 @@ def _aimed(
     return _new_tuple(Trial, (res, t_new, min(factor, f_interp), h, h, rt, 0, False, tt, interp))
 
 
-__all__ = [
-    "Failure", "StepRules", "Trial", "advance", "confirm_step", "located_on_arc",
-]  # fmt: skip
+__all__ = ["Failure", "StepRules", "Trial", "advance", "confirm_step", "located_on_arc"]

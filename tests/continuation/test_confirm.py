@@ -84,3 +84,20 @@ def test_a_fold_off_the_arc_falls_back_to_the_half_step(monkeypatch):
     assert len(calls) == 2  # one half step per fold: both steps confirmed by it
     np.testing.assert_array_equal(br["b"], reference["b"])
     np.testing.assert_array_equal(br["x"], reference["x"])
+
+
+@pytest.mark.parametrize("ds", [0.1, 0.2, 0.05])
+def test_a_step_landing_on_a_branch_point_is_cut_off_the_dyadic_grid(ds):
+    """x(p − x) = 0 from x = 0, p = −1 (p's typical size is its bounds' width, 2: a step ds
+    moves it by 2·ds): with ds = 0.1 the steps reach p = −0.8, −0.4, and the next predictor
+    lands exactly on the branch point p = 0, where the bordered matrix is singular. Halving
+    the step landed on it again from every dyadic point before it (−0.2, −0.1, …): 46 steps,
+    30 rejections. A cut that is not a power of 2 leaves the grid: the branch point (exact:
+    x = p = 0) is located and the branch ends at p = 1 in a few steps whatever ds."""
+    br = ex.transcritical().trace(ds=ds)
+    assert br.status == "bound"
+    bps = br.special("branch_point")
+    assert len(bps) == 1 and bps[0].status == "converged"
+    assert abs(bps[0].values["p"]) < 1e-10 and abs(bps[0].values["x"]) < 1e-10
+    assert br.info["steps"] <= 10
+    assert int(np.sum(br.stats["rejected_steps"])) <= 3
