@@ -68,10 +68,24 @@ def _floor_step_tol(system: Any, step_tol: float) -> float:
     return step_tol if system.derivatives_exact else max(step_tol, _FD_STEP_TOL)
 
 
-def _at_floor(system: Any, a: Any, z: np.ndarray, rn: float) -> bool:
-    """True if the residual max-norm ``rn`` at ``z`` is at the rounding level of its own
-    terms (``a``: the last bordered matrix): as small as it gets in floating point."""
-    return rn <= system.residual_floor(a[:-1], z)
+def _verdict(
+    k: int, sn: float, rn_new: float, rn: float, sn_prev: float, floor: Any, tol: float,
+    sq_step_tol: float, rel_step_tol: float, strict: bool, contract: bool,
+) -> str:  # fmt: skip
+    """Newton's tests after update ``k`` (see :func:`newton`), for both of its paths:
+    ``"converged"``, the reason to give up, or ``""`` to go on. ``sn``: the update relative
+    to the components' magnitudes and ``sn_prev`` the one before; ``rn_new`` (``rn``): the
+    residual's max-norm after (before) it; ``floor()``: the residual's rounding level at the
+    new point, as small as it gets in floating point (called only when a test needs it)."""
+    if sn <= sq_step_tol and not strict and (rn_new <= tol or rn_new <= floor()):
+        return "converged"
+    if sn <= rel_step_tol and rn_new <= max(tol, floor()):  # AUTO's test
+        return "converged"
+    if k >= 3 and rn_new > 1e3 * max(rn, tol):
+        return "diverging"
+    if contract and sn > 0.5 * sn_prev and sn > sq_step_tol:
+        return "not_contracting"
+    return ""
 
 
 def _sparse_step(a: Any, rhs: np.ndarray) -> tuple[Any, Any, str]:
@@ -212,18 +226,12 @@ def _newton_arrays(
         if rn_new != rn_new or sn != sn:
             rn, reason = rn_new, "nonfinite"
             break
-        if sn <= sq_step_tol and not strict and (rn_new <= tol or _at_floor(system, a, z, rn_new)):
-            rn, converged = rn_new, True
-            break
-        # AUTO's test, with the residual at its rounding floor (see above)
-        if sn <= rel_step_tol and rn_new <= max(tol, system.residual_floor(a[:-1], z)):
-            rn, converged = rn_new, True
-            break
-        if k >= 3 and rn_new > 1e3 * max(rn, tol):
-            rn, reason = rn_new, "diverging"
-            break
-        if contract and sn > 0.5 * sn_prev and sn > sq_step_tol:
-            rn, reason = rn_new, "not_contracting"
+        verdict = _verdict(
+            k, sn, rn_new, rn, sn_prev, lambda a=a, z=z: system.residual_floor(a[:-1], z),
+            tol, sq_step_tol, rel_step_tol, strict, contract,
+        )  # fmt: skip
+        if verdict:
+            rn, converged, reason = rn_new, verdict == "converged", verdict
             break
         rn = rn_new
         chord = not chord and sn <= sq_step_tol
@@ -241,14 +249,14 @@ def scalar_newton(
     :func:`newton`'s, the rounding floor ``100·eps·|∂G/∂u|·max(scale, |u|)`` included.
     None where a value is not finite, a callback returns anything but a float array of the
     right shape, or a matrix is singular: the general path then decides (and says why)."""
-    g = system.scalar_residual(z0) if g0 is None else _float_of(g0)
-    if g is None:
+    # (g0, given, is the system's residual: a float array of one value)
+    g = system.scalar_residual(z0) if g0 is None else g0.item()
+    if g is None or not abs(g) < math.inf:
         return None
     x, lam = z0.tolist()
     r0, r1 = row.tolist()
-    (s0, s1), (w0, w1) = system.scales.tolist(), system.weights.tolist()
-    i0 = 1.0 / max(s0, abs(x))
-    i1 = 1.0 / max(s1, abs(lam))
+    (s0, _), (w0, w1) = system.scales.tolist(), system.weights.tolist()
+    i0, i1 = inverse_magnitudes(system.scales, z0)
     sq_step_tol = math.sqrt(step_tol)
     rel_step_tol = _floor_step_tol(system, step_tol)
     max_first_sq = math.inf if max_first is None else max_first * max_first
@@ -283,31 +291,19 @@ def scalar_newton(
             sn_first = sn
         elif k == 2:
             theta = sn / sn_first if sn_first > 0.0 else 0.0
-        floor = 100 * _EPS * abs(a11) * max(s0, abs(x))  # (CurveSystem.residual_floor)
-        if sn <= sq_step_tol and not strict and (rn_new <= tol or rn_new <= floor):
-            rn, converged = rn_new, True
-            break
-        if sn <= rel_step_tol and rn_new <= max(tol, floor):  # AUTO's test
-            rn, converged = rn_new, True
-            break
-        if k >= 3 and rn_new > 1e3 * max(rn, tol):
-            rn, reason = rn_new, "diverging"
-            break
-        if contract and sn > 0.5 * sn_prev and sn > sq_step_tol:
-            rn, reason = rn_new, "not_contracting"
+        verdict = _verdict(
+            k, sn, rn_new, rn, sn_prev,
+            # (CurveSystem.residual_floor of the Jacobian row at the new point)
+            lambda a11=a11, x=x: 100 * _EPS * abs(a11) * max(s0, abs(x)),
+            tol, sq_step_tol, rel_step_tol, strict, contract,
+        )  # fmt: skip
+        if verdict:
+            rn, converged, reason = rn_new, verdict == "converged", verdict
             break
         rn, g = rn_new, g_new
         chord = not chord and sn <= sq_step_tol
         sn_prev = sn
     return NewtonResult(z, converged, k, rn, lu, "" if converged else reason, theta, sn_first)
-
-
-def _float_of(g: Any) -> float | None:
-    """A residual given as an array of one finite float, as a float (else None)."""
-    if type(g) is np.ndarray and g.dtype == float and g.shape == (1,):
-        v = g.item()
-        return v if abs(v) < math.inf else None
-    return None
 
 
 def correct(

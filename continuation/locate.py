@@ -446,7 +446,8 @@ def _locate_fold_pair(br: Bracket, k: int, z: np.ndarray, tangent: np.ndarray) -
         except SingularMatrixError:
             return None
         d0, d1 = lu.solve_pair(G, -g)
-        size = max(abs(d0) / max(s[0], abs(x[0])), abs(d1) / max(s[1], abs(x[1])))
+        i0, i1 = inverse_magnitudes(system.scales, zz)
+        size = max(abs(d0) * i0, abs(d1) * i1)
         if not size < math.inf:
             return None
         x = [x[0] - d0, x[1] - d1]

@@ -243,18 +243,30 @@ class BranchSystem(CurveSystem):
     def start_vector(self, u: np.ndarray) -> np.ndarray:
         return np.concatenate([u, [self.params[self.free]]])
 
-    # residual and bordered_jacobian are the corrector's inner loop: the parameter dict is
-    # built inline and the dense case checked first (for the tiny systems of most problems
-    # the wrappers cost more than the user's functions). An ArithmeticError raised by the
+    # residual and bordered_jacobian (and their scalar_ forms) are the corrector's inner
+    # loop: the user's functions are called by _residual_at and _derivatives_at, and the
+    # dense case is checked first (for the tiny systems of most problems the wrappers cost
+    # more than the user's functions). An ArithmeticError raised by the
     # user's functions (ZeroDivisionError, OverflowError: math on floats at a trial point
     # outside where they are defined) reads as a non-finite value, which the corrector
     # rejects like any other (the step is shortened; at the start it is a typed error)
 
-    def residual(self, z):
+    def _residual_at(self, z):
+        """The user's residual at ``z`` (its parameters with the free one at ``z[-1]``)."""
         p = dict(self.params)
         p[self.free] = z[-1]
+        return self._residual(z[:-1], p)
+
+    def _derivatives_at(self, z):
+        """The user's ``(jacobian, param_jacobian)`` at ``z``, as they return them."""
+        u = z[:-1]
+        p = dict(self.params)
+        p[self.free] = z[-1]
+        return self._jacobian(u, p), self._param_jacobian(u, p, self.free)
+
+    def residual(self, z):
         try:
-            r = self._residual(z[:-1], p)
+            r = self._residual_at(z)
         except ArithmeticError:  # a division by zero or overflow at a trial point: as NaN
             return np.full(self.n, np.nan)
         if type(r) is _NDARRAY and r.dtype is _FLOAT and r.shape == self._shapes[1]:
@@ -269,12 +281,8 @@ class BranchSystem(CurveSystem):
 
     def bordered_jacobian(self, z, row):
         """``[∂R/∂u, ∂R/∂p_free]``, with ``row`` appended as a last row unless it is None."""
-        u = z[:-1]
-        p = dict(self.params)
-        p[self.free] = z[-1]
         try:
-            j = self._jacobian(u, p)
-            fp = self._param_jacobian(u, p, self.free)
+            j, fp = self._derivatives_at(z)
         except ArithmeticError:  # as for the residual: a matrix the corrector finds non-finite
             j, fp = np.full(self._shapes[0], np.nan), np.full(self.n, np.nan)
         if type(fp) is not _NDARRAY or fp.dtype is not _FLOAT:
@@ -304,10 +312,8 @@ class BranchSystem(CurveSystem):
         a finite float array of one value (or raises an ArithmeticError): the general path
         (:meth:`residual`) then says what is wrong. A result of another type (a list, another
         dtype) turns :attr:`scalar` off: the array path converts it, every time."""
-        p = dict(self.params)
-        p[self.free] = z[-1]
         try:
-            r = self._residual(z[:-1], p)
+            r = self._residual_at(z)
         except ArithmeticError:
             return None
         if type(r) is _NDARRAY and r.dtype is _FLOAT and r.shape == (1,):
@@ -319,12 +325,8 @@ class BranchSystem(CurveSystem):
     def scalar_jacobian(self, z) -> tuple[float, float] | None:
         """``(∂R/∂u, ∂R/∂p_free)`` of a problem of one unknown at ``z`` as floats; None as
         for :meth:`scalar_residual`."""
-        u = z[:-1]
-        p = dict(self.params)
-        p[self.free] = z[-1]
         try:
-            j = self._jacobian(u, p)
-            fp = self._param_jacobian(u, p, self.free)
+            j, fp = self._derivatives_at(z)
         except ArithmeticError:
             return None
         if (

@@ -11,28 +11,19 @@ import pytest
 
 import cusp.continuation.tracer as tracer_module
 import cusp.examples as ex
-from cusp.continuation import Tracer, trace
-from cusp.continuation.crossings import evaluate, step_bracket
-from cusp.continuation.stepping import advance, arc_limit, located_on_arc
+from cusp.continuation import trace
+from cusp.continuation.stepping import arc_limit, located_on_arc
+from tests.continuation.helpers import first_fold_step
 
 FOLD_B = 2.0 / (3.0 * np.sqrt(3.0))
 
 
 def _fold_step():
-    """A cusp tracer, the state before the first step that crosses the lower fold, that step
-    and the fold located in it."""
-    case = ex.cusp_normal_form()
-    tracer = Tracer(case.problem, free="b", bounds={"b": (-1.0, 1.0)})
-    state = tracer.init([-1.3247])
-    while True:
-        trial = advance(tracer._rules, state)
-        _, _, crossings = evaluate(tracer.tests, tracer._has_bp, state, trial)
-        folds = [c for c in crossings if c[0].kind == "fold"]
-        if folds:
-            break
-        state = tracer.step(state)
-    br = step_bracket(tracer.options, state.system, state.last, trial)
-    tt, old, new, _ = folds[0]
+    """A cusp tracer, the state before the first step that crosses the lower fold, that step,
+    its bracket and the fold located in it."""
+    tracer, state, trial, br, (tt, old, new, _) = first_fold_step(
+        ex.cusp_normal_form().problem, [-1.3247]
+    )
     return tracer, state, trial, br, tt.locate(br, old, new)
 
 

@@ -17,13 +17,12 @@ import numpy as np
 import pytest
 
 import cusp.examples as ex
-from cusp.continuation import Problem, Tracer
+from cusp.continuation import Problem
 from cusp.continuation.corrector import _newton_arrays, newton, scalar_newton
-from cusp.continuation.crossings import evaluate, step_bracket
 from cusp.continuation.linalg import DenseLU, PairLU
 from cusp.continuation.locate import locate_fold
-from cusp.continuation.stepping import advance
 from cusp.continuation.system import BranchSystem
+from tests.continuation.helpers import first_fold_step
 
 
 def _cusp(scale: float = 1.0, derivatives: str = "analytic") -> BranchSystem:
@@ -135,20 +134,6 @@ def test_pair_lu_matches_lapack():
         assert ours.log_abs_det() == pytest.approx(ref.log_abs_det(), rel=1e-12, abs=1e-12)
 
 
-def _fold_bracket(problem, u0, monitor=()):
-    """The bracket of the first step of a trace of ``problem`` (free b, from ``u0``) across
-    which a fold test changes sign, and the component it turns in."""
-    tracer = Tracer(problem, free="b", bounds={"b": (-1.0, 1.0)}, monitor=monitor)
-    state = tracer.init(u0)
-    while True:
-        trial = advance(tracer._rules, state)
-        _, _, crossings = evaluate(tracer.tests, tracer._has_bp, state, trial)
-        folds = [c for c in crossings if c[0].kind == "fold"]
-        if folds:
-            return step_bracket(tracer.options, state.system, state.last, trial), folds[0][0].k
-        state = tracer.step(state)
-
-
 FOLD_CASES = [
     # the cusp x³ − x − b: the fold at x = −1/√3, b = 2/(3√3), exact and differenced
     (ex.cusp_normal_form().problem, [-1.3247], (), (-1 / np.sqrt(3), 2 / (3 * np.sqrt(3))), 1e-12),
@@ -179,7 +164,8 @@ def test_fold_located_in_floats_as_on_arrays(problem, u0, monitor, exact, tol):
     """A fold located by the float path and by the array path (the same bracket on the
     system with its scalar flag off): the same point, iterations and tangent to rounding,
     and at the exact fold."""
-    br, k = _fold_bracket(problem, u0, monitor)
+    *_, br, (test, _, _, _) = first_fold_step(problem, u0, monitor=monitor)
+    k = test.k
     assert br.system.scalar
     floats = locate_fold(br, k)
     on_arrays = copy.copy(br.system)
