@@ -33,6 +33,7 @@ from .errors import (
     ProblemDefinitionError,
     SingularMatrixError,
     SingularPointError,
+    StalledError,
     StepGuardError,
 )
 from .events import Event
@@ -68,6 +69,7 @@ __all__ = [
     "SingularPointError",
     "StepGuardError",
     "SpecialPoint",
+    "StalledError",
     "TestFunction",
     "Tracer",
     "TracerState",

@@ -13,6 +13,7 @@ from .linalg import (
     DenseLU,
     PairLU,
     _gesv,
+    _getrf,
     _getrs,
     factor,
     inverse_magnitudes,
@@ -304,6 +305,39 @@ def scalar_newton(
         chord = not chord and sn <= sq_step_tol
         sn_prev = sn
     return NewtonResult(z, converged, k, rn, lu, "" if converged else reason, theta, sn_first)
+
+
+def factor_at(system: Any, z: np.ndarray, row: np.ndarray) -> Any:
+    """The factorization of ``[∂G/∂z(z); row]`` with the Jacobian evaluated at ``z`` itself,
+    or None where that matrix is singular or not finite.
+
+    A corrector's own last factorization is of the matrix at the iterate before its last
+    update: a tangent solved with it is off by about that update times ``|D²G|/σ_min``,
+    ``σ_min`` the smallest singular value of ``∂G/∂z``. Near a simple branch point
+    ``σ_min`` tends to 0, and on a branch that is symmetric up to rounding (the trivial
+    equilibrium of a pitchfork, reached from a guess) that error points along the other
+    branch: the predictor moves off the symmetric branch by ``ds`` times it, every step, and
+    the trace drifts onto the crossing branch. The tangent, the sign of the determinant and
+    the interpolant's projection of an accepted point are therefore taken from the matrix at
+    the point itself (one Jacobian and one factorization per accepted step)."""
+    if system.scalar:
+        jac = system.scalar_jacobian(z)
+        if jac is not None:
+            r0, r1 = row.tolist()
+            try:
+                return PairLU(jac[0], jac[1], r0, r1)
+            except SingularMatrixError:
+                return None
+    try:
+        a = system.bordered_jacobian(z, row)
+        if type(a) is np.ndarray:
+            f, piv, info = _getrf(a)
+            if info > 0 or not math.isfinite(f[-1, -1]):
+                return None
+            return DenseLU.from_factors(f, piv)
+        return factor(a)
+    except SingularMatrixError:
+        return None
 
 
 def correct(

@@ -75,6 +75,20 @@ class StepGuardError(ConvergenceError):
         super().__init__(what, **kwargs)
 
 
+class StalledError(ContinuationError):
+    """A step could not make progress within its work limit (``max_step_solves`` corrector
+    solves: tries, halvings, half steps confirming a sign change, corner steps), or the
+    branch crept on for 100 steps far below ``ds``: status ``"stalled"``.
+
+    Attributes: ``values`` (the point the step started from), ``ds`` (the smallest step size
+    tried) and ``tried`` (what was tried, in words)."""
+
+    def __init__(self, message: str, *, values: Mapping[str, float], ds: float, tried: str):
+        self.ds = float(ds)
+        self.tried = tried
+        super().__init__(message, values=values)
+
+
 class NonFiniteResidualError(ContinuationError):
     """The residual (or its Jacobian) returned NaN or infinity."""
 

@@ -530,19 +530,33 @@ def locate_on_arc(br: Bracket, f, f_a: float, f_b: float, rtol: float | None = N
     side = 0
     best = None
     it = 0
+    widths = [math.inf, math.inf, math.inf]  # the bracket's width before each try
     for it in range(1, o.max_locate_iterations + 1):
         sigma = (lo * fhi - hi * flo) / (fhi - flo)
+        width = abs(hi - lo)
+        if width > 0.5 * widths[-3] or not min(lo, hi) < sigma < max(lo, hi):
+            # the bracket did not halve in three tries (one end's value is tiny next to the
+            # other's, as the determinant's a rounding away from a branch point, and the
+            # Illinois halving needs a hundred tries to catch up): bisect
+            sigma = 0.5 * (lo + hi)
+        widths.append(width)
         res = br.point_at(sigma)
         if not res.converged and res.reason == "singular" and res.residual_norm <= o.tol:
             details = {"method": "Illinois", "test_values": (0.0, 0.0), "singular_trial": True}
             return Located(res.z, sigma, "converged", it, details)
+        z = res.z
         if not res.converged:
-            break
-        fz = f(res.z)
-        best = (res.z, sigma)
+            # next to a branch point the corrector's matrix is singular to rounding and its
+            # update is noise (a residual at rounding level over σ_min ~ ε): the arc's own
+            # point serves if it lies on the curve to tolerance
+            z = br.guess(sigma / br.h)
+            if not max_abs(br.system.residual(z)) <= o.tol:
+                break
+        fz = f(z)
+        best = (z, sigma)
         if fz == 0.0:
             return Located(
-                br.polish(res.z, sigma),
+                br.polish(z, sigma),
                 sigma,
                 "converged",
                 it,
@@ -560,7 +574,7 @@ def locate_on_arc(br: Bracket, f, f_a: float, f_b: float, rtol: float | None = N
             side = 1
         if abs(hi - lo) <= xtol:
             return Located(
-                br.polish(res.z, sigma),
+                br.polish(z, sigma),
                 sigma,
                 "converged",
                 it,

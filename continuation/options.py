@@ -131,6 +131,12 @@ class ContinuationOptions:
     relative to each component's magnitude ``max(typical size, |z_i|)``. Located special
     points are polished until the update itself is that small (with differenced derivatives,
     whose error keeps Newton from getting much further, until it is below 1e-10)."""
+    max_step_solves: int = 200
+    """Corrector solves one step may take (its tries, halvings, half steps confirming a sign
+    change, corner steps and steps aimed at a bound together; each at most
+    ``max_newton_iterations`` iterations): a step that needs more cannot make progress and
+    ends the branch with status ``"stalled"`` (:class:`~.errors.StalledError`). A normal step
+    takes 1 to 5."""
     max_newton_iterations: int = 10
     target_newton_iterations: int = 5
     """The step size is scaled by ``target_newton_iterations / iterations`` (within
@@ -229,6 +235,7 @@ class ContinuationOptions:
         )
         for name in (
             "max_steps",
+            "max_step_solves",
             "max_newton_iterations",
             "target_newton_iterations",
             "max_locate_iterations",

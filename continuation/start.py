@@ -20,7 +20,7 @@ from typing import Any, NamedTuple
 
 import numpy as np
 
-from .corrector import correct
+from .corrector import correct, factor_at
 from .errors import (
     ConvergenceError,
     NonFiniteResidualError,
@@ -66,13 +66,17 @@ def correct_start(
     k = system.dim - 1
     res = correct(system, z0, e_last, z0[k], options, budget=4, g0=g0)
     if res.converged:
-        t = _solve(res.lu, e_last)
+        z = res.z.copy()
+        z[k] = z0[k]  # the constraint is linear: snap away the last rounding
+        z, rn = snap_zeros(system, z, z0, res.residual_norm)
+        lu = factor_at(system, z, e_last)  # (the tangent at z itself: see factor_at)
+        t = _solve(lu, e_last)
         if t is not None:
-            sdet = res.lu.sign_det()
+            sdet = lu.sign_det()
             if t[k] * direction < 0:
                 t, sdet = -t, -sdet
-            return Start(res.z, t, sdet, res.residual_norm, res.iterations, None)
-        z, rn, iters = res.z, res.residual_norm, res.iterations
+            return Start(z, t, sdet, rn, res.iterations, None)
+        iters = res.iterations
     elif res.reason == "singular":
         # ∂G/∂u is singular at the guess (or an iterate): a fold of the free parameter,
         # where the curve is still regular, or a singular point
@@ -93,6 +97,45 @@ def correct_start(
     if t[i] * direction < 0:
         t = -t
     return Start(z, t, None, rn, iters, system.names[i])
+
+
+def snap_zeros(
+    system: Any, z: np.ndarray, guess: np.ndarray, residual: float
+) -> tuple[np.ndarray, float]:
+    """The corrected start ``z`` with the components that are zeros up to Newton's
+    remainder set to exactly 0, and the residual's max-norm there.
+
+    Newton corrects a guess of the trivial state of a symmetric problem (the origin of the
+    Lorenz equations, the unloaded truss, u = 0 of the Bratu problem at λ = 0) to a point
+    whose components are not 0 but what is left of their convergence to 0 (1e-17 from a
+    guess of 0.1, 1e-28 from a guess of 1e-6): nothing in the equations tells that
+    remainder from a component of that size, yet it would set the component's typical size
+    and break the symmetry of the branch by that much. A component is that remainder when
+    it is a millionth of the largest magnitude of the guess, of ``z`` and of the typical
+    sizes known before the correction (bounds, ``scales``, 1 for a guess of 0) or less, and
+    setting the candidates to 0 leaves every equation at its rounding level
+    (``100·ε·Σ_j |∂G_r/∂z_j|·max(scale_j, |z_j|)``): a genuinely small component (a
+    concentration of 1e-9 beside pressures of 1e6) leaves its equations off by its own
+    terms, far above that, and is kept."""
+    largest = max(max_abs(z), max_abs(np.asarray(guess, dtype=float)), max_abs(system.scales))
+    small = np.abs(z) <= 1e-6 * largest
+    small[-1] = False  # (the last component, a parameter, is held at its value)
+    if not np.any(z[small] != 0.0):  # (none, or all exactly 0 already)
+        return z, residual
+    zs = np.where(small, 0.0, z)
+    try:
+        g = system.residual(zs)
+        dg = system.jacobian(zs)
+    except (ArithmeticError, SingularMatrixError):
+        return z, residual
+    terms = abs(dg) @ np.maximum(system.scales, np.abs(zs))
+    terms = np.asarray(terms).ravel()
+    if np.all(np.abs(g) <= 100.0 * _EPS * terms):
+        return zs, float(max_abs(g))
+    return z, residual
+
+
+_EPS = float(np.finfo(float).eps)
 
 
 def _solve(lu: Any, rhs: np.ndarray) -> np.ndarray | None:

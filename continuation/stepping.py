@@ -20,12 +20,11 @@ from __future__ import annotations
 
 import logging
 import math
-from collections.abc import Sequence
 from typing import TYPE_CHECKING, Any, NamedTuple
 
 import numpy as np
 
-from .corrector import NewtonResult, correct, damped_newton, newton
+from .corrector import NewtonResult, correct, damped_newton, factor_at, newton
 from .errors import (
     ContinuationError,
     ConvergenceError,
@@ -35,8 +34,9 @@ from .errors import (
 )
 from .interpolant import arc_from, arc_length, interpolation_error
 from .linalg import weighted_square
-from .locate import Bracket, oriented_tangent
+from .locate import oriented_tangent
 from .stepcontrol import guard_factor, interpolation_factor
+from .work import StepWork
 
 if TYPE_CHECKING:
     from .options import ContinuationOptions
@@ -52,6 +52,8 @@ logger = logging.getLogger("cusp.continuation.tracer")
 _SINGULAR_CUT = 0.4
 
 _new_tuple = tuple.__new__  # builds a NamedTuple without its Python-level constructor
+
+_SINGULAR_RESULT = NewtonResult(np.zeros(0), False, 0, math.inf, None, "singular")
 
 _AIM_REACH = 1.25  # a bound within this many steps along the tangent is aimed at
 _MIN_FACTOR = 0.1  # a rejected step is retried at least this large (times ds)
@@ -141,11 +143,11 @@ class Failure(NamedTuple):
     error: ContinuationError
 
 
-def advance(rules: StepRules, state: TracerState) -> Trial | Failure:
+def advance(rules: StepRules, state: TracerState, work: StepWork) -> Trial | Failure:
     """Predict and correct one step from the last point of ``state``: the corner step after
     many steps creeping at ``ds_min``, else the step aimed at a bound within reach, else the
     pseudo-arclength step, halved until it is accepted; at ``ds_min`` the corner step and
-    then failure."""
+    then failure. Each corrector solve counts against the step's ``work``."""
     o = rules.options
     system = state.system
     last = state.last
@@ -158,19 +160,19 @@ def advance(rules: StepRules, state: TracerState) -> Trial | Failure:
     if state.stalled >= _STALL_STEPS:
         # creeping at ds near ds_min (say, Newton with a Jacobian differenced across a
         # kink): try to pass the corner directly
-        corner = corner_step(rules, system, z, t, state.ds, z_prev)
+        corner = corner_step(rules, system, z, t, state.ds, z_prev, work)
         if corner is not None:
             return corner
         if state.stalled >= _STALL_LIMIT:
             # still creeping: a step of STALL_FACTOR·ds_min that the guards reject ends it
             ds = STALL_FACTOR * o.ds_min
-            tried = _try(rules, system, z, t, ds, direction, row, secant)
+            tried = _try(rules, system, z, t, ds, direction, row, secant, work)
             if isinstance(tried, Trial):
                 return tried
             res, reason, _ = tried
             return _failure(system, z, ds, res, reason, o, crept=state.stalled)
     elif secant is None and rules.bound_tests:
-        aimed = aim_at_bound(rules, state, z, t, state.ds)
+        aimed = aim_at_bound(rules, state, z, t, state.ds, work)
         if aimed is not None:
             return aimed
     ds = state.ds
@@ -178,7 +180,7 @@ def advance(rules: StepRules, state: TracerState) -> Trial | Failure:
     kappa = math.inf  # the first contraction of the last step rejected for it
     kept = 0  # how many times in a row it stayed put on a step half as long
     while True:
-        tried = _try(rules, system, z, t, ds, direction, row, secant)
+        tried = _try(rules, system, z, t, ds, direction, row, secant, work)
         if isinstance(tried, Trial):
             return tried._replace(rejected=rejected) if rejected else tried
         res, reason, factor = tried
@@ -196,7 +198,7 @@ def advance(rules: StepRules, state: TracerState) -> Trial | Failure:
                 return _failure(system, z, ds, res, reason, o)
             kappa = res.contraction
         if ds <= o.ds_min:
-            corner = corner_step(rules, system, z, t, state.ds, z_prev)
+            corner = corner_step(rules, system, z, t, state.ds, z_prev, work)
             if corner is not None:
                 return corner
             return _failure(system, z, ds, res, reason, o)
@@ -228,98 +230,6 @@ def _predictor(
     return secant, direction, direction if system.unit_weights else system.weights * direction
 
 
-def confirm_step(
-    rules: StepRules, state: TracerState, trial: Trial, br: Bracket | None = None
-) -> Trial | None:
-    """Confirm a step across which a test function changed sign: None if the half step from
-    the same point lies on the step's cubic Hermite arc, else the step to take instead (the
-    half step, or a shorter one if the half step is rejected).
-
-    A step that jumped to a nearby branch (one whose tangent turned little and whose
-    correction was small, as when two branches pass close and parallel) passes every guard
-    of the step itself, and changes the sign of the branch-point test: its arc joins the two
-    branches. The half step stays on the first branch, off that arc by about half the
-    distance between them, where a true step's arc is off the curve by its interpolation
-    error, O(ds⁴) against the predictor's distance δ = O(ds²): the step is confirmed when the
-    half step is within ``δ/10`` of the arc (on a circle turning 30° in the step, the arc is
-    off by δ/160; :func:`arc_limit`). The half step is first corrected only to 1e-3·δ,
-    which is all the comparison needs; only when that point is off the arc (or its corrector
-    fails) is the half step taken as a step of its own, the one to take instead. ``br``: the
-    step's bracket, if the caller made it. (A fold is confirmed more cheaply, after it is
-    located: :func:`located_on_arc`.)"""
-    o = rules.options
-    system = state.system
-    W = system.weights
-    last = state.last
-    z, t = last.z, last.t
-    secant, direction, row = _predictor(o, system, z, t, None if last.prev is None else last.prev.z)
-    ds = trial.ds
-    if br is None:
-        br = Bracket(system, z, t, trial.res.z, trial.t, W, o)
-    delta, limit = arc_limit(W, z, direction, trial)
-
-    # First the half-step point alone, corrected only as far as the comparison needs: to
-    # 1e-3·δ (an update that small, relative to the components' magnitudes, moves the point
-    # by at most 1e-3·δ in the weighted norm). Most steps are confirmed by it.
-    mags = np.maximum(system.scales, np.abs(z))
-    loose = 1e-3 * delta / wnorm(mags, W)
-    if loose > math.sqrt(o.step_tol):
-        z_half = z + 0.5 * ds * direction
-        res = newton(
-            system, z_half, row, row.dot(z_half), tol=math.inf, step_tol=loose * loose,
-            max_iter=o.max_newton_iterations, contract=True, max_first=ds,
-        )  # fmt: skip
-        if res.converged and off_arc(br, W, res.z) <= limit:
-            return None
-    # else the half step as a step of its own: the step to take instead if it is off the arc
-    half = _try(rules, system, z, t, 0.5 * ds, direction, row, secant)
-    if not isinstance(half, Trial):  # the half step fails where the whole one passed
-        shorter = advance(rules, state._replace(ds=max(0.25 * ds, o.ds_min)))
-        return shorter._replace(rejected=trial.rejected + 1) if isinstance(shorter, Trial) else None
-    off = off_arc(br, W, half.res.z)
-    if off <= limit:
-        return None
-    logger.info(
-        "a step of %g whose half step is %.3g off its arc (predictor distance %.3g): a jump "
-        "to another branch, retaken as the half step",
-        ds, off, delta,
-    )  # fmt: skip
-    return half._replace(rejected=trial.rejected + 1)
-
-
-def arc_limit(W: np.ndarray, z: np.ndarray, direction: np.ndarray, trial: Trial) -> tuple:
-    """The step's predictor distance δ (from ``z`` along ``direction``) and how far a point
-    of the curve inside the step may lie from the step's arc: ``δ/10`` (see
-    :func:`confirm_step`)."""
-    delta = wnorm(trial.res.z - (z + trial.ds * direction), W)
-    return delta, 0.1 * delta + 1e-9 * trial.ds
-
-
-def off_arc(br: Bracket, W: np.ndarray, zh: np.ndarray) -> float:
-    """The distance of ``zh`` from the step's cubic Hermite arc, at its pseudo-arclength."""
-    return wnorm(zh - br.guess(br.sigma(zh) / br.h), W)
-
-
-def located_on_arc(
-    rules: StepRules, state: TracerState, trial: Trial, br: Bracket, points: Sequence[Any]
-) -> bool:
-    """Whether each of ``points`` (the folds located inside the step) converged and lies on
-    the step's arc within the limit of :func:`confirm_step`: the step is then confirmed
-    without its half step. A fold is located by Newton from the turning point of the step's
-    arc; on a step that jumped between two branches that arc runs between them, off the
-    curve by about half their distance, and Newton fails or converges to a point of the
-    curve away from it (a true step's arc is off the curve by its interpolation error only).
-    Where a point is off the arc or not located, the half step decides."""
-    last = state.last
-    system = state.system
-    W = system.weights
-    _, direction, _ = _predictor(
-        rules.options, system, last.z, last.t, None if last.prev is None else last.prev.z
-    )
-    limit = arc_limit(W, last.z, direction, trial)[1]
-    return all(loc.status == "converged" and off_arc(br, W, loc.z) <= limit for loc in points)
-
-
 def _try(
     rules: StepRules,
     system: CurveSystem,
@@ -329,9 +239,13 @@ def _try(
     direction: np.ndarray,
     row: np.ndarray,
     secant: np.ndarray | None,
+    work: StepWork,
+    kind: str = "try",
 ) -> Trial | tuple[NewtonResult, str, float]:
-    """One corrector solve at ``ds``: the trial if it is accepted, else the corrector's
-    result, the reason it is not and the factor its guards ask for."""
+    """One corrector solve at ``ds`` (counted in ``work`` as ``kind``): the trial if it is
+    accepted, else the corrector's result, the reason it is not and the factor its guards
+    ask for."""
+    work.charge(kind, ds)
     o = rules.options
     W = system.weights
     unit_w = system.unit_weights
@@ -363,6 +277,10 @@ def _try(
         used_fallback = True
     if not res.converged:
         return res, res.reason, _SINGULAR_CUT if res.reason == "singular" else 0.5
+    fresh = _at_point(system, res, row)
+    if fresh is None:  # (the trial point is exactly singular: a branch point)
+        return _SINGULAR_RESULT, "singular", _SINGULAR_CUT
+    res = fresh
     t_new = res.lu.solve(rules.e_last)
     t_new /= math.sqrt(t_new.dot(t_new) if unit_w else weighted_square(t_new, W))
     rt = float(row.dot(t_new))  # (a float: the comparisons below cost less)
@@ -385,6 +303,17 @@ def _try(
         logger.info("step accepted by the damped fallback corrector at ds=%g", ds)
     factor = min(factor, f_interp)
     return _new_tuple(Trial, (res, t_new, factor, ds, ds, rt, 0, False, None, interp))
+
+
+def _at_point(system: CurveSystem, res: NewtonResult, row: np.ndarray) -> NewtonResult | None:
+    """The corrector's result with the factorization of ``[∂G/∂z; row]`` at its point
+    itself (:func:`~.corrector.factor_at`), None where that matrix is singular."""
+    lu = factor_at(system, res.z, row)
+    if lu is None:
+        return None
+    return NewtonResult(
+        res.z, True, res.iterations, res.residual_norm, lu, "", res.contraction, res.first_update
+    )
 
 
 def _failure(
@@ -436,7 +365,8 @@ def corner_step(
     z: np.ndarray,
     t: np.ndarray,
     ds_hint: float,
-    z_prev: np.ndarray | None = None,
+    z_prev: np.ndarray | None,
+    work: StepWork,
 ) -> Trial | None:
     """Fallback at a corner of the curve (a non-smooth turning point, where the tangent
     turns by more than 90° so no pseudo-arclength hyperplane meets the curve beyond):
@@ -458,7 +388,7 @@ def corner_step(
     sizes = [h for h in (h0 * 0.25**k for k in range(12)) if h >= 10 * o.ds_min]
     for h in sizes:
         for j in order:
-            found = _natural_step(rules, system, z, t, int(j), h, incoming)
+            found = _natural_step(rules, system, z, t, int(j), h, incoming, work)
             if found is not None:
                 logger.info("corner passed by a natural-parameter step in %s", system.names[j])
                 return found
@@ -473,8 +403,10 @@ def _natural_step(
     j: int,
     h: float,
     incoming: np.ndarray | None,
+    work: StepWork,
 ) -> Trial | None:
     """A step of ``h`` (weighted) in component ``j`` alone, the way it was moving."""
+    work.charge("corner", h)
     o = rules.options
     W = system.weights
     sign = 1.0 if t[j] > 0 else -1.0
@@ -512,7 +444,7 @@ def _natural_step(
 
 
 def aim_at_bound(
-    rules: StepRules, state: TracerState, z: np.ndarray, t: np.ndarray, ds: float
+    rules: StepRules, state: TracerState, z: np.ndarray, t: np.ndarray, ds: float, work: StepWork
 ) -> Trial | None:
     """A step that would cross a bound, or come within a quarter step of it, ends on it
     instead: from the tangent predictor's crossing of the bound, Newton with that component
@@ -544,6 +476,7 @@ def aim_at_bound(
             continue
         if math.sqrt(W[k]) * abs(tk) < math.sin(math.radians(o.max_angle)):
             return None  # grazing: a normal step, then locating
+        work.charge("aimed", ds)
         return _aimed(rules, state.system, z, t, ds, tt, sigma, tk)
     return None
 
@@ -595,4 +528,4 @@ def _aimed(
     return _new_tuple(Trial, (res, t_new, min(factor, f_interp), h, h, rt, 0, False, tt, interp))
 
 
-__all__ = ["Failure", "StepRules", "Trial", "advance", "confirm_step", "located_on_arc"]
+__all__ = ["Failure", "StepRules", "Trial", "advance"]

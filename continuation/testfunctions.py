@@ -87,7 +87,7 @@ class TestFunction:
     kind = "test"
     confirm = True
     """A sign change is confirmed before it is located (a jump to another branch changes the
-    sign of tests of the curve's geometry; see :func:`~.stepping.confirm_step`)."""
+    sign of tests of the curve's geometry; see :func:`~.confirm.confirm_step`)."""
 
     def __init__(
         self, label: str, wrt: str | None = None, direction: int = 0, terminal: bool = False

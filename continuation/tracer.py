@@ -11,10 +11,10 @@ A step has five phases:
 3. **evaluate** the test functions the curve system defines
    (:meth:`~.system.CurveSystem.test_functions`) at the new point
    (:func:`~.crossings.evaluate`); when a test of the curve's geometry changed sign the step
-   is confirmed by its half step (:func:`~.stepping.confirm_step`), and a sign change
+   is confirmed by its half step (:func:`~.confirm.confirm_step`), and a sign change
    that the half step does not reproduce was a jump: the step is redone shorter (a fold is
    located first, and the step confirmed when the fold lies on the step's arc:
-   :func:`~.stepping.located_on_arc`; the half step decides otherwise);
+   :func:`~.confirm.located_on_arc`; the half step decides otherwise);
 4. **locate and insert**: a sign change between the two ends of the step, or two zeros of
    one test inside it (:func:`~.crossings.pairs`), is located inside it
    (:func:`~.crossings.locate_crossings`) and the located points are linked in, in
@@ -38,6 +38,7 @@ from typing import Any
 import numpy as np
 
 from .branch import Branch, SpecialPoint, join_halves
+from .confirm import confirm_step, located_on_arc
 from .crossings import corner_folds, evaluate, locate_crossings, splits, step_bracket
 from .errors import (
     MaxStepsWarning,
@@ -54,18 +55,10 @@ from .scaling import diverged, given_scales, grown_sizes, out_of_range, typical_
 from .start import correct_start
 from .state import Point, TracerState, assemble_branch
 from .stepcontrol import next_step_size
-from .stepping import (
-    STALL_FACTOR,
-    Failure,
-    StepRules,
-    Trial,
-    advance,
-    confirm_step,
-    located_on_arc,
-    wnorm,
-)
+from .stepping import STALL_FACTOR, Failure, StepRules, Trial, advance, wnorm
 from .system import BranchSystem, CurveSystem
 from .testfunctions import BoundTest, Record, TestFunction
+from .work import OutOfWork, StepWork, stalled
 
 logger = logging.getLogger(__name__)
 
@@ -306,16 +299,32 @@ class Tracer:
         return state.status is not None
 
     def step(self, state: TracerState) -> TracerState:
-        """One accepted continuation step (with its special points), or the end."""
+        """One accepted continuation step (with its special points), or the end. numpy's
+        floating-point warnings are silenced inside it: a trial point where the user's
+        functions overflow or take the square root of a negative number gives a non-finite
+        value, which the step rejects like any other (and reports if it persists)."""
+        with np.errstate(all="ignore"):
+            return self._step(state)
+
+    def _step(self, state: TracerState) -> TracerState:
+        """:meth:`step` (numpy's warnings silenced by the caller)."""
         if state.status is not None:
             return state
+        work = StepWork(self.options.max_step_solves)
+        try:
+            return self._work(state, work)
+        except OutOfWork as out:
+            values = state.system.values(state.last.z)
+            return self._fail(state, Failure("stalled", *stalled(out, values, state.ds)))
+
+    def _work(self, state: TracerState, work: StepWork) -> TracerState:
         # 1. predict and correct
-        trial = advance(self._rules, state)
+        trial = advance(self._rules, state, work)
         if isinstance(trial, Failure):
             return self._fail(state, trial)
         while True:
             # 2.-3. accept, evaluate the test functions and confirm a sign change
-            trial, system, values, crossings, br, deferred = self._evaluate(state, trial)
+            trial, system, values, crossings, br, deferred = self._evaluate(state, trial, work)
             # 4. locate the crossings inside the step (a corner's folds are only bracketed)
             special, located = self._locate(state, system, trial, values, crossings, br)
             if not deferred or located_on_arc(
@@ -323,19 +332,19 @@ class Tracer:
             ):
                 break
             # a fold not located on the step's arc: the half step decides
-            shorter = confirm_step(self._rules, state, trial, br)
+            shorter = confirm_step(self._rules, state, trial, br, work)
             if shorter is None:
                 break
             trial = shorter
         # 5. insert the located points, adapt the step size, terminate
         return self._finish(state, system, trial, values, special, located)
 
-    def _evaluate(self, state: TracerState, trial: Trial) -> tuple:
+    def _evaluate(self, state: TracerState, trial: Trial, work: StepWork) -> tuple:
         """The trial (or the shorter one that replaces a jump), the curve system at its end,
         the test values there, the tests whose change counts (crossings), the step's bracket
         if a test of the curve's geometry changed sign (else None) and whether its
         confirmation is deferred until the crossings are located (folds only:
-        :func:`~.stepping.located_on_arc`; others are confirmed by the half step first)."""
+        :func:`~.confirm.located_on_arc`; others are confirmed by the half step first)."""
         while True:
             system, values, crossings = evaluate(self.tests, self._has_bp, state, trial)
             if not crossings or trial.corner or trial.aimed is not None:
@@ -346,7 +355,7 @@ class Tracer:
             br = step_bracket(self.options, state.system, state.last, trial)
             if all(tt.kind == "fold" for tt in confirm):
                 return trial, system, values, crossings, br, True
-            shorter = confirm_step(self._rules, state, trial, br)
+            shorter = confirm_step(self._rules, state, trial, br, work)
             if shorter is None:
                 return trial, system, values, crossings, br, False
             trial = shorter
@@ -540,10 +549,16 @@ def trace(problem: Any, u0: Any, *, free: str, **kwargs: Any) -> Branch:
         if False, failures return the partial branch with a status instead of raising.
     """
     tracer = Tracer(problem, free=free, **kwargs)
-    state = tracer.init(u0)
-    while state.status is None:
-        state = tracer.step(state)
-    return tracer.result(state)
+    return tracer.result(run(tracer, tracer.init(u0)))
+
+
+def run(tracer: Tracer, state: TracerState) -> TracerState:
+    """Step ``tracer`` from ``state`` until the branch ends (numpy's floating-point warnings
+    silenced once for all the steps: see :meth:`Tracer.step`)."""
+    with np.errstate(all="ignore"):
+        while state.status is None:
+            state = tracer._step(state)
+    return state
 
 
 def trace_directions(
@@ -560,13 +575,11 @@ def trace_directions(
     halves = []
     for d in (1, -1) if direction == "both" else (int(direction),):
         tracer, state = begin(d)
-        while not tracer.done(state):
-            state = tracer.step(state)
-        halves.append(tracer.result(state))
+        halves.append(tracer.result(run(tracer, state)))
     if len(halves) == 1:
         halves[0].info.update(direction=direction, start_index=0)
         return halves[0]
     return join_halves(halves[1], halves[0], start_kind=start_kind, start_label=start_label)
 
 
-__all__ = ["Tracer", "TracerState", "trace", "trace_directions"]
+__all__ = ["Tracer", "TracerState", "run", "trace", "trace_directions"]

@@ -92,6 +92,8 @@ from .protocol import (
     stick_bounds,
 )
 
+_EPS = float(np.finfo(float).eps)
+
 __all__ = [
     "ContactLoss",
     "ContactLossResult",
@@ -263,7 +265,10 @@ class ContactLoss:
         # F_A from the loading curve, only to validate the reduction (the path is traced)
         F_A = float(body.tangential_force(self.g_A, self.F_N0))
         floor = self.F_N0 - F_A / self.mu0
-        if self.F_Np < floor:
+        # (a reduction a rounding below the floor, F'_T = 0 located on a locus and evaluated
+        # again here, is the floor: F'_T is 0 to rounding there, which the path takes)
+        rounding = 8.0 * _EPS * (F_A + self.mu0 * (self.F_N0 - self.F_Np))
+        if F_A - self.mu0 * (self.F_N0 - self.F_Np) < -rounding:
             raise ModelParameterError(
                 f"reduced_normal_load = {self.F_Np!r} N is too deep: F'_T = F_A - mu*dF_N = "
                 f"{F_A - self.mu0 * (self.F_N0 - self.F_Np)!r} N would be negative; allowed: "

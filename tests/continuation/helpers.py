@@ -59,11 +59,12 @@ def first_fold_step(problem, u0, free: str = "b", bounds=(-1.0, 1.0), monitor=()
     from cusp.continuation import Tracer
     from cusp.continuation.crossings import evaluate, step_bracket
     from cusp.continuation.stepping import advance
+    from cusp.continuation.work import StepWork
 
     tracer = Tracer(problem, free=free, bounds={free: bounds}, monitor=monitor)
     state = tracer.init(u0)
     while True:
-        trial = advance(tracer._rules, state)
+        trial = advance(tracer._rules, state, StepWork(tracer.options.max_step_solves))
         _, _, crossings = evaluate(tracer.tests, tracer._has_bp, state, trial)
         folds = [c for c in crossings if c[0].kind == "fold"]
         if folds:

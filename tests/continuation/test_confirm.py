@@ -1,7 +1,7 @@
 """Confirming a step across which a test of the curve's geometry changed sign: a fold is
 located first and confirmed by lying on the step's cubic Hermite arc
-(`stepping.located_on_arc`); anything else, and a fold that is not on the arc, by the half
-step (`stepping.confirm_step`). References: the cusp x³ − x − b = 0, folds at
+(`confirm.located_on_arc`); anything else, and a fold that is not on the arc, by the half
+step (`confirm.confirm_step`). References: the cusp x³ − x − b = 0, folds at
 b = ∓2/(3√3) (exact), and the same trace with the half step forced."""
 
 from __future__ import annotations
@@ -12,7 +12,7 @@ import pytest
 import cusp.continuation.tracer as tracer_module
 import cusp.examples as ex
 from cusp.continuation import trace
-from cusp.continuation.stepping import arc_limit, located_on_arc
+from cusp.continuation.confirm import arc_limit, located_on_arc
 from tests.continuation.helpers import first_fold_step
 
 FOLD_B = 2.0 / (3.0 * np.sqrt(3.0))
