@@ -1,9 +1,8 @@
 """Locating special points inside an accepted step ``z_a -> z_b``.
 
 - folds (turning points of any component ``z_k``): Newton on the minimally augmented system
-  ``[G(z); g_k(z)] = 0``, with ``g_k`` from the bordered system of ``∂G/∂z`` without column
-  ``k`` (Govaerts, *Numerical methods for bifurcations of dynamical equilibria*, 2000) —
-  quadratic convergence, bordering vectors updated every iteration;
+  (:mod:`.foldlocate`), with the stopping test and the second-derivative rows written here
+  (:func:`newton_done`, :func:`second_derivative_row`);
 - component targets and bounds: the corrector with the constraint ``z_k = value`` (exact);
 - events and branch points: the Illinois variant of regula falsi on the pseudo-arclength,
   each evaluation a corrected point on the curve.
@@ -22,13 +21,8 @@ import numpy as np
 from .corrector import correct
 from .errors import SingularMatrixError
 from .linalg import (
-    PairLU,
     bordered,
-    bordered_square,
-    delete_column,
-    dense_solve,
     factor,
-    getrs,
     inverse_magnitudes,
     max_abs,
     scaled_max,
@@ -41,9 +35,6 @@ if TYPE_CHECKING:
 _EPS = float(np.finfo(float).eps)
 _SQRT_EPS = _EPS**0.5
 _CBRT_EPS = _EPS ** (1.0 / 3.0)
-# relative error of the fold Newton's matrix when the Jacobian is exact: its last row is a
-# forward difference of the Jacobian (√ε ≈ 1.5e-8, with a margin for its truncation error)
-_FORWARD_D2_ERROR = 1e-7
 
 
 @dataclass
@@ -267,26 +258,6 @@ def second_derivative_row(
     return (jacobian(z + h * v).T.dot(w) - jacobian(z - h * v).T.dot(w)) / (2.0 * h)
 
 
-def minimally_augmented(
-    system, z: np.ndarray, k: int, b: np.ndarray, c: np.ndarray, e: np.ndarray | None = None
-):
-    """Test function ``g`` of the fold in component ``k``, its right/left null vectors and the
-    Jacobian ``dg`` of G at ``z``: ``[[M, b], [c^T, 0]] [v; g] = [0; 1]`` with ``M = ∂G/∂z``
-    without column ``k`` (``e``: that right-hand side, if the caller holds one)."""
-    dg = system.jacobian(z)
-    a = bordered_square(delete_column(dg, k), b, c)
-    if e is None:
-        e = unit_last(b.size + 1)
-    if type(a) is np.ndarray:
-        lu, piv, x = dense_solve(a, e)
-        y = getrs(lu, piv, e, trans=True)
-    else:
-        lu = factor(a)
-        x = lu.solve(e)
-        y = lu.solve(e, trans=True)
-    return x[-1], x[:-1], y[:-1], dg
-
-
 def newton_done(
     it: int,
     size: float,
@@ -320,155 +291,6 @@ def newton_done(
             return True
     # stagnation: the updates stopped shrinking, at a level below ``stall``
     return it >= 4 and size > 0.5 * previous and size <= stall
-
-
-def locate_fold(
-    br: Bracket, k: int, start: np.ndarray | None = None, tangent: np.ndarray | None = None
-) -> Located | None:
-    """Newton on ``[G(z); g_k(z)] = 0`` started from the Hermite interpolant of the bracket
-    (or from ``start`` with its ``tangent``); None if it fails or leaves the bracket."""
-    o = br.options
-    system = br.system
-    if start is None or tangent is None:
-        z, tangent = br.guess_and_derivative(br.turning_theta(k))
-    if start is not None:
-        z = start.copy()
-    if getattr(system, "scalar", False):  # a curve of two components: in plain floats
-        found = _locate_fold_pair(br, k, z, tangent)
-        if found is not _UNDECIDED:
-            return found
-    # the components other than k (a slice for the usual fold in the last one)
-    keep = slice(None, -1) if k == z.size - 1 else np.arange(z.size) != k
-    v0 = tangent[keep].copy()
-    v0 /= math.sqrt(v0.dot(v0))
-    b = c = v0
-    rhs = np.empty(z.size)
-    vt = np.zeros(z.size)
-    e = unit_last(z.size)
-    exact = getattr(system, "exact_jacobian", False)
-    jacobian, residual = system.jacobian, system.residual
-    converged, it, previous = False, 0, math.inf
-    for it in range(1, o.max_locate_iterations + 1):
-        try:
-            g, v, w, dg = minimally_augmented(system, z, k, b, c, e)
-        except SingularMatrixError:
-            return None
-        vt[keep] = v
-        # the Newton system [∂G/∂z; ∇g] dz = −[G; g] with ∇g = −w·D²G[v, ·], solved for
-        # d = −dz with that row negated (sign flips are exact: bitwise the same update)
-        rhs[:-1] = residual(z)
-        rhs[-1] = -g
-        scales = system.scales
-        a = bordered(dg, second_derivative_row(jacobian, z, vt, w, dg if exact else None, scales))
-        try:
-            d = dense_solve(a, rhs)[2] if type(a) is np.ndarray else factor(a).solve(rhs)
-        except SingularMatrixError:
-            return None
-        inv = inverse_magnitudes(scales, z)
-        size = scaled_max(d, inv)
-        if not math.isfinite(size):
-            return None
-        z = z - d
-        nb, nc = math.sqrt(w.dot(w)), math.sqrt(v.dot(v))
-        if nb > 0 and nc > 0:
-            b, c = w / nb, v / nc
-        # stagnation accepted up to 1e-6: ill-conditioned systems (cond ~ N² for discretised
-        # operators) and forward differences stall there; the fold's parameter is still
-        # exact to second order, its state to the accuracy of the derivatives
-        zk = abs(float(z[k]))
-        k_ratio = zk / max(float(scales[k]), zk)
-        if newton_done(
-            it,
-            size,
-            previous,
-            o.locate_tol,
-            stall=1e-6,
-            perturbation=_FORWARD_D2_ERROR if exact else None,
-            k_ratio=k_ratio,
-        ):
-            converged = True
-            break
-        previous = size
-    if not converged:
-        return None
-    # the tangent at a fold in z_k spans the kernel of ∂G/∂z, which has no k component: v
-    # (from the last iterate, one update of ≤ locate_tol away)
-    details = {"method": "minimally augmented Newton", "test_function": float(g)}
-    return accept_located(br, z, dg, it, size, details, oriented_tangent(vt, br.row, br.weights))
-
-
-_UNDECIDED = object()
-
-
-def _locate_fold_pair(br: Bracket, k: int, z: np.ndarray, tangent: np.ndarray) -> Any:
-    """:func:`locate_fold` on a curve of two components in plain floats (``system.scalar``):
-    with one unknown the minimally augmented system has a closed form — ``M = ∂G/∂z_j``
-    (j ≠ k) is a number, ``v = 1/c``, ``w = 1/b``, ``g = −M/(bc)`` — and the Newton matrix
-    ``[∂G/∂z; w·D²G[v, ·]]`` is 2×2 (:class:`~.linalg.PairLU`); the second derivatives are
-    differenced as :func:`second_derivative_row` does, and the stopping test is the same.
-    The located point, or None if Newton fails; ``_UNDECIDED`` where a value is not finite,
-    a callback returns another type or a matrix is singular (the array path then runs)."""
-    o, system = br.options, br.system
-    j = 1 - k
-    if not abs(tangent[j]) > 0.0:
-        return _UNDECIDED
-    x = z.tolist()
-    s = system.scales.tolist()
-    b = c = 1.0 if tangent[j] > 0 else -1.0
-    exact = system.exact_jacobian
-    jac_row, res = system.scalar_jacobian, system.scalar_residual
-    converged, it, previous, size = False, 0, math.inf, math.inf
-    for it in range(1, o.max_locate_iterations + 1):
-        zz = np.array(x)
-        row0 = jac_row(zz)
-        G = res(zz)
-        if row0 is None or G is None:
-            return _UNDECIDED
-        v, w = 1.0 / c, 1.0 / b
-        g = -row0[j] * v / b
-        # w·D²G[v·e_j, ·] by differences of the Jacobian row along e_j (the step of
-        # second_derivative_row: forward for exact derivatives, central otherwise)
-        scale = 1.0 / (abs(v) * (1.0 / max(s[j], abs(x[j]))))
-        if exact:
-            z1 = list(x)
-            z1[j] = x[j] + (_SQRT_EPS * scale) * v
-            h = abs(z1[j] - x[j]) / abs(v)
-            up, down = jac_row(np.array(z1)), row0
-        else:
-            h = _CBRT_EPS * scale
-            zp, zm = list(x), list(x)
-            zp[j], zm[j] = x[j] + h * v, x[j] - h * v
-            up, down, h = jac_row(np.array(zp)), jac_row(np.array(zm)), 2.0 * h
-        if up is None or down is None:
-            return _UNDECIDED
-        try:
-            lu = PairLU(row0[0], row0[1], (up[0] - down[0]) * w / h, (up[1] - down[1]) * w / h)
-        except SingularMatrixError:
-            return None
-        d0, d1 = lu.solve_pair(G, -g)
-        i0, i1 = inverse_magnitudes(system.scales, zz)
-        size = max(abs(d0) * i0, abs(d1) * i1)
-        if not size < math.inf:
-            return None
-        x = [x[0] - d0, x[1] - d1]
-        b, c = (1.0 if w > 0 else -1.0), (1.0 if v > 0 else -1.0)
-        zk = abs(x[k])
-        if newton_done(
-            it, size, previous, o.locate_tol, stall=1e-6,
-            perturbation=_FORWARD_D2_ERROR if exact else None, k_ratio=zk / max(s[k], zk),
-        ):  # fmt: skip
-            converged = True
-            break
-        previous = size
-    if not converged:
-        return None
-    vt = np.zeros(2)
-    vt[j] = v
-    details = {"method": "minimally augmented Newton", "test_function": float(g)}
-    dg = np.array([row0])
-    return accept_located(
-        br, np.array(x), dg, it, size, details, oriented_tangent(vt, br.row, br.weights)
-    )
 
 
 def accept_located(

@@ -31,13 +31,13 @@ from scipy.linalg import lapack
 from .branchpoints import locate_branch_point
 from .errors import NonFiniteResidualError, ProblemDefinitionError
 from .events import Event
+from .foldlocate import locate_fold
 from .linalg import bordered, factor
 from .locate import (
     Bracket,
     Located,
     hermite_turning_pair,
     locate_component,
-    locate_fold,
     locate_on_arc,
     tangent_at,
 )

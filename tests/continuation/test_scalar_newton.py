@@ -19,8 +19,8 @@ import pytest
 import cusp.examples as ex
 from cusp.continuation import Problem
 from cusp.continuation.corrector import _newton_arrays, newton, scalar_newton
+from cusp.continuation.foldlocate import locate_fold
 from cusp.continuation.linalg import DenseLU, PairLU
-from cusp.continuation.locate import locate_fold
 from cusp.continuation.system import BranchSystem
 from tests.continuation.helpers import first_fold_step
 
