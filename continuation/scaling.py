@@ -19,7 +19,10 @@ it is taken at the start of the curve, in this order:
    1e-16, and have no bounds), the start tangent: the components of known size move at the
    relative rates ``|t_j|/s_j``; with ``r`` their median, a component moving by ``|t_i|``
    gets the size ``|t_i| / r`` (what it changes while a typical component changes by its
-   typical size; the median keeps one odd component from setting the rate);
+   typical size; the median keeps one odd component from setting the rate). A tangent
+   component below 1e-12 of the largest moves if the Jacobian shows it in an equation
+   (:func:`_moving_in_equations`); with finite differences the tangent is taken again with
+   the steps of the new sizes (:func:`settled_by_motion`);
 3. for components that do not move either (identically 0 on this curve), 1: nothing on
    this curve tells their size (give it in ``scales`` if 1 is far off).
 
@@ -38,7 +41,8 @@ from typing import Any
 import numpy as np
 import scipy.sparse as sp
 
-from .errors import ProblemDefinitionError
+from .errors import ProblemDefinitionError, SingularMatrixError
+from .linalg import bordered, factor, unit_last
 
 
 def given_scales(system: Any, scales: Mapping[str, float] | None) -> dict[int, float]:
@@ -168,17 +172,67 @@ def typical_sizes(
     unknown = [not (0.0 < x < math.inf) for x in s]
     settled = not small and not any(unknown)
     if tangent is not None and any(unknown):
-        _size_by_motion(s, unknown, np.abs(np.asarray(tangent, dtype=float)).tolist(), given)
+        t = np.abs(np.asarray(tangent, dtype=float)).tolist()
+        _size_by_motion(s, unknown, t, given, jacobian)
     return np.array([1.0 if u else x for x, u in zip(s, unknown)]), settled
 
 
+def settled_by_motion(
+    system: Any,
+    z0: np.ndarray,
+    t0: np.ndarray,
+    given: Mapping[int, float],
+    bounds: Sequence[Any],
+    inherited: Mapping[int, float] | None,
+) -> tuple[Any, np.ndarray, bool]:
+    """The system with the sizes of the start ``z0`` (:func:`typical_sizes` with the start
+    tangent ``t0``), the tangent, and whether the tangent was recomputed.
+
+    A component of unknown size is differenced with steps relative to its provisional
+    size 1 until its size is known; for a concentration of 1e-9 that step is a million
+    times its value and the differenced Jacobian, hence the tangent that sizes it, is
+    garbage. With a differenced Jacobian the tangent is therefore recomputed with the steps
+    of the new sizes (``[∂G/∂z; (W t0)ᵀ] t = e``, the same orientation) and the sizes taken
+    again, until none changes by more than a factor 2 (at most three rounds)."""
+    provisional = system.scales
+    for rounds in range(4):
+        sizes, _ = typical_sizes(
+            z0, given, bounds, t0, lambda s=system: s.jacobian(z0), inherited=inherited
+        )
+        close = bool(np.all(np.abs(np.log2(sizes / system.scales)) <= 1.0))
+        if not np.array_equal(sizes, system.scales):
+            system = system.with_scales(sizes)
+        if close or system.exact_jacobian or rounds == 3:
+            break
+        try:
+            t = factor(bordered(system.jacobian(z0), system.weights * t0)).solve(unit_last(z0.size))
+        except SingularMatrixError:
+            break
+        if not np.all(np.isfinite(t)):
+            break
+        t0 = t
+    return system, t0, not np.array_equal(system.scales, provisional) and rounds > 0
+
+
 def _size_by_motion(
-    s: list[float], unknown: list[bool], t: list[float], given: Mapping[int, float]
+    s: list[float],
+    unknown: list[bool],
+    t: list[float],
+    given: Mapping[int, float],
+    jacobian: Any = None,
 ) -> None:
     """Step 2 of the module docstring, in place: the components of unknown size that move
-    get ``|t_i| / r``, ``r`` the median relative rate of the components of known size."""
+    get ``|t_i| / r``, ``r`` the median relative rate of the components of known size.
+
+    A tangent component below 1e-12 of the largest moves too if the Jacobian (``jacobian()``,
+    if given) shows it taking part in an equation (:func:`_moving_in_equations`): a
+    concentration of 1e-9 mol beside a population of 1e6 moves at 1e-15 of its rate."""
     tmax = max(t)
     moving = [ti > 1e-12 * tmax for ti in t]  # below rounding of the largest: not moving
+    faint = [i for i, ti in enumerate(t) if unknown[i] and 0.0 < ti and not moving[i]]
+    if faint and jacobian is not None:
+        for i in _moving_in_equations(jacobian(), t, faint):
+            moving[i] = True
     rates = sorted(t[i] / s[i] for i in range(len(s)) if not unknown[i] and moving[i])
     if not rates:
         return
@@ -190,6 +244,27 @@ def _size_by_motion(
         if unknown[i] and moving[i] and i not in given:
             s[i] = t[i] / rate
             unknown[i] = False
+
+
+def _moving_in_equations(jacobian: Any, t: list[float], candidates: list[int]) -> list[int]:
+    """The ``candidates`` whose tangent term ``|∂G_r/∂z_i|·|t_i|`` in some equation ``G_r``
+    is above 1000 ε of that equation's terms ``T_r = Σ_j |∂G_r/∂z_j|·|t_j|`` and balanced by
+    the others (at most twice their sum: along the tangent the terms cancel, which a term
+    made of rounding noise alone does not)."""
+    level = 1000.0 * float(np.finfo(float).eps)
+    mags = np.asarray(t)
+    a = abs(sp.csc_matrix(jacobian)) if sp.issparse(jacobian) else None
+    if a is None:
+        a = sp.csc_matrix(np.abs(np.asarray(jacobian, dtype=float)))
+    terms = np.asarray(a @ mags).ravel()
+    out = []
+    for i in candidates:
+        rows = a.indices[a.indptr[i] : a.indptr[i + 1]]
+        own = a.data[a.indptr[i] : a.indptr[i + 1]] * mags[i]
+        total = terms[rows]
+        if bool(np.any((own > level * total) & (own <= 2.0 * (total - own)))):
+            out.append(i)
+    return out
 
 
 def _at_rounding_level(jacobian: Any, magnitudes: list[float]) -> list[int]:
@@ -217,4 +292,4 @@ def _at_rounding_level(jacobian: Any, magnitudes: list[float]) -> list[int]:
     return found
 
 
-__all__ = ["given_scales", "typical_sizes"]
+__all__ = ["given_scales", "settled_by_motion", "typical_sizes"]

@@ -51,7 +51,14 @@ from .linalg import bordered, factor, max_abs
 from .locate import Bracket, Located, tangent_at
 from .options import ContinuationOptions
 from .problem import as_problem
-from .scaling import diverged, given_scales, grown_sizes, out_of_range, typical_sizes
+from .scaling import (
+    diverged,
+    given_scales,
+    grown_sizes,
+    out_of_range,
+    settled_by_motion,
+    typical_sizes,
+)
 from .start import correct_start
 from .state import Point, TracerState, assemble_branch
 from .stepcontrol import next_step_size
@@ -259,12 +266,9 @@ class Tracer:
             iters = 0
             sdet = None
         if not settled:  # components of size 0 take their size from the tangent
-            jacobian = system.jacobian
-            sizes, _ = typical_sizes(
-                z0, given, bounds, t0, lambda: jacobian(z0), inherited=inherited
-            )
-            if not np.array_equal(sizes, provisional):
-                system = system.with_scales(sizes)
+            system, t0, retangent = settled_by_motion(system, z0, t0, given, bounds, inherited)
+            if retangent:  # (with the differences' steps of the new sizes)
+                sdet = None
         t0 = t0 / wnorm(t0, system.weights)  # (a positive factor: sdet keeps its sign)
         system = system.refreshed(z0)
         if skip_bp:

@@ -1,0 +1,129 @@
+"""Badly scaled unknowns and close folds: a problem whose unknowns are of size 1e-9 and 1e6
+at once, traced with finite differences and no ``scales=``; two folds 1e-6 apart in the
+parameter; a fold where an unknown is far smaller than at the start.
+
+Every problem here is built on the cusp x³ − a·x − b, whose folds are at x = ±√(a/3),
+b = ∓2(a/3)^{3/2} (∂/∂x: 3x² − a = 0; closed form), with its unknowns rescaled or offset
+so that those folds stay known exactly.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from cusp.continuation import Problem, trace
+
+# --- 1. unknowns of size 1e-9 and 1e6 at once, no user scales
+
+C0 = 1e-9  # a concentration: c = C0·x (mol)
+N0 = 1e6  # a population: N = N0·(2 + x)² (individuals)
+
+#: tolerance on a fold's state relative to its own magnitude, by derivative strategy: the
+#: differenced Jacobian's error moves the zero of det J (central ~ε^{2/3}, forward ~ε^{1/2},
+#: of the components' sizes); the parameter is stationary there, exact to 1e-10 with any.
+SCALED_STATE_RTOL = {"complex": 1e-12, "central": 1e-9, "forward": 1e-7}
+
+
+def _concentration_population(derivatives: str, a: float = 1.0) -> Problem:
+    """R = [C0·(x³ − a·x − b), N0·((N/N0) − (2 + x)²)] with x = c/C0: the equations in the
+    units of their unknowns (mol, individuals). Folds (closed form, above): c = ±C0·√(a/3),
+    b = ∓2(a/3)^{3/2}, N = N0·(2 ± √(a/3))²."""
+
+    def residual(u, p):
+        x = u[0] / C0
+        return np.array([C0 * (x**3 - p["a"] * x - p["b"]), N0 * (u[1] / N0 - (2.0 + x) ** 2)])
+
+    return Problem(residual, ["c", "N"], {"a": a, "b": 0.0}, derivatives=derivatives)
+
+
+def _check_scaled_folds(br, derivatives: str, a: float = 1.0, count: int = 1) -> None:
+    xf = math.sqrt(a / 3.0)  # the folds' x (closed form)
+    bf = 2.0 * (a / 3.0) ** 1.5  # and |b| there
+    folds = br.special("fold")
+    assert br.status == "bound" and len(folds) == count, (br.status, folds)
+    for sp in folds:
+        s = math.copysign(1.0, sp.values["c"])
+        assert sp.status == "converged", sp.details
+        assert sp.values["b"] == pytest.approx(-s * bf, rel=1e-10, abs=0)
+        tol = SCALED_STATE_RTOL[derivatives]
+        assert sp.values["c"] == pytest.approx(s * xf * C0, rel=tol, abs=0)
+        assert sp.values["N"] == pytest.approx(N0 * (2.0 + s * xf) ** 2, rel=tol, abs=0)
+
+
+@pytest.mark.parametrize("derivatives", ["central", "forward"])
+@pytest.mark.parametrize("direction", [1, -1])
+def test_fd_start_at_zero_learns_a_size_of_1e_9(derivatives, direction):
+    # c = 0 and b = 0 at the start (x = 0 solves x³ − x = 0): their sizes come from the start
+    # tangent, dc/db = C0/(3x² − a) = −1e-9 beside dN/db = −4e6. Before, the tangent
+    # component of c (1e-15 of N's) counted as not moving (size 1), and the tangent that sizes
+    # the components was differenced with steps of 6e-6 in c (1e3 of its range): central
+    # differences traced past the fold without seeing it, forward ones stalled for 5000 steps
+    prob = _concentration_population(derivatives)
+    br = trace(
+        prob,
+        [0.0, 4.0 * N0],
+        free="b",
+        bounds={"N": (0.2 * N0, 9.0 * N0)},
+        direction=direction,
+        throw=False,
+    )
+    _check_scaled_folds(br, derivatives)
+    # the size of c is of the order of its values on the branch (|x| ≤ 2), not 1
+    assert 1e-10 < br.info["scales"]["c"] < 1e-8
+
+
+@pytest.mark.parametrize("derivatives", ["complex", "central", "forward"])
+@pytest.mark.parametrize("x0", [-1.5, 1.5])
+def test_both_folds_converged_with_sizes_1e_9_and_1e6(derivatives, x0):
+    # R = [x³ − a·x − b, N/N0 − (2 + x)] (x = c/C0): from either outer sheet across both
+    # folds. The fold locator's bordering vectors were Euclidean unit vectors: the null
+    # vector (1e-15, 1) in (c, N) lost its c component to cancellation, Newton diverged and
+    # the fold was reported as a regula-falsi "guess" (even with complex-step derivatives)
+    def residual(u, p):
+        x = u[0] / C0
+        return np.array([x**3 - p["a"] * x - p["b"], u[1] / N0 - (2.0 + x)])
+
+    b0 = x0**3 - x0  # the start solves x0³ − x0 − b0 = 0
+    prob = Problem(residual, ["c", "N"], {"a": 1.0, "b": b0}, derivatives=derivatives)
+    br = trace(
+        prob,
+        [x0 * C0, (2.0 + x0) * N0],
+        free="b",
+        bounds={"b": (-2.0, 2.0)},
+        direction=1 if x0 < 0 else -1,
+        throw=False,
+    )
+    xf = 1.0 / math.sqrt(3.0)  # √(a/3) at a = 1
+    folds = br.special("fold")
+    assert br.status == "bound" and len(folds) == 2
+    for sp in folds:
+        s = math.copysign(1.0, sp.values["c"])
+        assert sp.status == "converged", sp.details
+        assert sp.values["b"] == pytest.approx(-s * 2.0 * xf**3, rel=1e-10, abs=0)
+        tol = SCALED_STATE_RTOL[derivatives]
+        assert sp.values["c"] == pytest.approx(s * xf * C0, rel=tol, abs=0)
+        assert sp.values["N"] == pytest.approx((2.0 + s * xf) * N0, rel=tol, abs=0)
+
+
+@pytest.mark.parametrize("derivatives", ["central", "forward"])
+@pytest.mark.parametrize("scale_b", [1e-9, 1e7])
+def test_parameter_of_any_size_starting_at_zero(derivatives, scale_b):
+    # the free parameter in other units (b·scale_b) and 0 at the start, as c: both sized by
+    # the start tangent (before: c sized 1 and the parameter 0.08 or 8e7)
+    def residual(u, p):
+        x = u[0] / C0
+        b = p["b"] / scale_b
+        return np.array([C0 * (x**3 - x - b), N0 * (u[1] / N0 - (2.0 + x) ** 2)])
+
+    prob = Problem(residual, ["c", "N"], {"b": 0.0}, derivatives=derivatives)
+    br = trace(prob, [0.0, 4.0 * N0], free="b", bounds={"N": (0.2 * N0, 9.0 * N0)})
+    (sp,) = br.special("fold")
+    s = math.copysign(1.0, sp.values["c"])
+    xf = 1.0 / math.sqrt(3.0)
+    assert sp.status == "converged"
+    assert sp.values["b"] == pytest.approx(-s * 2.0 * xf**3 * scale_b, rel=1e-10, abs=0)
+    assert sp.values["c"] == pytest.approx(s * xf * C0, rel=SCALED_STATE_RTOL[derivatives])
+    assert 0.1 < br.info["scales"]["b"] / scale_b < 10.0
