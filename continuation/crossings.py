@@ -134,6 +134,8 @@ def _split(
         tm = tangent_at(system, res.z, br.row, W, br)
         points.append(((res.z, tm, sa + br.sigma(res.z)), tt.value(system, res.z, tm, None)))
     points.append((b, vb))
+    if depth == SPLIT_DEPTH and _search(tt, system, br, points, [0.0, *thetas, 1.0]) is None:
+        return None
     logger.info("%r sees several zeros inside one step: split at theta=%s", tt, thetas)
     out: list[Crossing] = []
     for (p, vp), (q, vq) in zip(points[:-1], points[1:]):
@@ -143,6 +145,36 @@ def _split(
         elif vp != 0.0 and ((vp < 0) != (vq < 0) or vq == 0.0) and tt.crossed(vp, vq):
             out.append((tt, vp, vq, (p[0], p[1], q[0], q[1], p[2])))
     return out
+
+
+SEARCH_SAMPLES = 6
+"""How many more points of a step a test may ask for (:meth:`~.testfunctions.TestFunction.
+next_split_point`) when the split points show no zero."""
+
+
+def _search(
+    tt: TestFunction, system: CurveSystem, br: Bracket, points: list, thetas: list[float]
+) -> list | None:
+    """More samples of ``tt`` inside the step ``br``, inserted in ``points`` (at the step
+    fractions ``thetas``, both ascending) while the test asks for them and none has the
+    other sign: a search for the zeros that the split points suggest but do not show. None
+    if a point cannot be corrected."""
+    sign = points[0][1] < 0
+    for _ in range(SEARCH_SAMPLES):
+        if any((v < 0) != sign or v == 0.0 for _, v in points):
+            break
+        theta = tt.next_split_point(list(zip(thetas, (v for _, v in points))))
+        if theta is None:
+            break
+        res = br.point_at(theta * br.h)
+        if not res.converged:
+            return None
+        tm = tangent_at(system, res.z, br.row, br.weights, br)
+        i = next(i for i, th in enumerate(thetas) if th > theta)
+        thetas.insert(i, theta)
+        point = (res.z, tm, points[0][0][2] + br.sigma(res.z))
+        points.insert(i, (point, tt.value(system, res.z, tm, None)))
+    return points
 
 
 def _part_data(system: CurveSystem, a: tuple, b: tuple) -> tuple:

@@ -167,14 +167,16 @@ class Located(NamedTuple):
     """Max-norm of the residual at ``z``, when the locating iteration computed it."""
 
 
-def hermite_turning_pair(ta: float, tb: float, delta: float) -> float | None:
+def hermite_turning_pair(ta: float, tb: float, delta: float, dip: bool = False) -> float | None:
     """Two turning points of one component inside a step, seen by its cubic Hermite
     interpolant: ``ta``, ``tb`` the component's derivatives with respect to θ ∈ [0, 1]
     (divided by the step's length ``h``) at the ends, ``delta`` its change over the step
     divided by ``h``. The interpolant's derivative ``ta + bθ + aθ²`` (a = 3(ta + tb) − 6δ,
     b = 6δ − 4ta − 2tb) has the same sign at both ends but two roots inside when its vertex
     lies in (0, 1) with the other sign; the vertex θ is returned (else None): a tight S-curve
-    whose two folds one step spans, which the end values alone cannot show.
+    whose two folds one step spans, which the end values alone cannot show. With ``dip``,
+    also when the vertex has the ends' sign but a smaller magnitude than both (a dip towards
+    zero, where the interpolant's error may hide the other sign).
 
     >>> # x³ − a x at a = 0.03 over x ∈ [−0.4, 0.4]: folds at x = ±0.1
     >>> round(hermite_turning_pair(3 * 0.16 - 0.03, 3 * 0.16 - 0.03, 0.16 - 0.03), 12)
@@ -187,10 +189,65 @@ def hermite_turning_pair(ta: float, tb: float, delta: float) -> float | None:
         return None
     b = 6.0 * delta - 4.0 * ta - 2.0 * tb
     theta = -b / (2.0 * a)
-    if not 0.0 < theta < 1.0:
-        return None
     vertex = ta - b * b / (4.0 * a)
-    return theta if vertex * ta < 0.0 else None
+    if 0.0 < theta < 1.0 and vertex * ta < 0.0:
+        return theta
+    if not (dip and -DIP_MARGIN < theta < 1.0 + DIP_MARGIN):
+        return None
+    # a dip: the vertex has the other sign, or is closer to 0 than both ends by more than
+    # the interpolant's rounding (a constant component's vertex is its value up to it)
+    if vertex * ta < 0.0 or abs(vertex) < (1.0 - 1e-6) * min(abs(ta), abs(tb)):
+        return min(max(theta, DIP_INSET), 1.0 - DIP_INSET)
+    return None
+
+
+DIP_MARGIN = 0.25
+"""How far outside the step (as a fraction of it) the vertex of a dip may lie: its position
+is as uncertain as its value (on two folds 1e-2 apart in the state, 0.06 of the step)."""
+DIP_INSET = 0.05
+"""A dip's vertex outside or next to the step's ends is sampled this far inside."""
+
+
+ZOOM = 0.25
+"""A search whose smallest sample is a step's end, below this fraction of the nearest
+sample, samples this fraction of the way from the end to it: two folds may sit just inside
+the step (on two folds 1e-2 apart in the state, a step began 1e-3 before the first)."""
+
+
+def parabola_minimum(samples: list[tuple[float, float]]) -> float | None:
+    """The next point of a search for a zero of a function that is positive at every
+    sample so far: ``samples`` are (θ, g) ascending in θ. The vertex of the parabola
+    through the smallest interior sample and its two neighbours (successive parabolic
+    interpolation: superlinear towards a smooth minimum), if the parabola opens upwards,
+    its vertex lies strictly between them and it predicts a value below half the smallest
+    sample — the minimum may then be ≤ 0; else None (the samples show the minimum, above
+    zero, or no minimum inside).
+
+    >>> # g = (θ − 0.3)² − 0.01 sampled at 0, 0.5 and 1: the vertex θ = 0.3 (g = −0.01)
+    >>> round(parabola_minimum([(0.0, 0.08), (0.5, 0.03), (1.0, 0.48)]), 12)
+    0.3
+    >>> parabola_minimum([(0.0, 0.08), (0.3, 0.01), (0.5, 0.03)]) is None  # g = (θ−0.3)²+0.01
+    True
+    """
+    if len(samples) < 3:
+        return None
+    i = min(range(len(samples)), key=lambda j: samples[j][1])
+    if i == 0 or i == len(samples) - 1:  # smallest at an end, far below its neighbour:
+        (x0, g0), (x1, g1) = samples[i], samples[1 if i == 0 else i - 1]
+        return x0 + ZOOM * (x1 - x0) if g0 < ZOOM * g1 else None  # closer to it
+    (x0, g0), (x1, g1), (x2, g2) = samples[i - 1 : i + 2]
+    if not (g1 > 0.0 and g1 <= g0 and g1 <= g2):
+        return None
+    d0, d2 = (g0 - g1) / (x0 - x1), (g2 - g1) / (x2 - x1)
+    curvature = (d2 - d0) / (x2 - x0)  # the parabola's second derivative / 2
+    if not curvature > 0.0:
+        return None
+    slope = d0 - curvature * (x0 - x1)  # its derivative at x1
+    x = x1 - slope / (2.0 * curvature)
+    predicted = g1 - slope * slope / (4.0 * curvature)
+    if not (x0 < x < x2 and x != x1 and predicted < 0.5 * g1):
+        return None
+    return x
 
 
 def oriented_tangent(t: np.ndarray, row: np.ndarray, weights: np.ndarray) -> np.ndarray | None:
@@ -301,16 +358,18 @@ def accept_located(
     last_update: float,
     details: dict,
     tangent: np.ndarray | None = None,
+    slack: float = 0.05,
 ) -> Located | None:
     """A point a locating Newton converged to, as :class:`Located` — if it solves ``G = 0``
-    to tolerance (or to its rounding floor) and lies in the step (within 5% of it); else
-    None (it converged to a point of another step, or off the curve)."""
+    to tolerance (or to its rounding floor) and lies in the step (within ``slack`` of it,
+    5% by default); else None (it converged to a point of another step, or off the
+    curve)."""
     system = br.system
     rn = max_abs(system.residual(z))
     if not (rn <= br.options.tol or rn <= system.residual_floor(dg, z)):  # NaN fails too
         return None
     sigma = br.sigma(z)
-    if not (-0.05 * abs(br.h) <= (sigma if br.h >= 0 else -sigma) <= 1.05 * abs(br.h)):
+    if not (-slack * abs(br.h) <= (sigma if br.h >= 0 else -sigma) <= (1 + slack) * abs(br.h)):
         return None
     details = {**details, "last_update": float(last_update)}
     return Located(z, sigma, "converged", iterations, details, tangent, rn)

@@ -18,6 +18,7 @@ from cusp.continuation import Problem, trace
 
 # --- 1. unknowns of size 1e-9 and 1e6 at once, no user scales
 
+EPS = float(np.finfo(float).eps)
 C0 = 1e-9  # a concentration: c = C0·x (mol)
 N0 = 1e6  # a population: N = N0·(2 + x)² (individuals)
 
@@ -127,3 +128,96 @@ def test_parameter_of_any_size_starting_at_zero(derivatives, scale_b):
     assert sp.values["b"] == pytest.approx(-s * 2.0 * xf**3 * scale_b, rel=1e-10, abs=0)
     assert sp.values["c"] == pytest.approx(s * xf * C0, rel=SCALED_STATE_RTOL[derivatives])
     assert 0.1 < br.info["scales"]["b"] / scale_b < 10.0
+
+
+# --- 2. two folds 1e-6 apart (relative) in the parameter and 1e-2 apart in the state
+
+CLOSE_A = 7.5e-5
+"""a of x³ − a·x − (b − b0): folds at x = ±√(a/3) = ±0.005 (1e-2 apart), where b − b0 =
+∓2(a/3)^{3/2} = ∓2.5e-7 (5e-7 apart: 5e-7 relative at b0 = 1, 5e-10 at b0 = 1e3)."""
+
+
+def _close_folds(n: int, b0: float, x0: float, derivatives: str) -> Problem:
+    """R_0 = X³ − a·X − (b − b0) with X = x_0 + x0 (the state offset by x0), and for n > 1
+    R_i = x_i − (i + 1)·x_0 − x_0²/2 (i = 1 … n−1): unknowns that bend with x_0, so that
+    the pseudo-arclength is not linear in X. Folds: X = ±√(a/3), b = b0 ∓ 2(a/3)^{3/2},
+    x_i = (i + 1)·x_0 + x_0²/2 there (closed form)."""
+
+    def residual(u, p):
+        x = u[0] + x0
+        r = [x**3 - p["a"] * x - (p["b"] - b0)]
+        r += [u[i] - (i + 1.0) * u[0] - 0.5 * u[0] ** 2 for i in range(1, n)]
+        return np.array(r)
+
+    def jacobian(u, p):
+        j = np.eye(n)
+        j[0, 0] = 3.0 * (u[0] + x0) ** 2 - p["a"]
+        for i in range(1, n):
+            j[i, 0] = -(i + 1.0) - u[0]
+        return j
+
+    def param_jacobian(u, p, name):
+        out = np.zeros(n)
+        out[0] = -1.0 if name == "b" else -(u[0] + x0)
+        return out
+
+    names = [f"x{i}" for i in range(n)]
+    if derivatives == "analytic":
+        return Problem(
+            residual, names, {"a": CLOSE_A, "b": b0}, jacobian=jacobian,
+            param_jacobian=param_jacobian,
+        )  # fmt: skip
+    return Problem(residual, names, {"a": CLOSE_A, "b": b0}, derivatives=derivatives)
+
+
+@pytest.mark.parametrize("derivatives", ["analytic", "central"])
+@pytest.mark.parametrize(
+    ("n", "b0", "x0", "start", "direction"),
+    [
+        (3, 1.0, 0.0, -1.0, 1),  # the step from x = −0.11 to 0.15 spans both folds
+        (3, 1.0, 0.0, 0.7, -1),
+        (3, 1e3, 0.0, -1.0, 1),  # the parameter sized 1e3: its dip is 5e-10 of it
+        (3, 1.0, 10.0, -1.0, 1),  # the state offset: x_0 ≈ −10 at the folds
+        (5, 1e3, 10.0, 1.0, -1),  # a step begins 1e-3 before the first fold
+        (4, -50.0, 0.5, -0.9242, 1),  # a step begins 0.01 before the first fold
+    ],
+)
+def test_two_close_folds_both_located(n, b0, x0, start, direction, derivatives):
+    # The fold test's sign is the same at both ends of the step that holds them; the cubic
+    # Hermite interpolant's derivative, which shows two folds one step spans, is in error by
+    # ~5e-4 there (the pseudo-arclength is not linear in x), ten times the dip of the
+    # tangent's b component (−7.5e-5), and its vertex is 0.06 of the step off. Before, both
+    # folds were missed; now the point at the interpolant's dip is corrected and the dip
+    # searched from the true values (successive parabolas, closer to an end whose value is
+    # far below its neighbour's)
+    prob = _close_folds(n, b0, x0, derivatives)
+    xs = start - x0  # the unknown x_0 at the start, on the sheet of X = start
+    u0 = [xs] + [(i + 1.0) * xs + 0.5 * xs * xs for i in range(1, n)]
+    b_start = b0 + start**3 - CLOSE_A * start  # R_0 = 0 there
+    br = trace(
+        prob.with_params(b=b_start),
+        u0,
+        free="b",
+        bounds={"b": (b0 - 2.0, b0 + 2.0)},
+        direction=direction,
+    )
+    folds = br.special("fold")
+    assert br.status == "bound" and len(folds) == 2, folds
+    xf = math.sqrt(CLOSE_A / 3.0)  # 0.005
+    gap = 2.0 * (CLOSE_A / 3.0) ** 1.5  # 2.5e-7
+    for sp, s in zip(sorted(folds, key=lambda sp: sp.values["x0"]), (-1.0, 1.0)):
+        assert sp.status == "converged", sp.details
+        assert sp.values["b"] == pytest.approx(b0 - s * gap, rel=1e-10, abs=0)
+        u = s * xf - x0  # the unknown x_0 at the fold
+        if derivatives == "analytic":  # the state to rounding, relative to its magnitude
+            tol = 1e-10 * max(xf, abs(u))
+        else:
+            # central differences of X³ with step h err by h² (the third derivative is 6),
+            # which moves the zero of 3X² − a by h²/(6X): h = ε^{1/3}·max(size, |x_0|)
+            h = EPS ** (1.0 / 3.0) * max(br.info["scales"]["x0"], abs(u))
+            tol = 2.0 * h * h / (6.0 * xf)
+        assert sp.values["x0"] == pytest.approx(u, abs=tol)
+        for i in range(1, n):
+            xi = (i + 1.0) * u + 0.5 * u * u
+            # (its error is x_0's times ∂x_i/∂x_0 = i + 1 + x_0, and its own rounding)
+            assert sp.values[f"x{i}"] == pytest.approx(xi, abs=tol * (abs(i + 2.0 + u) + 1.0))
