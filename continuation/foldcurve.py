@@ -223,10 +223,10 @@ class FoldSystem(CurveSystem):
     def bordered_jacobian(self, z, row):
         return bordered(self.jacobian(z), row)
 
-    def residual_floor(self, dg, z) -> float:
+    def residual_floor(self, dg, z, magnitudes=None) -> float:
         """With a differenced Jacobian, ``g`` carries the differences' error: about
         ε^{2/3} (central) or ε^{1/2} (forward) of the Jacobian's size, times |v|·|w|."""
-        floor = super().residual_floor(dg, z)
+        floor = super().residual_floor(dg, z, magnitudes)
         if self._exact_jacobian:
             return floor
         # an entry of ∂F/∂z_j differenced with a step rel·m_j (m_j = max(s_j, |z_j|)) is off

@@ -103,17 +103,19 @@ def locate_fold(
             return found
     # the components other than k (a slice for the usual fold in the last one)
     keep = slice(None, -1) if k == z.size - 1 else np.arange(z.size) != k
-    # the bordering row in relative terms: c = v̂/d with v̂ = v/d of unit length and d
-    # (mags) the components' magnitudes max(s_i, |z_i|) (a Euclidean unit v of components 1e-9
-    # and 1e6 leaves the small one to cancellation, and the null vector with it)
-    mags = 1.0 / np.asarray(inverse_magnitudes(system.scales, z), dtype=float)[keep]
+    # the bordering row in relative terms: c = v̂/m with v̂ = v/m of unit length and m
+    # (mags) the components' magnitudes max(s_i, |z_i|) (a Euclidean unit v of components
+    # 1e-9 and 1e6 leaves the small one to cancellation, and the null vector with it);
+    # the updates are measured against the magnitudes in this step (local_magnitudes)
+    scales, local = system.scales, local_magnitudes(br, z)
+    mags = 1.0 / np.asarray(inverse_magnitudes(scales, z), dtype=float)[keep]
     b, c = None, _relative_border(tangent[keep], mags)
     rhs = np.empty(z.size)
     vt = np.zeros(z.size)
     e = unit_last(z.size)
     exact = getattr(system, "exact_jacobian", False)
     jacobian, residual = system.jacobian, system.residual
-    converged, it, previous = False, 0, math.inf
+    converged, it, sizes = False, 0, (math.inf, math.inf)
     for it in range(1, o.max_locate_iterations + 1):
         try:
             g, v, w, dg = minimally_augmented(system, z, k, b, c, e)
@@ -124,44 +126,73 @@ def locate_fold(
         # d = −dz with that row negated (sign flips are exact: bitwise the same update)
         rhs[:-1] = residual(z)
         rhs[-1] = -g
-        scales = system.scales
         a = bordered(dg, second_derivative_row(jacobian, z, vt, w, dg if exact else None, scales))
         try:
             d = dense_solve(a, rhs)[2] if type(a) is np.ndarray else factor(a).solve(rhs)
         except SingularMatrixError:
             return None
-        inv = inverse_magnitudes(scales, z)
-        size = scaled_max(d, inv)
-        if not math.isfinite(size):
+        update = (scaled_max(d, inverse_magnitudes(local, z)), scaled_max(d, 1.0 / scales))
+        if not math.isfinite(update[0]):
             return None
         z = z - d
         nb = math.sqrt(w.dot(w))
         if nb > 0 and max_abs(v) > 0:
             b, c = w / nb, _relative_border(v, mags)
-        # stagnation accepted up to 1e-6: ill-conditioned systems (cond ~ N² for discretised
-        # operators) and forward differences stall there; the fold's parameter is still
-        # exact to second order, its state to the accuracy of the derivatives
-        zk = abs(float(z[k]))
-        k_ratio = zk / max(float(scales[k]), zk)
-        if newton_done(
-            it,
-            size,
-            previous,
-            o.locate_tol,
-            stall=1e-6,
-            perturbation=_FORWARD_D2_ERROR if exact else None,
-            k_ratio=k_ratio,
-        ):
+        zk, mk, sk = abs(float(z[k])), float(local[k]), float(scales[k])
+        if _fold_newton_done(o, it, update, sizes, zk, mk, sk, exact):
             converged = True
             break
-        previous = size
+        sizes = update
     if not converged:
         return None
     # the tangent at a fold in z_k spans the kernel of ∂G/∂z, which has no k component: v
     # (from the last iterate, one update of ≤ locate_tol away)
     details = {"method": "minimally augmented Newton", "test_function": float(g)}
     tangent = oriented_tangent(vt, br.row, br.weights)
-    return accept_located(br, z, dg, it, size, details, tangent, FOLD_SLACK)
+    return accept_located(br, z, dg, it, update[0], details, tangent, FOLD_SLACK, local)
+
+
+def local_magnitudes(br: Bracket, z: np.ndarray) -> np.ndarray:
+    """The components' magnitudes where a point is located in the step ``br``:
+    ``max(|z_i|, min(s_i, max(|z_a,i|, |z_b,i|)))`` (``s_i`` where that is 0) — what they
+    are in this step, not the typical size ``s_i`` they got where the curve began, which
+    only grows. A concentration sized 1e7 at the start and 2.7e-22 at a fold was located to
+    1e-12 of 1e7 (2e-7 of itself, at a residual of 2e-7 that a rounding floor reckoned
+    with 1e7 let pass); a component crossing 0 in the step keeps the size of its ends."""
+    s = br.system.scales
+    ends = np.maximum(np.abs(br.z_a), np.abs(br.z_b))
+    m = np.maximum(np.abs(z), np.minimum(s, ends))
+    return np.where(m > 0.0, m, s)
+
+
+def _fold_newton_done(
+    o: Any,
+    it: int,
+    update: tuple[float, float],
+    previous: tuple[float, float],
+    zk: float,
+    mk: float,
+    sk: float,
+    exact: bool,
+) -> bool:
+    """The fold Newton's stopping test (:func:`~.locate.newton_done`) on the update relative
+    to the local magnitudes (``update[0]``), the fold's component ``zk`` to the tolerance
+    relative to itself even where it is far below its magnitude ``mk``; an early stop (on
+    the estimated next update) needs the same of the update relative to the typical sizes
+    (``update[1]``), whose estimate is the more cautious where the fold's component is far
+    below its size ``sk``. Or stagnation below 1e-6 of the typical sizes: ill-conditioned
+    systems (cond ~ N² for discretised operators), forward differences and components that
+    rounding in the terms of their equations limits relative to themselves stall there; the
+    fold's parameter is still exact to second order, its state to the accuracy of the
+    derivatives."""
+    tol, d2 = o.locate_tol, _FORWARD_D2_ERROR if exact else None
+    if update[0] <= tol:
+        return True
+    if newton_done(it, update[0], previous[0], tol, 0.0, d2, zk / max(mk, zk)) and newton_done(
+        it, update[1], previous[1], tol, 0.0, d2, zk / max(sk, zk)
+    ):
+        return True
+    return it >= 4 and update[1] > 0.5 * previous[1] and update[1] <= 1e-6
 
 
 def _relative_border(v: np.ndarray, d: np.ndarray) -> np.ndarray:
@@ -188,10 +219,11 @@ def _locate_fold_pair(br: Bracket, k: int, z: np.ndarray, tangent: np.ndarray) -
         return _UNDECIDED
     x = z.tolist()
     s = system.scales.tolist()
+    local = local_magnitudes(br, z)  # (the updates' measure, as in locate_fold)
     b = c = 1.0 if tangent[j] > 0 else -1.0
     exact = system.exact_jacobian
     jac_row, res = system.scalar_jacobian, system.scalar_residual
-    converged, it, previous, size = False, 0, math.inf, math.inf
+    converged, it, sizes, update = False, 0, (math.inf, math.inf), (math.inf, math.inf)
     for it in range(1, o.max_locate_iterations + 1):
         zz = np.array(x)
         row0 = jac_row(zz)
@@ -220,25 +252,21 @@ def _locate_fold_pair(br: Bracket, k: int, z: np.ndarray, tangent: np.ndarray) -
         except SingularMatrixError:
             return None
         d0, d1 = lu.solve_pair(G, -g)
-        i0, i1 = inverse_magnitudes(system.scales, zz)
-        size = max(abs(d0) * i0, abs(d1) * i1)
-        if not size < math.inf:
+        i0, i1 = inverse_magnitudes(local, zz)
+        update = (max(abs(d0) * i0, abs(d1) * i1), max(abs(d0) / s[0], abs(d1) / s[1]))
+        if not update[0] < math.inf:
             return None
         x = [x[0] - d0, x[1] - d1]
         b, c = (1.0 if w > 0 else -1.0), (1.0 if v > 0 else -1.0)
-        zk = abs(x[k])
-        if newton_done(
-            it, size, previous, o.locate_tol, stall=1e-6,
-            perturbation=_FORWARD_D2_ERROR if exact else None, k_ratio=zk / max(s[k], zk),
-        ):  # fmt: skip
+        if _fold_newton_done(o, it, update, sizes, abs(x[k]), float(local[k]), s[k], exact):
             converged = True
             break
-        previous = size
+        sizes = update
     if not converged:
         return None
     vt = np.zeros(2)
     vt[j] = v
     details = {"method": "minimally augmented Newton", "test_function": float(g)}
-    dg = np.array([row0])
+    dg, zf = np.array([row0]), np.array(x)
     t = oriented_tangent(vt, br.row, br.weights)
-    return accept_located(br, np.array(x), dg, it, size, details, t, FOLD_SLACK)
+    return accept_located(br, zf, dg, it, update[0], details, t, FOLD_SLACK, local)

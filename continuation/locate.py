@@ -359,14 +359,15 @@ def accept_located(
     details: dict,
     tangent: np.ndarray | None = None,
     slack: float = 0.05,
+    magnitudes: np.ndarray | None = None,
 ) -> Located | None:
     """A point a locating Newton converged to, as :class:`Located` — if it solves ``G = 0``
-    to tolerance (or to its rounding floor) and lies in the step (within ``slack`` of it,
-    5% by default); else None (it converged to a point of another step, or off the
-    curve)."""
+    to tolerance (or to its rounding floor, reckoned with the components' ``magnitudes`` if
+    given, else their typical sizes) and lies in the step (within ``slack`` of it, 5% by
+    default); else None (it converged to a point of another step, or off the curve)."""
     system = br.system
     rn = max_abs(system.residual(z))
-    if not (rn <= br.options.tol or rn <= system.residual_floor(dg, z)):  # NaN fails too
+    if not (rn <= br.options.tol or rn <= system.residual_floor(dg, z, magnitudes)):  # NaN too
         return None
     sigma = br.sigma(z)
     if not (-slack * abs(br.h) <= (sigma if br.h >= 0 else -sigma) <= (1 + slack) * abs(br.h)):

@@ -96,12 +96,14 @@ class CurveSystem:
         """The square matrix ``[∂G/∂z; row]``."""
         return bordered(self.jacobian(z), row)
 
-    def residual_floor(self, dg: Any, z: np.ndarray) -> float:
+    def residual_floor(self, dg: Any, z: np.ndarray, magnitudes: Any = None) -> float:
         """The residual size attributable to rounding at ``z`` (``dg``: ∂G/∂z there, or a
         nearby one): Newton accepts a tiny update with a residual up to ``max(tol, this)``.
         The last column (a parameter) is left out: a parameter derivative differenced
-        across a jump of the residual would inflate it."""
-        return rounding_floor(dg[:, :-1], z, self.scales)
+        across a jump of the residual would inflate it. ``magnitudes``: the components'
+        magnitudes there, if known better than by their typical sizes (a located point's
+        :func:`~.foldlocate.local_magnitudes`)."""
+        return rounding_floor(dg[:, :-1], z, self.scales if magnitudes is None else magnitudes)
 
     def refreshed(self, z: np.ndarray) -> CurveSystem:
         """The system to use after the accepted point ``z`` (augmented systems update their

@@ -221,3 +221,56 @@ def test_two_close_folds_both_located(n, b0, x0, start, direction, derivatives):
             xi = (i + 1.0) * u + 0.5 * u * u
             # (its error is x_0's times ∂x_i/∂x_0 = i + 1 + x_0, and its own rounding)
             assert sp.values[f"x{i}"] == pytest.approx(xi, abs=tol * (abs(i + 2.0 + u) + 1.0))
+
+
+# --- 3. a fold where an unknown is far smaller than at the start
+
+X_START = -1.3  # the start: x³ − x − b = 0 at b = x³ − x = −0.897
+C_START = 1e7  # c at the start; c = C_START·exp(−κ(x − X_START)) on the curve
+X_FOLDS = (-1.0 / math.sqrt(3.0), 1.0 / math.sqrt(3.0))  # 3x² − 1 = 0 (closed form)
+KAPPA = math.log(C_START / 1e-4) / (X_FOLDS[0] - X_START)
+"""c falls from 1e7 at the start to 1e-4 at the first fold, and to 2.7e-22 at the second:
+c_f = C_START·exp(−κ(x_f − X_START)) (closed form)."""
+
+
+def _decaying(derivatives: str) -> Problem:
+    """R = [x³ − x − b, c·e^{κ(x − X_START)}/C_START − 1]: a quantity that decays
+    exponentially along the branch (a concentration), in an equation relative to it."""
+
+    def residual(u, p):
+        x, c = u
+        return np.array([x**3 - x - p["b"], c * np.exp(KAPPA * (x - X_START)) / C_START - 1.0])
+
+    def jacobian(u, p):
+        x, c = u
+        e = math.exp(KAPPA * (x - X_START)) / C_START
+        return np.array([[3.0 * x * x - 1.0, 0.0], [KAPPA * c * e, e]])
+
+    def param_jacobian(u, p, name):
+        return np.array([-1.0, 0.0])
+
+    params = {"b": X_START**3 - X_START}
+    if derivatives == "analytic":
+        return Problem(
+            residual, ["x", "c"], params, jacobian=jacobian, param_jacobian=param_jacobian
+        )
+    return Problem(residual, ["x", "c"], params, derivatives=derivatives)
+
+
+@pytest.mark.parametrize("derivatives", ["analytic", "complex"])
+def test_fold_state_relative_to_itself_after_decay(derivatives):
+    # c is sized 1e7 where the branch starts (sizes only grow) and is 1e-4 and 2.7e-22 at the
+    # folds. The fold Newton measured its updates against max(1e7, |c|) and stopped with
+    # c off by 2e-7 of itself at the second fold, at a residual of 2e-7 that the rounding
+    # floor, reckoned with 1e7, let pass; it now measures them against the components'
+    # magnitudes in the step (foldlocate.local_magnitudes)
+    br = trace(_decaying(derivatives), [X_START, C_START], free="b", bounds={"b": (-1.0, 1.0)})
+    folds = br.special("fold")
+    assert br.status == "bound" and len(folds) == 2
+    assert br.info["scales"]["c"] == C_START
+    for sp, xf in zip(folds, X_FOLDS):
+        cf = C_START * math.exp(-KAPPA * (xf - X_START))  # 1e-4, then 2.7e-22
+        assert sp.status == "converged", sp.details
+        assert sp.values["b"] == pytest.approx(-2.0 * xf**3, rel=1e-12, abs=0)
+        assert sp.values["x"] == pytest.approx(xf, rel=1e-12, abs=0)
+        assert sp.values["c"] == pytest.approx(cf, rel=1e-12, abs=0)
