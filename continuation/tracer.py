@@ -32,13 +32,14 @@ from __future__ import annotations
 import logging
 import math
 import warnings
-from collections.abc import Callable, Mapping, Sequence
+from collections.abc import Mapping, Sequence
 from typing import Any
 
 import numpy as np
 
-from .branch import Branch, SpecialPoint, join_halves
+from .branch import Branch, SpecialPoint
 from .confirm import confirm_step, located_on_arc
+from .consistency import check_consistent
 from .crossings import corner_folds, evaluate, locate_crossings, splits, step_bracket
 from .errors import (
     MaxStepsWarning,
@@ -52,7 +53,7 @@ from .locate import Bracket, Located, tangent_at
 from .options import ContinuationOptions
 from .problem import as_problem
 from .scaling import diverged, given_scales, grown_sizes, out_of_range, typical_sizes
-from .start import correct_start
+from .start import correct_start, refuse_singular
 from .state import Point, TracerState, assemble_branch
 from .stepcontrol import next_step_size
 from .stepping import STALL_FACTOR, Failure, StepRules, Trial, advance, wnorm
@@ -247,9 +248,13 @@ class Tracer:
         )
         system = system.with_scales(provisional)
         details: dict[str, Any] = {}
+        oriented_by = None
         if tangent is None:
+            guess = z0
             start = correct_start(system, z0, g0, o, self._rules.e_last, self.direction)
             z0, t0, sdet, residual, iters, oriented_by = start
+            # (zeros set exactly by start.snap_zeros take their size as zeros do)
+            settled = settled and not np.any((z0 == 0.0) & (guess != 0.0))
             if oriented_by is not None:  # on a fold of the free parameter (module start)
                 skip_bp = True
                 details = {"fold_of": system.names[-1], "oriented_by": oriented_by}
@@ -265,6 +270,9 @@ class Tracer:
             )
             if not np.array_equal(sizes, provisional):
                 system = system.with_scales(sizes)
+        check_consistent(system, z0, "the starting point")
+        if tangent is None and oriented_by is None:
+            refuse_singular(system, z0)  # (a branch point a differenced Jacobian hides)
         t0 = t0 / wnorm(t0, system.weights)  # (a positive factor: sdet keeps its sign)
         system = system.refreshed(z0)
         if skip_bp:
@@ -383,7 +391,16 @@ class Tracer:
         located = (
             locate_crossings(self.options, state, system, trial, crossings, br) if crossings else ()
         )
-        return special, located
+        kept = []
+        for tt, loc, where in located:
+            if loc.status == "pole":  # a sign change through infinity: no special point
+                logger.info("%r changed sign through a pole, not a zero: not reported", tt)
+                continue
+            if tt.kind in ("fold", "branch_point") and loc.status == "converged":
+                # (what the user's derivatives locate, they decide: they are checked there)
+                check_consistent(system, loc.z, f"the located {tt.label}")
+            kept.append((tt, loc, where))
+        return special, kept
 
     def _finish(
         self,
@@ -561,25 +578,4 @@ def run(tracer: Tracer, state: TracerState) -> TracerState:
     return state
 
 
-def trace_directions(
-    begin: Callable[[int], tuple[Tracer, TracerState]],
-    direction: str | int,
-    *,
-    start_kind: str | None = None,
-    start_label: str = "",
-) -> Branch:
-    """Trace a curve from one start in ``direction`` (+1 or −1) or ``"both"``: ``begin(d)``
-    gives the tracer and its initial state for direction ``d``. Both halves are joined at the
-    start (:func:`~.branch.join_halves`, which records it as ``start_kind``); one half gets
-    ``info`` ``direction`` and ``start_index`` 0."""
-    halves = []
-    for d in (1, -1) if direction == "both" else (int(direction),):
-        tracer, state = begin(d)
-        halves.append(tracer.result(run(tracer, state)))
-    if len(halves) == 1:
-        halves[0].info.update(direction=direction, start_index=0)
-        return halves[0]
-    return join_halves(halves[1], halves[0], start_kind=start_kind, start_label=start_label)
-
-
-__all__ = ["Tracer", "TracerState", "run", "trace", "trace_directions"]
+__all__ = ["Tracer", "TracerState", "run", "trace"]

@@ -37,14 +37,16 @@ class OutOfWork(Exception):
 
 
 class StepWork:
-    """The corrector solves of one step, by kind, against ``limit``; ``ds_range`` the smallest
-    and largest step size tried."""
+    """The corrector solves of one step, by kind, against ``limit``; ``ds_lo`` and ``ds_hi``
+    the smallest and largest step size tried; ``nonfinite`` how many solves met a residual
+    or Jacobian that was not finite (the step's failure then says so)."""
 
-    __slots__ = ("limit", "solves", "counts", "ds_lo", "ds_hi")
+    __slots__ = ("limit", "solves", "counts", "ds_lo", "ds_hi", "nonfinite")
 
     def __init__(self, limit: int) -> None:
         self.limit = limit
         self.solves = 0
+        self.nonfinite = 0  # solves that met a residual or Jacobian that was not finite
         self.counts: dict[str, int] = {}
         self.ds_lo, self.ds_hi = math.inf, 0.0
 
