@@ -72,14 +72,17 @@ def jacobian_defect(system: Any, z: np.ndarray) -> Defect | None:
     try:
         dg = system.jacobian(z)
         g0 = system.residual(z)
-        central = (system.residual(z + STEP * v) - system.residual(z - STEP * v)) / (2 * STEP)
+        up, down = system.residual(z + STEP * v), system.residual(z - STEP * v)
     except (ArithmeticError, SingularMatrixError):
         return None
+    central = (up - down) / (2 * STEP)
     absdg = abs(dg)
     jv = np.asarray(dg @ v).ravel()
     terms = np.asarray(absdg @ np.abs(v)).ravel()
-    # the rounding of an equation is that of its terms (|∂G_r/∂z_j|·|z_j|), not of its value
-    level = np.asarray(absdg @ mags).ravel()
+    # the rounding of an equation is that of its terms (|∂G_r/∂z_j|·|z_j|), not of its
+    # value, and that of the values it takes at the difference's points (its second-order
+    # terms there, where its first-order ones vanish: at a branch point of x(p − x))
+    level = np.asarray(absdg @ mags).ravel() + np.maximum(np.abs(up), np.abs(down))
     floor = FLOOR * float(terms.max(initial=0.0))
     if not (np.all(np.isfinite(jv)) and np.all(np.isfinite(g0))):
         return None
@@ -122,7 +125,7 @@ def _scalar_agrees(system: Any, z: np.ndarray) -> bool | None:
         return None
     a, b = jac
     terms = abs(a * v0) + abs(b * v1)
-    level = abs(a) * max(s0, abs(x)) + abs(b) * max(s1, abs(lam))
+    level = abs(a) * max(s0, abs(x)) + abs(b) * max(s1, abs(lam)) + max(abs(up), abs(down))
     err = abs(a * v0 + b * v1 - (up - down) / (2 * STEP))
     return err <= TOLERANCE * (terms + 16.0 * _EPS * level / STEP + FLOOR * terms)
 

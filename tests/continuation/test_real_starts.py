@@ -260,3 +260,32 @@ def test_a_sign_change_through_a_pole_marks_no_special_point(analytic):
     found = [(sp.kind, sp.status) for sp in br.special_points if sp.kind != "endpoint"]
     assert found == [("branch_point", "converged")]
     assert abs(br.special("branch_point")[0].values["K"] - bp) <= 1e-10 * bp
+
+
+@pytest.mark.parametrize("analytic", [False, True], ids=["central", "analytic"])
+@pytest.mark.parametrize(("slope", "shift"), [(1.0, 0.0), (0.05, 3.0), (20.0, 3.0)])
+def test_a_transcritical_point_passed_along_its_oblique_branch(analytic, slope, shift):
+    """(x − c)(p − (x − c)/s) = 0: the branch x = c + s p crosses x = c at p = 0 (exact).
+    From guesses 30 % off the oblique branch, at random start parameters and step sizes:
+    the branch point once, converged, p to 1e-10 absolute (its value is 0), and every point
+    on the oblique branch."""
+
+    def residual(u, p):
+        return np.array([(u[0] - shift) * (p["p"] - (u[0] - shift) / slope)])
+
+    kw: dict = {}
+    if analytic:
+        kw = {
+            "jacobian": lambda u, p: np.array([[p["p"] - 2 * (u[0] - shift) / slope]]),
+            "param_jacobian": lambda u, p, n: np.array([u[0] - shift]),
+        }
+    rng = np.random.default_rng(7)
+    for _ in range(15):
+        p0, ds = -rng.uniform(0.05, 1.0), 10 ** rng.uniform(-3, math.log10(0.5))
+        prob = Problem(residual, ["x"], {"p": p0}, **kw)
+        u0 = [shift + slope * p0 * (1 + rng.uniform(-0.3, 0.3))]
+        br = trace(prob, u0, free="p", bounds={"p": (-2.0, rng.uniform(0.05, 2.0))}, ds=ds)
+        assert br.status == "bound"
+        assert np.max(np.abs(br["x"] - shift - slope * br["p"])) <= 1e-9 * max(1, slope)
+        bps = br.special("branch_point")
+        assert len(bps) == 1 and bps[0].status == "converged" and abs(bps[0].values["p"]) < 1e-10
