@@ -38,7 +38,7 @@ from .interpolant import arc_from, arc_length, interpolation_error
 from .linalg import max_abs, weighted_square
 from .locate import oriented_tangent
 from .stepcontrol import guard_factor, interpolation_factor
-from .work import StepWork
+from .work import AIMED, CORNER, TRY, StepWork
 
 if TYPE_CHECKING:
     from .options import ContinuationOptions
@@ -246,7 +246,7 @@ def _try(
     row: np.ndarray,
     secant: np.ndarray | None,
     work: StepWork,
-    kind: str = "try",
+    kind: int = TRY,
 ) -> Trial | tuple[NewtonResult, str, float]:
     """One corrector solve at ``ds`` (counted in ``work`` as ``kind``): the trial if it is
     accepted, else the corrector's result, the reason it is not and the factor its guards
@@ -315,13 +315,14 @@ def _try(
 
 def _at_point(system: CurveSystem, res: NewtonResult, row: np.ndarray) -> NewtonResult | None:
     """The corrector's result with the factorization of ``[∂G/∂z; row]`` at its point
-    itself (:func:`~.corrector.factor_at`), None where that matrix is singular."""
+    itself (:func:`~.corrector.factor_at`), None where that matrix is singular. (The result
+    is the corrector's, not yet seen by anything else: its factorization is replaced in
+    place rather than in a copy.)"""
     lu = factor_at(system, res.z, row)
     if lu is None:
         return None
-    return NewtonResult(
-        res.z, True, res.iterations, res.residual_norm, lu, "", res.contraction, res.first_update
-    )
+    res.lu = lu
+    return res
 
 
 def _failure(
@@ -444,7 +445,7 @@ def _natural_step(
     work: StepWork,
 ) -> Trial | None:
     """A step of ``h`` (weighted) in component ``j`` alone, the way it was moving."""
-    work.charge("corner", h)
+    work.charge(CORNER, h)
     o = rules.options
     W = system.weights
     sign = 1.0 if t[j] > 0 else -1.0
@@ -514,7 +515,7 @@ def aim_at_bound(
             continue
         if math.sqrt(W[k]) * abs(tk) < math.sin(math.radians(o.max_angle)):
             return None  # grazing: a normal step, then locating
-        work.charge("aimed", ds)
+        work.charge(AIMED, ds)
         return _aimed(rules, state.system, z, t, ds, tt, sigma, tk)
     return None
 

@@ -289,3 +289,21 @@ def test_a_transcritical_point_passed_along_its_oblique_branch(analytic, slope, 
         assert np.max(np.abs(br["x"] - shift - slope * br["p"])) <= 1e-9 * max(1, slope)
         bps = br.special("branch_point")
         assert len(bps) == 1 and bps[0].status == "converged" and abs(bps[0].values["p"]) < 1e-10
+
+
+@pytest.mark.parametrize("analytic", [False, True], ids=["central", "analytic"])
+def test_switching_at_a_branch_point_from_a_real_start_reaches_both_halves(analytic):
+    """From the pitchfork located on a trace started at a random guess, both directions of
+    the other branch: C+ and C−, x = y = ±√(β(r − 1)), z = r − 1, each to 1e-10."""
+    problem = _lorenz(analytic)
+    br = trace(problem, [0.21, -0.37, 0.05], free="r", bounds={"r": (0.0, 3.0)})
+    (bp,) = br.special("branch_point")
+    signs = []
+    for direction in (1, -1):
+        other = trace(problem, bp, free="r", bounds={"r": (0.0, 3.0)}, direction=direction)
+        assert other.status == "bound"
+        x, y, z, r = other["x"][1:], other["y"][1:], other["z"][1:], other["r"][1:]
+        assert np.max(np.abs(x - y)) < 1e-10 and np.max(np.abs(z - (r - 1))) < 1e-10
+        assert np.max(np.abs(x**2 - BETA * (r - 1))) < 1e-9
+        signs.append(np.sign(x[-1]))
+    assert sorted(signs) == [-1.0, 1.0]
