@@ -238,10 +238,12 @@ def perturbed(
     ``numpy.random.default_rng(seed)`` (one draw per unknown, in order), or given as
     ``noise``; ``m_i = max(|u0_i|, size_i)``, ``size_i`` the component's size by which
     :func:`check` judges (its largest magnitude at the start and at the references, as in
-    :func:`compare`), and 1 where that is 0 — so a component that is exactly 0 gets noise of
-    size ``rel``, never none. Everything else (problem, free parameter, bounds, monitored
-    unknowns, references) is the example's; a perturbed example is perturbed from its
-    nominal start again. :func:`check` judges its branch with the unperturbed start's sizes.
+    :func:`compare`), and 1 where that is 0 — so a component that is exactly 0 gets noise too,
+    of size ``rel·m_i`` (elsewhere a draw can round away: at ``rel`` = 1e-14 the noise
+    is 45–90 ulps of ``m_i``, and a draw below 0.01 in magnitude less than half of one).
+    Everything else (problem, free parameter, bounds, monitored unknowns, references) is the
+    example's; a perturbed example is perturbed from its nominal start again. :func:`check`
+    judges its branch with the unperturbed start's sizes.
 
     >>> from cusp.examples.suite import perturbed, problem
     >>> p = perturbed(problem("lrz"), 1e-10, seed=1)
@@ -266,15 +268,17 @@ def compare_ends(example: Example, reference: Branch, br: Branch) -> list[str]:
     """Everything in which ``br`` (traced from a perturbed start of ``example``) ends
     otherwise than ``reference`` (from its unperturbed start), in sentences: a different
     status, or a variable of the last point off by more than :data:`STATE_RTOL` relative to
-    its size (as in :func:`compare`, at least its magnitude at the reference's end; 1 where
-    that is 0)."""
+    its size. The size is :func:`compare`'s (the largest magnitude at the start and the
+    references; where that is 0, the state's: the largest of any unknown there, or 1), and
+    at least the magnitude at the reference's end."""
     if br.status != reference.status:
         return [f"ends with status {br.status!r}, unperturbed {reference.status!r}: {br.message}"]
     sizes = _sizes(example, expected_points(example))
+    state = max([sizes[k] for k in example.unknowns]) or 1.0
     wrong = []
     for k in reference.variables:
         end, ref = float(br[k][-1]), float(reference[k][-1])
-        size = max(sizes.get(k, 0.0), abs(ref)) or 1.0
+        size = max(sizes[k] or state, abs(ref))
         if not abs(end - ref) <= STATE_RTOL * size:
             wrong.append(f"ends at {k} = {end!r}, unperturbed {ref!r}")
     return wrong
