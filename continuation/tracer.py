@@ -182,7 +182,7 @@ class Tracer:
             )
         if not math.isfinite(max_abs(u)):
             raise ProblemDefinitionError(f"u0 must be finite, got {u}")
-        return self._start(system, system.start_vector(u), tangent, "start", False)
+        return self._start(system, system.start_vector(u), tangent, "start", False, from_guess=True)
 
     def _init_at_special(self, sp: SpecialPoint, tangent: Any) -> TracerState:
         system = self.system.with_values(sp.values)
@@ -231,6 +231,7 @@ class Tracer:
         start_label: str,
         skip_bp: bool,
         inherited: Mapping[int, float] | None = None,
+        from_guess: bool = False,
     ) -> TracerState:
         o = self.options
         g0 = system.residual(z0)
@@ -244,7 +245,12 @@ class Tracer:
         # (a component at rounding level, −1e-32 for an exact 0, must not set the size the
         # start is corrected with: it is recognised by the Jacobian here too)
         provisional, settled = typical_sizes(
-            z0, given, bounds, jacobian=lambda: system.jacobian(z0), inherited=inherited
+            z0,
+            given,
+            bounds,
+            jacobian=lambda: system.jacobian(z0),
+            inherited=inherited,
+            guess=from_guess,
         )
         system = system.with_scales(provisional)
         details: dict[str, Any] = {}
@@ -270,6 +276,14 @@ class Tracer:
             )
             if not np.array_equal(sizes, provisional):
                 system = system.with_scales(sizes)
+            if tangent is None and oriented_by is None and np.any(sizes < 1e-3 * provisional):
+                # corrected in sizes far above the ones it has: again in its own, to the
+                # accuracy its sizes demand (a guess of 1e-9 for a genuine 1e-9, sized 1)
+                again = correct_start(
+                    system, z0, system.residual(z0), o, self._rules.e_last, self.direction
+                )
+                z0, t0, sdet, residual, more, oriented_by = again
+                iters += more
         check_consistent(system, z0, "the starting point")
         if tangent is None and oriented_by is None:
             refuse_singular(system, z0)  # (a branch point a differenced Jacobian hides)
