@@ -28,10 +28,10 @@ from .locate import (
     Bracket,
     Located,
     accept_located,
-    locate_on_arc,
     newton_done,
     second_derivative_row,
 )
+from .regula import locate_on_arc
 
 #: largest curve dimension for which the extended system is built and solved densely
 MAX_DENSE = 200
@@ -45,6 +45,8 @@ def locate_branch_point(br: Bracket, f_a: float, f_b: float) -> Located:
     the two branches' tangents there (:func:`branch_point_directions`): its ``tangent`` is
     this branch's, its details the other's (``other_tangent``), for branch switching."""
     found = _locate(br, f_a, f_b)
+    if found.status == "pole":  # the determinant changed sign through infinity
+        return found
     theta = min(1.0, max(0.0, br.sigma(found.z) / br.h))
     estimate = br.guess_derivative(theta)  # this branch's tangent, from the step's arc
     directions = branch_point_directions(br.system, found.z, estimate, br.weights)
@@ -61,6 +63,8 @@ def _locate(br: Bracket, f_a: float, f_b: float) -> Located:
         if found is not None:
             return found
     found = _regula_falsi(br, f_a, f_b)
+    if found.status == "pole":
+        return found
     if found.status == "converged" and not found.details.get("exact_zero"):
         # the sign change is bracketed, but the points next to a branch point are corrected
         # only to about √tol (the corrector's matrix is singular there): not converged

@@ -21,7 +21,7 @@ import numpy as np
 from .corrector import newton
 from .locate import Bracket
 from .stepping import StepRules, Trial, _predictor, _try, advance, wnorm
-from .work import OutOfWork, StepWork
+from .work import HALF, OutOfWork, StepWork
 
 if TYPE_CHECKING:
     from .state import TracerState
@@ -72,7 +72,7 @@ def confirm_step(
     loose = 1e-3 * delta / wnorm(mags, W)
     if loose > math.sqrt(o.step_tol):
         z_half = z + 0.5 * ds * direction
-        work.charge("half", 0.5 * ds)
+        work.charge(HALF, 0.5 * ds)
         res = newton(
             system, z_half, row, row.dot(z_half), tol=math.inf, step_tol=loose * loose,
             max_iter=o.max_newton_iterations, contract=True, max_first=ds,
@@ -80,7 +80,7 @@ def confirm_step(
         if res.converged and off_arc(br, W, res.z) <= limit:
             return None
     # else the half step as a step of its own: the step to take instead if it is off the arc
-    half = _try(rules, system, z, t, 0.5 * ds, direction, row, secant, work, "half")
+    half = _try(rules, system, z, t, 0.5 * ds, direction, row, secant, work, HALF)
     if not isinstance(half, Trial):  # the half step fails where the whole one passed
         shorter = advance(rules, state._replace(ds=max(0.25 * ds, o.ds_min)), work)
         return shorter._replace(rejected=trial.rejected + 1) if isinstance(shorter, Trial) else None

@@ -17,6 +17,27 @@ class ProblemDefinitionError(ValueError):
     """A problem, starting point or call argument is malformed."""
 
 
+class JacobianError(ProblemDefinitionError):
+    """A supplied Jacobian (or parameter derivative) disagrees with the residual's own
+    differences at a point of the branch: continuation with it would report the special
+    points of another problem, so it is refused. Attributes: ``values`` (the point), ``row``
+    (the equation), ``supplied`` and ``differenced`` (its rate of change along the check's
+    direction, from the Jacobian and from the residual)."""
+
+    def __init__(
+        self,
+        message: str,
+        *,
+        values: Mapping[str, float],
+        row: int,
+        supplied: float,
+        differenced: float,
+    ) -> None:
+        super().__init__(message)
+        self.values = dict(values)
+        self.row, self.supplied, self.differenced = row, supplied, differenced
+
+
 class ContinuationError(RuntimeError):
     """Base class of numerical failures during continuation."""
 

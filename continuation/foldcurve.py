@@ -35,6 +35,7 @@ import numpy as np
 import scipy.sparse as sp
 
 from .branch import Branch, SpecialPoint
+from .directions import trace_directions
 from .errors import ProblemDefinitionError, SingularMatrixError
 from .linalg import (
     bordered,
@@ -47,17 +48,17 @@ from .linalg import (
 from .locate import (
     Bracket,
     Located,
-    locate_on_arc,
     newton_done,
     second_derivative_row,
     tangent_at,
 )
 from .options import ContinuationOptions
 from .problem import as_matrix, as_problem, as_vector, has_exact_jacobian
+from .regula import locate_on_arc
 from .state import TracerState
 from .system import CurveSystem, state_weights
 from .testfunctions import TestFunction
-from .tracer import Tracer, trace_directions
+from .tracer import Tracer
 
 _EPS = np.finfo(float).eps
 

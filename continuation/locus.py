@@ -31,12 +31,13 @@ from typing import Any
 import numpy as np
 
 from .branch import Branch, SpecialPoint
+from .directions import trace_directions
 from .errors import ProblemDefinitionError
 from .foldcurve import fold_curve
 from .options import ContinuationOptions
 from .problem import as_matrix, as_problem, as_vector, has_exact_jacobian
 from .state import TracerState
-from .tracer import Tracer, trace_directions
+from .tracer import Tracer
 
 #: what a condition holds a variable at: a number, a parameter of the chain (by name), or
 #: the value of a variable at another point of the chain (``(point, variable)``)

@@ -137,6 +137,11 @@ class Problem:
     def has_jacobian(self) -> bool:
         return self._jacobian is not None
 
+    @property
+    def has_param_jacobian(self) -> bool:
+        """Whether the parameter derivatives are the user's own function."""
+        return self._param_jacobian is not None
+
     def __repr__(self) -> str:
         """The name, unknowns and parameters; long lists of unknowns (discretisations) are
         shown by their first and last three names and their count.

@@ -135,6 +135,7 @@ def typical_sizes(
     tangent: np.ndarray | None = None,
     jacobian: Any = None,
     inherited: Mapping[int, float] | None = None,
+    guess: bool = False,
 ) -> tuple[np.ndarray, bool]:
     """The typical size of every component (module docstring), and whether they are settled
     (no component was of size 0 or suspiciously small, so the tangent and the Jacobian
@@ -145,11 +146,22 @@ def typical_sizes(
     some component is a millionth of the largest or less), ``inherited`` the sizes on a
     curve the start lies on (a branch point's or a fold's branch), taken by the components
     whose size here is below a millionth of them (0 up to rounding at a branch point says
-    nothing of a component's size; its branch does). Plain Python: it runs once per curve,
-    on the few components of most problems."""
+    nothing of a component's size; its branch does). ``guess``: ``z0`` is a guess, not yet
+    corrected: a component of it a millionth or less of the largest magnitude around (the
+    guess's, the bounds', the given sizes) counts as 0 (a guess of 1e-14 for a state that is
+    0 is noise, and its size would make Newton's update test demand 1e-30 of it; the
+    corrected point's sizes are taken after). Plain Python: it runs once per curve, on the
+    few components of most problems."""
     s = [abs(v) for v in np.asarray(z0, dtype=float).tolist()]
     largest = max(s)
-    small = any(0.0 < x <= 1e-6 * largest for x in s)
+    noise = False
+    if guess:
+        around = max([largest, *given.values(), *(_bound_size(t.pair) for t in bounds)])
+        for i, x in enumerate(s):
+            if 0.0 < x <= 1e-6 * around and i not in given:
+                s[i], noise = 0.0, True
+        largest = max(s)
+    small = noise or any(0.0 < x <= 1e-6 * largest for x in s)
     if jacobian is not None and small:
         # the given sizes count as the components' magnitudes here: a component the user
         # sized 1 but whose value is a rounding 0 still makes the terms of its equations
@@ -160,10 +172,7 @@ def typical_sizes(
             if i not in given:
                 s[i] = 0.0
     for t in bounds:
-        lo, hi = t.pair
-        ends = [abs(v) for v in (lo, hi) if math.isfinite(v)]
-        size = hi - lo if len(ends) == 2 else max(ends)
-        s[t.k] = max(s[t.k], size)
+        s[t.k] = max(s[t.k], _bound_size(t.pair))
     for k, v in (inherited or {}).items():
         if s[k] < 1e-6 * v:
             s[k] = v
@@ -174,7 +183,18 @@ def typical_sizes(
     if tangent is not None and any(unknown):
         t = np.abs(np.asarray(tangent, dtype=float)).tolist()
         _size_by_motion(s, unknown, t, given, jacobian)
-    return np.array([1.0 if u else x for x, u in zip(s, unknown)]), settled
+    # (a value below the range where the metric can be formed sizes it at the range's end;
+    # one above it cannot be measured, and is refused by the caller)
+    sizes = [1.0 if u else max(x, _MIN_SIZE) for x, u in zip(s, unknown)]
+    return np.array(sizes), settled
+
+
+def _bound_size(pair: tuple[float, float]) -> float:
+    """The size a bound interval gives its component: its width if both ends are finite,
+    else its largest finite end."""
+    lo, hi = pair
+    ends = [abs(v) for v in (lo, hi) if math.isfinite(v)]
+    return hi - lo if len(ends) == 2 else max(ends)
 
 
 def settled_by_motion(

@@ -212,6 +212,108 @@ def kernel_tangent(system: Any, z: np.ndarray) -> np.ndarray:
     return a
 
 
+#: the step (relative to the components' magnitudes) of the directional differences of
+#: :func:`singular_within_accuracy`, and the ratio below which the derivative they extract
+#: counts as 0
+_PROBE_STEP = 1e-3
+_ZERO_RATIO = 1e-2
+#: a smallest singular value above this fraction of the largest is regular without probing
+_CLEARLY_REGULAR = 1e-5
+
+
+def singular_within_accuracy(system: Any, z: np.ndarray) -> bool:
+    """Whether ``∂G/∂z`` at the start ``z`` is rank-deficient to within its own accuracy: a
+    branch point that a differenced Jacobian hides.
+
+    At a simple branch point ``∂G/∂z`` has a two-dimensional kernel; a Jacobian by finite
+    differences is off by its truncation error there (``−h²`` for ``x (p − x²)`` at the
+    origin), which gives it full rank, a one-dimensional kernel and a tangent: the start
+    would be taken as a regular point and its branch point located a difference step away.
+    The direction ``φ`` of the smallest singular value (of the Jacobian scaled by the
+    components' magnitudes) is probed with the residual itself: the derivative
+    ``ψ·G'(z)φ`` (``ψ`` the left singular vector) from central differences at steps ``s``
+    and ``2s``, combined by Richardson extrapolation to remove their O(s²) error. It is
+    the smallest singular value at a regular point, and 0 at a branch point, where both
+    differences are their O(s²) truncation alone: the start is singular when the
+    extrapolated value is below 1 % of the differences. (A start within about ``1e-8``
+    relative of a branch point counts as on it.)"""
+    if z.size > _MAX_DENSE_CHECK:
+        return False
+    if getattr(system, "scalar", False):
+        found = _scalar_singular(system, z)
+        if found is not None:
+            return found
+    dg = system.jacobian(z)
+    dense = dg.toarray() if hasattr(dg, "toarray") else np.asarray(dg, dtype=float)
+    m = dense.shape[0]
+    if m == 0 or not np.all(np.isfinite(dense)):
+        return False
+    mags = np.maximum(system.scales, np.abs(z))
+    u, sv, vt = np.linalg.svd(dense * mags)
+    if sv[m - 1] >= _CLEARLY_REGULAR * sv[0] and m > 1:
+        return False  # (no differencing error hides a branch point this far from one)
+    phi, psi = vt[m - 1] * mags, u[:, m - 1]
+
+    def derivative(s: float) -> float:
+        up, down = system.residual(z + s * phi), system.residual(z - s * phi)
+        return float(psi @ (up - down)) / (2.0 * s)
+
+    return _zero_derivative(derivative, float(sv[m - 1]))
+
+
+def _zero_derivative(derivative: Any, supplied: float) -> bool:
+    """Whether the directional derivative ``derivative(s)`` (a central difference at step
+    ``s``) extrapolates to 0 (see :func:`singular_within_accuracy`); ``supplied``: its value
+    by the Jacobian. A first difference within 1 % of it decides a regular point at once."""
+    try:
+        first = derivative(_PROBE_STEP)
+        if not math.isfinite(first):
+            return False
+        if abs(first - supplied) <= _ZERO_RATIO * abs(supplied):
+            return False
+        second = derivative(2.0 * _PROBE_STEP)
+    except (ArithmeticError, SingularMatrixError):
+        return False
+    if not math.isfinite(second):
+        return False
+    extrapolated = (4.0 * first - second) / 3.0
+    return abs(extrapolated) <= _ZERO_RATIO * max(abs(first), abs(second))
+
+
+def _scalar_singular(system: Any, z: np.ndarray) -> bool | None:
+    """:func:`singular_within_accuracy` for a curve of one equation in plain floats: its
+    Jacobian is a row ``(a, b)``, whose direction (scaled by the magnitudes) is ``φ`` and
+    its left singular vector 1. None where a value is not a finite float."""
+    jac = system.scalar_jacobian(z)
+    if jac is None:
+        return None
+    (s0, s1), (x, lam) = system.scales.tolist(), z.tolist()
+    m0, m1 = max(s0, abs(x)), max(s1, abs(lam))
+    a, b = jac[0] * m0, jac[1] * m1
+    norm = math.hypot(a, b)
+    if norm == 0.0:
+        return True  # (exactly zero: a branch point of the one equation)
+    p0, p1 = a / norm * m0, b / norm * m1
+
+    def derivative(s: float) -> float:
+        up = system.scalar_residual(np.array((x + s * p0, lam + s * p1)))
+        down = system.scalar_residual(np.array((x - s * p0, lam - s * p1)))
+        return math.nan if up is None or down is None else (up - down) / (2.0 * s)
+
+    return _zero_derivative(derivative, norm)
+
+
+_MAX_DENSE_CHECK = 201
+"""Largest curve dimension checked by :func:`singular_within_accuracy` (a dense SVD)."""
+
+
+def refuse_singular(system: Any, z: np.ndarray) -> None:
+    """:class:`~.errors.SingularPointError` if the corrected start ``z`` is a branch point
+    to within the accuracy of the Jacobian (:func:`singular_within_accuracy`)."""
+    if singular_within_accuracy(system, z):
+        raise _singular_point(system, z)
+
+
 def _singular_point(system: Any, z: np.ndarray) -> SingularPointError:
     values = system.values(z)
     return SingularPointError(
@@ -225,4 +327,4 @@ def _singular_point(system: Any, z: np.ndarray) -> SingularPointError:
     )
 
 
-__all__ = ["Start", "correct_start", "kernel_tangent"]
+__all__ = ["Start", "correct_start", "kernel_tangent", "refuse_singular", "snap_zeros"]

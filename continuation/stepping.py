@@ -24,19 +24,21 @@ from typing import TYPE_CHECKING, Any, NamedTuple
 
 import numpy as np
 
+from .consistency import check_consistent
 from .corrector import NewtonResult, correct, damped_newton, factor_at, newton
 from .errors import (
     ContinuationError,
     ConvergenceError,
     NonFiniteResidualError,
+    SingularMatrixError,
     StepGuardError,
     format_values,
 )
 from .interpolant import arc_from, arc_length, interpolation_error
-from .linalg import weighted_square
+from .linalg import max_abs, weighted_square
 from .locate import oriented_tangent
 from .stepcontrol import guard_factor, interpolation_factor
-from .work import StepWork
+from .work import AIMED, CORNER, TRY, StepWork
 
 if TYPE_CHECKING:
     from .options import ContinuationOptions
@@ -170,7 +172,7 @@ def advance(rules: StepRules, state: TracerState, work: StepWork) -> Trial | Fai
             if isinstance(tried, Trial):
                 return tried
             res, reason, _ = tried
-            return _failure(system, z, ds, res, reason, o, crept=state.stalled)
+            return _failure(system, z, t, ds, res, reason, o, work, crept=state.stalled)
     elif secant is None and rules.bound_tests:
         aimed = aim_at_bound(rules, state, z, t, state.ds, work)
         if aimed is not None:
@@ -190,18 +192,22 @@ def advance(rules: StepRules, state: TracerState, work: StepWork) -> Trial | Fai
             # (near a fold it may stay put for a halving or two): no step size cures it
             kept = kept + 1 if res.contraction >= 0.5 * kappa else 0
             if kept >= 3:
+                # (a supplied Jacobian that disagrees with the residual is refused here)
+                check_consistent(system, z, "the last point")
                 reason = (
                     f"contraction: Newton's first contraction stays at {res.contraction:.3g} "
-                    f"on ever shorter steps (down to ds={ds:.3g}): the Jacobian is "
-                    "inconsistent with the residual"
+                    f"on ever shorter steps (down to ds={ds:.3g}), with derivatives that "
+                    "agree with the residual's differences at the last point: the residual "
+                    "is not smooth ahead (a kink or a jump, or derivatives that grow without "
+                    "bound towards the edge of its domain)"
                 )
-                return _failure(system, z, ds, res, reason, o)
+                return _failure(system, z, t, ds, res, reason, o, work)
             kappa = res.contraction
         if ds <= o.ds_min:
             corner = corner_step(rules, system, z, t, state.ds, z_prev, work)
             if corner is not None:
                 return corner
-            return _failure(system, z, ds, res, reason, o)
+            return _failure(system, z, t, ds, res, reason, o, work)
         # a rejected guard says how much smaller the step should be: at least halved, but
         # for the interpolant alone (an accuracy, not a safety, guard: its error grows like
         # ds⁴, so its factor is reliable) its own factor
@@ -240,7 +246,7 @@ def _try(
     row: np.ndarray,
     secant: np.ndarray | None,
     work: StepWork,
-    kind: str = "try",
+    kind: int = TRY,
 ) -> Trial | tuple[NewtonResult, str, float]:
     """One corrector solve at ``ds`` (counted in ``work`` as ``kind``): the trial if it is
     accepted, else the corrector's result, the reason it is not and the factor its guards
@@ -276,6 +282,8 @@ def _try(
         )
         used_fallback = True
     if not res.converged:
+        if res.reason == "nonfinite":
+            work.nonfinite += 1
         return res, res.reason, _SINGULAR_CUT if res.reason == "singular" else 0.5
     fresh = _at_point(system, res, row)
     if fresh is None:  # (the trial point is exactly singular: a branch point)
@@ -307,33 +315,50 @@ def _try(
 
 def _at_point(system: CurveSystem, res: NewtonResult, row: np.ndarray) -> NewtonResult | None:
     """The corrector's result with the factorization of ``[∂G/∂z; row]`` at its point
-    itself (:func:`~.corrector.factor_at`), None where that matrix is singular."""
+    itself (:func:`~.corrector.factor_at`), None where that matrix is singular. (The result
+    is the corrector's, not yet seen by anything else: its factorization is replaced in
+    place rather than in a copy.)"""
     lu = factor_at(system, res.z, row)
     if lu is None:
         return None
-    return NewtonResult(
-        res.z, True, res.iterations, res.residual_norm, lu, "", res.contraction, res.first_update
-    )
+    res.lu = lu
+    return res
 
 
 def _failure(
     system: CurveSystem,
     z: np.ndarray,
+    t: np.ndarray,
     ds: float,
     res: NewtonResult,
     reason: str,
     o: Any,
+    work: StepWork,
     crept: int = 0,
 ) -> Failure:
-    """The failure of the step from ``z`` at ``ds`` (after ``crept`` steps creeping near
-    ``ds_min``, if any), with the reason of the corrector or of a guard."""
+    """The failure of the step from ``z`` (unit tangent ``t``) at ``ds`` (after ``crept``
+    steps creeping near ``ds_min``, if any), with the reason of the corrector or of a guard.
+    Where the residual is not finite at some of the step's trial points, or a little ahead
+    along the tangent (:func:`_nonfinite_ahead`), the branch has reached the edge of the
+    residual's domain: the failure says so (status ``"nonfinite_residual"``), whatever the
+    last try's reason (near that edge the derivatives of ``√`` or ``log`` grow without
+    bound, and Newton fails by contraction first)."""
     values = system.values(z)
     if crept:
         reason += f"; the branch crept {crept} steps shorter than {STALL_FACTOR:g}*ds_min"
-    if reason == "nonfinite":
+    ahead = None if reason == "nonfinite" or work.nonfinite else _nonfinite_ahead(system, z, t)
+    if reason == "nonfinite" or work.nonfinite or ahead is not None:
+        where = (
+            f"at {max(work.nonfinite, 1)} of the {work.solves} trial points within "
+            f"ds={max(work.ds_hi, ds):.3g} of {format_values(values)}"
+            if ahead is None
+            else f"{ahead:.3g} ahead along the branch from {format_values(values)}"
+        )
         msg = (
-            f"the residual is not finite within ds_min={o.ds_min:g} of "
-            f"{format_values(values)}; the branch stops there"
+            f"the residual or its Jacobian is not finite (NaN or infinite) {where}, and no "
+            f"step down to ds_min={o.ds_min:g} passes ({reason}): the branch reaches the edge "
+            "of the domain where the residual is defined (a square root or logarithm of a "
+            "negative number, a division by zero, an overflow) and stops there"
         )
         return Failure("nonfinite_residual", msg, NonFiniteResidualError(msg, values=values))
     guard, _, detail = reason.partition(": ")
@@ -357,6 +382,20 @@ def _failure(
         remedy=_REMEDY,
     )
     return Failure("convergence_failure", str(exc), exc)
+
+
+def _nonfinite_ahead(system: CurveSystem, z: np.ndarray, t: np.ndarray) -> float | None:
+    """The shortest of the distances 1e-8, 1e-7, …, 0.1 (weighted, along the unit tangent
+    ``t`` from ``z``) at which the residual is not finite, or None."""
+    for k in range(8, 0, -1):
+        s = 10.0**-k
+        try:
+            g = system.residual(z + s * t)
+        except SingularMatrixError:
+            continue
+        if not math.isfinite(max_abs(g)):
+            return s
+    return None
 
 
 def corner_step(
@@ -406,7 +445,7 @@ def _natural_step(
     work: StepWork,
 ) -> Trial | None:
     """A step of ``h`` (weighted) in component ``j`` alone, the way it was moving."""
-    work.charge("corner", h)
+    work.charge(CORNER, h)
     o = rules.options
     W = system.weights
     sign = 1.0 if t[j] > 0 else -1.0
@@ -476,7 +515,7 @@ def aim_at_bound(
             continue
         if math.sqrt(W[k]) * abs(tk) < math.sin(math.radians(o.max_angle)):
             return None  # grazing: a normal step, then locating
-        work.charge("aimed", ds)
+        work.charge(AIMED, ds)
         return _aimed(rules, state.system, z, t, ds, tt, sigma, tk)
     return None
 

@@ -22,7 +22,7 @@ import scipy.sparse as sp
 
 from .errors import ProblemDefinitionError
 from .linalg import bordered, rounding_floor
-from .problem import as_matrix, as_vector, has_exact_jacobian
+from .problem import Problem, as_matrix, as_vector, has_exact_jacobian
 from .scaling import out_of_range
 from .testfunctions import TestFunction, generic_tests
 
@@ -57,6 +57,9 @@ class CurveSystem:
     exact_jacobian: bool = False
     """True if ``jacobian`` is exact to rounding (not differenced): its own differences are
     then accurate enough for forward differencing."""
+    supplied_derivatives: bool = False
+    """True if the derivatives are the user's own functions, which the tracer checks against
+    the residual (:mod:`~.consistency`)."""
     derivatives_exact: bool = False
     """True if the problem's own derivatives are exact (given, or by complex step): the
     default step tolerance is then tighter (:meth:`ContinuationOptions.for_derivatives`)."""
@@ -210,6 +213,7 @@ class BranchSystem(CurveSystem):
         self.weights = self.base_weights.copy()
         self.unit_weights = all(w == 1.0 for w in self.weights.tolist())
         self.exact_jacobian = self.derivatives_exact = has_exact_jacobian(problem)
+        self.supplied_derivatives = _supplies_derivatives(problem)
         self._bind_callbacks()
         self._shapes = ((self.n, self.n), (self.n,))
         self.fold_components = (free,)
@@ -248,28 +252,35 @@ class BranchSystem(CurveSystem):
     # residual and bordered_jacobian (and their scalar_ forms) are the corrector's inner
     # loop: the user's functions are called by _residual_at and _derivatives_at, and the
     # dense case is checked first (for the tiny systems of most problems the wrappers cost
-    # more than the user's functions). An ArithmeticError raised by the
-    # user's functions (ZeroDivisionError, OverflowError: math on floats at a trial point
-    # outside where they are defined) reads as a non-finite value, which the corrector
-    # rejects like any other (the step is shortened; at the start it is a typed error)
+    # more than the user's functions). An ArithmeticError raised by the user's functions
+    # (ZeroDivisionError, OverflowError) or the "math domain error" of math.sqrt or math.log
+    # at a trial point outside where they are defined reads as a non-finite value, which the
+    # corrector rejects like any other (_reraise_unless_domain)
 
     def _residual_at(self, z):
         """The user's residual at ``z`` (its parameters with the free one at ``z[-1]``)."""
         p = dict(self.params)
         p[self.free] = z[-1]
-        return self._residual(z[:-1], p)
+        try:
+            return self._residual(z[:-1], p)
+        except KeyError as exc:
+            raise _undeclared(exc, p, "residual") from None
 
     def _derivatives_at(self, z):
         """The user's ``(jacobian, param_jacobian)`` at ``z``, as they return them."""
         u = z[:-1]
         p = dict(self.params)
         p[self.free] = z[-1]
-        return self._jacobian(u, p), self._param_jacobian(u, p, self.free)
+        try:
+            return self._jacobian(u, p), self._param_jacobian(u, p, self.free)
+        except KeyError as exc:
+            raise _undeclared(exc, p, "jacobian or param_jacobian") from None
 
     def residual(self, z):
         try:
             r = self._residual_at(z)
-        except ArithmeticError:  # a division by zero or overflow at a trial point: as NaN
+        except _OUT_OF_DOMAIN as exc:  # division by zero, overflow, math domain: as NaN
+            _reraise_unless_domain(exc)
             return np.full(self.n, np.nan)
         if type(r) is _NDARRAY and r.dtype is _FLOAT and r.shape == self._shapes[1]:
             return r  # (the common case, one test)
@@ -285,7 +296,8 @@ class BranchSystem(CurveSystem):
         """``[∂R/∂u, ∂R/∂p_free]``, with ``row`` appended as a last row unless it is None."""
         try:
             j, fp = self._derivatives_at(z)
-        except ArithmeticError:  # as for the residual: a matrix the corrector finds non-finite
+        except _OUT_OF_DOMAIN as exc:  # as for the residual: a matrix the corrector finds NaN
+            _reraise_unless_domain(exc)
             j, fp = np.full(self._shapes[0], np.nan), np.full(self.n, np.nan)
         if type(fp) is not _NDARRAY or fp.dtype is not _FLOAT:
             fp = as_vector(fp, f"the param_jacobian (for {self.free!r})", lambda: self.values(z))
@@ -316,7 +328,8 @@ class BranchSystem(CurveSystem):
         dtype) turns :attr:`scalar` off: the array path converts it, every time."""
         try:
             r = self._residual_at(z)
-        except ArithmeticError:
+        except _OUT_OF_DOMAIN as exc:
+            _reraise_unless_domain(exc)
             return None
         if type(r) is _NDARRAY and r.dtype is _FLOAT and r.shape == (1,):
             v = r.item()
@@ -329,7 +342,8 @@ class BranchSystem(CurveSystem):
         for :meth:`scalar_residual`."""
         try:
             j, fp = self._derivatives_at(z)
-        except ArithmeticError:
+        except _OUT_OF_DOMAIN as exc:
+            _reraise_unless_domain(exc)
             return None
         if (
             type(j) is _NDARRAY and j.dtype is _FLOAT and j.shape == (1, 1)
@@ -351,6 +365,43 @@ class BranchSystem(CurveSystem):
         out.update(self.params)
         out[self.free] = float(z[-1])
         return out
+
+
+_OUT_OF_DOMAIN = (ArithmeticError, ValueError)
+
+
+def _reraise_unless_domain(exc: Exception) -> None:
+    """Re-raise ``exc`` unless it says the user's function was called outside its domain: an
+    ArithmeticError (division by zero, overflow) or the ValueError of Python's ``math``
+    functions (``math.sqrt`` or ``math.log`` of a negative number). Those read as a
+    non-finite value, which the corrector rejects like NaN (the step is shortened; at the
+    edge of the domain the branch stops and says why); any other error is the user's."""
+    if isinstance(exc, ValueError) and (
+        isinstance(exc, ProblemDefinitionError) or str(exc) != "math domain error"
+    ):
+        raise exc
+
+
+def _supplies_derivatives(problem: Any) -> bool:
+    """Whether the problem's Jacobian or parameter derivatives are the user's own functions
+    (a :class:`Problem` given ``jacobian`` or ``param_jacobian``, or any other object
+    following the protocol), not differences or the complex step."""
+    if isinstance(problem, Problem):
+        return problem.has_jacobian or problem.has_param_jacobian
+    return True
+
+
+def _undeclared(exc: KeyError, p: Mapping[str, float], what: str) -> Exception:
+    """A KeyError raised by the user's ``what`` for a parameter name the problem does not
+    declare, as a :class:`~.errors.ProblemDefinitionError` naming it (any other KeyError
+    unchanged)."""
+    key = exc.args[0] if exc.args else None
+    if isinstance(key, str) and key not in p:
+        return ProblemDefinitionError(
+            f"the {what} reads the parameter {key!r}, which the problem does not declare; "
+            f"its parameters are {sorted(p)}: give {key!r} a value in params"
+        )
+    return exc
 
 
 def _sparse_border(j, col: np.ndarray, row: np.ndarray | None):

@@ -38,12 +38,12 @@ from .locate import (
     Located,
     hermite_turning_pair,
     locate_component,
-    locate_on_arc,
     parabola_minimum,
     tangent_at,
 )
 from .problem import has_exact_jacobian
 from .realvalues import real_scalar
+from .regula import locate_on_arc
 
 if TYPE_CHECKING:
     from .options import ContinuationOptions
@@ -470,7 +470,17 @@ class EventTest(TestFunction):
 
     def value(self, system, z, t, sdet) -> float:
         u, p = system.split(z)
-        val = real_scalar(self.event.function(u, p), f"event {self.label!r}", p)
+        try:
+            out = self.event.function(u, p)
+        except KeyError as exc:
+            key = exc.args[0] if exc.args else None
+            if isinstance(key, str) and key not in p:
+                raise ProblemDefinitionError(
+                    f"event {self.label!r} reads {key!r}, which is neither an unknown nor a "
+                    f"parameter of the problem; it has {sorted(p)}"
+                ) from None
+            raise
+        val = real_scalar(out, f"event {self.label!r}", p)
         if not math.isfinite(val):
             raise NonFiniteResidualError(
                 f"event {self.label!r} returned {val} at {system.values(z)}",

@@ -32,13 +32,14 @@ from __future__ import annotations
 import logging
 import math
 import warnings
-from collections.abc import Callable, Mapping, Sequence
+from collections.abc import Mapping, Sequence
 from typing import Any
 
 import numpy as np
 
-from .branch import Branch, SpecialPoint, join_halves
+from .branch import Branch, SpecialPoint
 from .confirm import confirm_step, located_on_arc
+from .consistency import check_consistent
 from .crossings import corner_folds, evaluate, locate_crossings, splits, step_bracket
 from .errors import (
     MaxStepsWarning,
@@ -59,7 +60,7 @@ from .scaling import (
     settled_by_motion,
     typical_sizes,
 )
-from .start import correct_start
+from .start import correct_start, refuse_singular
 from .state import Point, TracerState, assemble_branch
 from .stepcontrol import next_step_size
 from .stepping import STALL_FACTOR, Failure, StepRules, Trial, advance, wnorm
@@ -188,7 +189,7 @@ class Tracer:
             )
         if not math.isfinite(max_abs(u)):
             raise ProblemDefinitionError(f"u0 must be finite, got {u}")
-        return self._start(system, system.start_vector(u), tangent, "start", False)
+        return self._start(system, system.start_vector(u), tangent, "start", False, from_guess=True)
 
     def _init_at_special(self, sp: SpecialPoint, tangent: Any) -> TracerState:
         system = self.system.with_values(sp.values)
@@ -237,6 +238,7 @@ class Tracer:
         start_label: str,
         skip_bp: bool,
         inherited: Mapping[int, float] | None = None,
+        from_guess: bool = False,
     ) -> TracerState:
         o = self.options
         g0 = system.residual(z0)
@@ -250,13 +252,22 @@ class Tracer:
         # (a component at rounding level, −1e-32 for an exact 0, must not set the size the
         # start is corrected with: it is recognised by the Jacobian here too)
         provisional, settled = typical_sizes(
-            z0, given, bounds, jacobian=lambda: system.jacobian(z0), inherited=inherited
+            z0,
+            given,
+            bounds,
+            jacobian=lambda: system.jacobian(z0),
+            inherited=inherited,
+            guess=from_guess,
         )
         system = system.with_scales(provisional)
         details: dict[str, Any] = {}
+        oriented_by = None
         if tangent is None:
+            guess = z0
             start = correct_start(system, z0, g0, o, self._rules.e_last, self.direction)
             z0, t0, sdet, residual, iters, oriented_by = start
+            # (zeros set exactly by start.snap_zeros take their size as zeros do)
+            settled = settled and not np.any((z0 == 0.0) & (guess != 0.0))
             if oriented_by is not None:  # on a fold of the free parameter (module start)
                 skip_bp = True
                 details = {"fold_of": system.names[-1], "oriented_by": oriented_by}
@@ -269,6 +280,18 @@ class Tracer:
             system, t0, retangent = settled_by_motion(system, z0, t0, given, bounds, inherited)
             if retangent:  # (with the differences' steps of the new sizes)
                 sdet = None
+            sizes = system.scales
+            if tangent is None and oriented_by is None and np.any(sizes < 1e-3 * provisional):
+                # corrected in sizes far above the ones it has: again in its own, to the
+                # accuracy its sizes demand (a guess of 1e-9 for a genuine 1e-9, sized 1)
+                again = correct_start(
+                    system, z0, system.residual(z0), o, self._rules.e_last, self.direction
+                )
+                z0, t0, sdet, residual, more, oriented_by = again
+                iters += more
+        check_consistent(system, z0, "the starting point")
+        if tangent is None and oriented_by is None:
+            refuse_singular(system, z0)  # (a branch point a differenced Jacobian hides)
         t0 = t0 / wnorm(t0, system.weights)  # (a positive factor: sdet keeps its sign)
         system = system.refreshed(z0)
         if skip_bp:
@@ -387,7 +410,16 @@ class Tracer:
         located = (
             locate_crossings(self.options, state, system, trial, crossings, br) if crossings else ()
         )
-        return special, located
+        kept = []
+        for tt, loc, where in located:
+            if loc.status == "pole":  # a sign change through infinity: no special point
+                logger.info("%r changed sign through a pole, not a zero: not reported", tt)
+                continue
+            if tt.kind in ("fold", "branch_point") and loc.status == "converged":
+                # (what the user's derivatives locate, they decide: they are checked there)
+                check_consistent(system, loc.z, f"the located {tt.label}")
+            kept.append((tt, loc, where))
+        return special, kept
 
     def _finish(
         self,
@@ -565,25 +597,4 @@ def run(tracer: Tracer, state: TracerState) -> TracerState:
     return state
 
 
-def trace_directions(
-    begin: Callable[[int], tuple[Tracer, TracerState]],
-    direction: str | int,
-    *,
-    start_kind: str | None = None,
-    start_label: str = "",
-) -> Branch:
-    """Trace a curve from one start in ``direction`` (+1 or −1) or ``"both"``: ``begin(d)``
-    gives the tracer and its initial state for direction ``d``. Both halves are joined at the
-    start (:func:`~.branch.join_halves`, which records it as ``start_kind``); one half gets
-    ``info`` ``direction`` and ``start_index`` 0."""
-    halves = []
-    for d in (1, -1) if direction == "both" else (int(direction),):
-        tracer, state = begin(d)
-        halves.append(tracer.result(run(tracer, state)))
-    if len(halves) == 1:
-        halves[0].info.update(direction=direction, start_index=0)
-        return halves[0]
-    return join_halves(halves[1], halves[0], start_kind=start_kind, start_label=start_label)
-
-
-__all__ = ["Tracer", "TracerState", "run", "trace", "trace_directions"]
+__all__ = ["Tracer", "TracerState", "run", "trace"]

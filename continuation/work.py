@@ -17,13 +17,15 @@ from collections.abc import Mapping
 
 from .errors import StalledError, format_values
 
-#: what a solve was for, in the message of a stalled step
-KINDS = {
-    "try": "pseudo-arclength tries",
-    "half": "half steps confirming a sign change",
-    "corner": "natural-parameter (corner) tries",
-    "aimed": "steps aimed at a bound",
-}
+#: what a solve was for (an index into :attr:`StepWork.counts`), and its words in the
+#: message of a stalled step
+TRY, HALF, CORNER, AIMED = 0, 1, 2, 3
+KINDS = (
+    "pseudo-arclength tries",
+    "half steps confirming a sign change",
+    "natural-parameter (corner) tries",
+    "steps aimed at a bound",
+)
 
 
 class OutOfWork(Exception):
@@ -37,22 +39,24 @@ class OutOfWork(Exception):
 
 
 class StepWork:
-    """The corrector solves of one step, by kind, against ``limit``; ``ds_range`` the smallest
-    and largest step size tried."""
+    """The corrector solves of one step, by kind (:data:`TRY`, …), against ``limit``;
+    ``ds_lo`` and ``ds_hi`` the smallest and largest step size tried; ``nonfinite`` how many
+    solves met a residual or Jacobian that was not finite (the step's failure then says
+    so). Made once per step, charged once per solve: kept to a few attribute updates."""
 
-    __slots__ = ("limit", "solves", "counts", "ds_lo", "ds_hi")
+    __slots__ = ("limit", "solves", "counts", "ds_lo", "ds_hi", "nonfinite")
 
     def __init__(self, limit: int) -> None:
         self.limit = limit
-        self.solves = 0
-        self.counts: dict[str, int] = {}
+        self.solves = self.nonfinite = 0
+        self.counts = [0, 0, 0, 0]
         self.ds_lo, self.ds_hi = math.inf, 0.0
 
-    def charge(self, kind: str, ds: float) -> None:
+    def charge(self, kind: int, ds: float) -> None:
         """Count one corrector solve of ``kind`` at step size ``ds``; :class:`OutOfWork` past
         the limit (or for a step size that is not a positive number)."""
         self.solves += 1
-        self.counts[kind] = self.counts.get(kind, 0) + 1
+        self.counts[kind] += 1
         if ds < self.ds_lo:
             self.ds_lo = ds
         if ds > self.ds_hi:
@@ -62,7 +66,7 @@ class StepWork:
 
     def describe(self) -> str:
         """What was tried, in words."""
-        parts = [f"{n} {KINDS.get(k, k)}" for k, n in self.counts.items()]
+        parts = [f"{n} {KINDS[k]}" for k, n in enumerate(self.counts) if n]
         sizes = (
             f"step sizes from {self.ds_hi:.3g} down to {self.ds_lo:.3g}"
             if self.ds_hi > 0.0
@@ -86,4 +90,4 @@ def stalled(out: OutOfWork, values: Mapping[str, float], ds: float) -> tuple[str
     return message, StalledError(message, values=values, ds=ds, tried=work.describe())
 
 
-__all__ = ["OutOfWork", "StepWork", "stalled"]
+__all__ = ["AIMED", "CORNER", "HALF", "TRY", "OutOfWork", "StepWork", "stalled"]

@@ -30,6 +30,12 @@ fallbacks). The modules, by family:
   imperfect);
 - :mod:`~cusp.examples.bifurcations`: a pitchfork crossed along its parabola, imperfect
   transcritical and pitchfork bifurcations, a narrow transcritical crossing;
+- :mod:`~cusp.examples.symmetric`: symmetric branch points (pitchforks) of u = 0 in
+  applications: Lorenz–Stenflo and Chen equilibria, a Hopfield network, the Chafee–Infante
+  equation by finite differences (dense or sparse, any N), with :data:`PITCHFORKS` (mode and
+  other branch of every branch point);
+- :mod:`~cusp.examples.symmetric_cells`: symmetry breaking of two identical coupled cells
+  off u = 0: two Brusselator cells (Turing), two exothermic stirred tanks exchanging heat;
 - :mod:`~cusp.examples.stress`: badly scaled variants (:func:`rescaled`) and parallel
   branches.
 
@@ -109,6 +115,34 @@ from .structures import (
     cohesive_exponential_fold,
     shallow_arch,
 )
+from .symmetric import (
+    CHEN,
+    HOPFIELD_PATTERNS,
+    HOPFIELD_STRENGTHS,
+    LORENZ_STENFLO,
+    Pitchfork,
+    chafee_infante,
+    chafee_infante_eigenvalue,
+    chafee_infante_names,
+    chafee_infante_pitchforks,
+    chen,
+    chen_pitchforks,
+    hopfield,
+    hopfield_names,
+    hopfield_pitchforks,
+    hopfield_weights,
+    lorenz_stenflo,
+    lorenz_stenflo_pitchforks,
+)
+from .symmetric_cells import (
+    BRUSSELATOR_CELLS,
+    CSTR_PAIR,
+    brusselator_cells,
+    brusselator_cells_pitchforks,
+    brusselator_cells_point,
+    cstr_pair,
+    cstr_pair_references,
+)
 from .trusses import (
     snapback_control,
     snapback_cusp,
@@ -163,17 +197,30 @@ CATALOGUE = {
     "scaled_ab": scaled_ab,
     "scaled_arch": scaled_arch,
     "parallel_s_curves": parallel_s_curves,
+    "lorenz_stenflo": lorenz_stenflo,
+    "chen": chen,
+    "hopfield": hopfield,
+    "chafee_infante": chafee_infante,
+    "chafee_infante_sparse": lambda **kw: chafee_infante(11, sparse=True, **kw),
+    "brusselator_cells": brusselator_cells,
+    "cstr_pair": cstr_pair,
+}
+
+#: The symmetric branch points (:class:`Pitchfork`: point, mode, other branch) of the
+#: examples of :mod:`~cusp.examples.symmetric` and :mod:`~cusp.examples.symmetric_cells` in
+#: the default set-up of their CATALOGUE entry, by CATALOGUE name (functions: the values are
+#: computed with mpmath on first call).
+PITCHFORKS = {
+    "lorenz_stenflo": lorenz_stenflo_pitchforks,
+    "chen": chen_pitchforks,
+    "hopfield": hopfield_pitchforks,
+    "chafee_infante": lambda: chafee_infante_pitchforks(5),
+    "chafee_infante_sparse": lambda: chafee_infante_pitchforks(11),
+    "brusselator_cells": brusselator_cells_pitchforks,
+    "cstr_pair": lambda: cstr_pair_references()[1],
 }
 
 __all__ = [
-    "BRATU_FOLD_N99999",
-    "BRUSSELATOR",
-    "CATALOGUE",
-    "CO_CUSP",
-    "CO_FOLDS_K04",
-    "CO_Q",
-    "DERIVATIVES",
-    "PP2_PARAMS",
     "ab_cusp",
     "ab_folds",
     "ab_reactor",
@@ -183,13 +230,30 @@ __all__ = [
     "bratu_continuum_fold",
     "bratu_fd_fold",
     "bratu_fd_fold_state",
+    "BRATU_FOLD_N99999",
     "bratu_names",
+    "BRUSSELATOR",
     "brusselator",
     "brusselator_branch_points",
+    "BRUSSELATOR_CELLS",
+    "brusselator_cells",
+    "brusselator_cells_pitchforks",
+    "brusselator_cells_point",
     "brusselator_names",
+    "CATALOGUE",
+    "chafee_infante",
+    "chafee_infante_eigenvalue",
+    "chafee_infante_names",
+    "chafee_infante_pitchforks",
+    "CHEN",
+    "chen",
+    "chen_pitchforks",
     "co_cusp",
+    "CO_CUSP",
     "co_folds",
+    "CO_FOLDS_K04",
     "co_oxidation",
+    "CO_Q",
     "co_quartic",
     "cohesive_bilinear",
     "cohesive_bilinear_kinks",
@@ -198,12 +262,16 @@ __all__ = [
     "cohesive_exponential_fold",
     "cstr",
     "cstr_folds",
+    "CSTR_PAIR",
+    "cstr_pair",
+    "cstr_pair_references",
     "cusp_fold_curve",
     "cusp_folds",
     "cusp_normal_form",
     "cusp_real_roots",
     "cusp_start",
     "dd2",
+    "DERIVATIVES",
     "elastica",
     "elastica_buckling_loads",
     "elastica_names",
@@ -212,14 +280,26 @@ __all__ = [
     "Example",
     "gray_scott",
     "gray_scott_references",
+    "hopfield",
+    "hopfield_names",
+    "HOPFIELD_PATTERNS",
+    "hopfield_pitchforks",
+    "HOPFIELD_STRENGTHS",
+    "hopfield_weights",
     "imperfect_pitchfork",
     "imperfect_transcritical",
     "logistic_map",
     "lorenz",
+    "lorenz_stenflo",
+    "LORENZ_STENFLO",
+    "lorenz_stenflo_pitchforks",
     "narrow_transcritical",
     "parallel_s_curves",
+    "Pitchfork",
     "pitchfork",
+    "PITCHFORKS",
     "pp2",
+    "PP2_PARAMS",
     "pp2_references",
     "Reference",
     "rescaled",

@@ -13,6 +13,12 @@ the branch ends normally; and, for the jump risks of :data:`ON_BRANCH`, every po
 the branch through the start. The tests (tests/suite) and the step-control measurements
 (scripts/tune_guards.py) both use it.
 
+:func:`perturbed` is the suite's perturbed-start mode: a copy of a problem whose start carries
+seeded relative noise, judged by :func:`check` exactly as the problem itself (the sizes of
+the unperturbed start) and by :func:`compare_ends` against the branch from the unperturbed
+start. :func:`watchdog` ends a trace that does not return in time (a hang fails instead of
+hanging); :func:`branch_point_problems` names the problems with a reference branch point.
+
 >>> from cusp.examples.suite import check, problem
 >>> ex = problem("cusp")
 >>> check(ex, ex.trace())
@@ -21,7 +27,11 @@ the branch through the start. The tests (tests/suite) and the step-control measu
 
 from __future__ import annotations
 
-from collections.abc import Callable
+import signal
+import threading
+from collections.abc import Callable, Iterator, Sequence
+from contextlib import contextmanager
+from dataclasses import dataclass, fields
 from typing import Any
 
 import numpy as np
@@ -136,8 +146,9 @@ def _turning(example: Example, kind: str, wrt: str | None) -> str | None:
 
 
 def _sizes(example: Example, refs: list[Reference]) -> dict[str, float]:
-    """Each variable's size: its largest magnitude at the start and at the references."""
-    start = {**dict(zip(example.unknowns, example.u0)), **example.params}
+    """Each variable's size: its largest magnitude at the start and at the references (the
+    unperturbed start of a :class:`Perturbed` example)."""
+    start = {**dict(zip(example.unknowns, nominal_start(example))), **example.params}
     return {k: max([abs(float(start[k]))] + [abs(r.values[k]) for r in refs]) for k in start}
 
 
@@ -195,7 +206,136 @@ def check(example: Example, br: Branch, name: str | None = None) -> list[str]:
     return wrong
 
 
+# ---------------------------------------------------------------------------------------------
+# Perturbed starts
+# ---------------------------------------------------------------------------------------------
+
+
+@dataclass(frozen=True, eq=False)
+class Perturbed(Example):
+    """A suite example whose start ``u0`` carries relative noise (:func:`perturbed`):
+    ``nominal_u0`` is the unperturbed start (its sizes are those :func:`check` judges by),
+    ``rel`` the noise level, ``seed`` the seed of the draw (None for noise given directly)."""
+
+    nominal_u0: np.ndarray | None = None
+    rel: float = 0.0
+    seed: int | None = None
+
+
+def nominal_start(example: Example) -> np.ndarray:
+    """The example's start without noise: ``u0``, or a :class:`Perturbed` one's nominal."""
+    if isinstance(example, Perturbed) and example.nominal_u0 is not None:
+        return example.nominal_u0
+    return example.u0
+
+
+def perturbed(
+    example: Example, rel: float, seed: int | None = 0, *, noise: Sequence[float] | None = None
+) -> Perturbed:
+    """A copy of ``example`` started from its start with seeded relative noise.
+
+    Component i of the start becomes ``u0_i + rel·m_i·n_i``: ``n_i`` drawn from N(0, 1) by
+    ``numpy.random.default_rng(seed)`` (one draw per unknown, in order), or given as
+    ``noise``; ``m_i = max(|u0_i|, size_i)``, ``size_i`` the component's size by which
+    :func:`check` judges (its largest magnitude at the start and at the references, as in
+    :func:`compare`), and 1 where that is 0 — so a component that is exactly 0 gets noise too,
+    of size ``rel·m_i`` (elsewhere a draw can round away: at ``rel`` = 1e-14 the noise
+    is 45–90 ulps of ``m_i``, and a draw below 0.01 in magnitude less than half of one).
+    Everything else (problem, free parameter, bounds, monitored unknowns, references) is the
+    example's; a perturbed example is perturbed from its nominal start again. :func:`check`
+    judges its branch with the unperturbed start's sizes.
+
+    >>> from cusp.examples.suite import perturbed, problem
+    >>> p = perturbed(problem("lrz"), 1e-10, seed=1)
+    >>> bool(p.u0.any()), p.nominal_u0.tolist()
+    (True, [0.0, 0.0, 0.0])
+    """
+    u0 = nominal_start(example)
+    sizes = _sizes(example, expected_points(example))
+    m = np.maximum(np.abs(u0), [sizes[k] or 1.0 for k in example.unknowns])
+    if noise is None:
+        n = np.random.default_rng(seed).standard_normal(u0.size)
+    else:
+        n, seed = np.asarray(noise, dtype=float), None
+        if n.shape != u0.shape:
+            raise ValueError(f"noise must have {u0.size} values, one per unknown, got {n.shape}")
+    base = {f.name: getattr(example, f.name) for f in fields(Example)}
+    base["u0"] = u0 + rel * m * n
+    return Perturbed(**base, nominal_u0=u0.copy(), rel=float(rel), seed=seed)
+
+
+def compare_ends(example: Example, reference: Branch, br: Branch) -> list[str]:
+    """Everything in which ``br`` (traced from a perturbed start of ``example``) ends
+    otherwise than ``reference`` (from its unperturbed start), in sentences: a different
+    status, or a variable of the last point off by more than :data:`STATE_RTOL` relative to
+    its size. The size is :func:`compare`'s (the largest magnitude at the start and the
+    references; where that is 0, the state's: the largest of any unknown there, or 1), and
+    at least the magnitude at the reference's end."""
+    if br.status != reference.status:
+        return [f"ends with status {br.status!r}, unperturbed {reference.status!r}: {br.message}"]
+    sizes = _sizes(example, expected_points(example))
+    state = max([sizes[k] for k in example.unknowns]) or 1.0
+    wrong = []
+    for k in reference.variables:
+        end, ref = float(br[k][-1]), float(reference[k][-1])
+        size = max(sizes[k] or state, abs(ref))
+        if not abs(end - ref) <= STATE_RTOL * size:
+            wrong.append(f"ends at {k} = {end!r}, unperturbed {ref!r}")
+    return wrong
+
+
+def branch_point_problems() -> list[str]:
+    """The suite problems with a reference branch point on their branch (computed from the
+    references)."""
+    return [
+        name
+        for name, _, _ in SUITE
+        if any(r.kind == "branch_point" for r in expected_points(problem(name)))
+    ]
+
+
+# ---------------------------------------------------------------------------------------------
+# Watchdog
+# ---------------------------------------------------------------------------------------------
+
+
+class Hang(BaseException):
+    """A computation did not return within its :func:`watchdog`'s time. A BaseException,
+    like KeyboardInterrupt: no ``except Exception`` of the engine or of a user's callback
+    can take it for a failure of its own and go on."""
+
+
+def watchdog_available() -> bool:
+    """Whether :func:`watchdog` can run here: SIGALRM exists (POSIX) and this is the main
+    thread (where Python runs signal handlers)."""
+    return hasattr(signal, "setitimer") and threading.current_thread() is threading.main_thread()
+
+
+@contextmanager
+def watchdog(seconds: float, what: str = "the computation") -> Iterator[None]:
+    """Raise :class:`Hang` in the body if it runs longer than ``seconds`` (wall time).
+
+    A one-shot ``ITIMER_REAL`` timer whose SIGALRM handler raises: the engine is pure Python,
+    so the handler runs between bytecodes (after the LAPACK call in progress, if any). The
+    previous handler is restored and the timer cancelled on the way out; not nestable, and
+    only where :func:`watchdog_available` (else RuntimeError)."""
+    if not watchdog_available():
+        raise RuntimeError("the watchdog needs SIGALRM and the main thread")
+
+    def expire(signum: int, frame: Any) -> None:
+        raise Hang(f"{what} did not return within {seconds:g} s")
+
+    previous = signal.signal(signal.SIGALRM, expire)
+    try:
+        signal.setitimer(signal.ITIMER_REAL, seconds)
+        yield
+    finally:
+        signal.setitimer(signal.ITIMER_REAL, 0.0)
+        signal.signal(signal.SIGALRM, previous)
+
+
 __all__ = [
-    "KINDS", "ON_BRANCH", "PARAM_RTOL", "STATE_RTOL", "SUITE", "check", "compare", "problem",
-    "expected_points",
+    "KINDS", "ON_BRANCH", "PARAM_RTOL", "STATE_RTOL", "SUITE", "Hang", "Perturbed",
+    "branch_point_problems", "check", "compare", "compare_ends", "expected_points",
+    "nominal_start", "perturbed", "problem", "watchdog", "watchdog_available",
 ]  # fmt: skip

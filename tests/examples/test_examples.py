@@ -61,6 +61,13 @@ POINTS = {
     "scaled_ab": [3e5, 1.5e-6],
     "scaled_arch": [1.3, 0.4],
     "parallel_s_curves": [0.3],
+    "lorenz_stenflo": [0.5, 0.7, 0.3, -0.2],
+    "chen": [0.5, 0.7, 0.3],
+    "hopfield": [0.3, -0.2, 0.5, 0.1],
+    "chafee_infante": [0.1, 0.3, -0.4, 0.2, 0.05],
+    "chafee_infante_sparse": [0.1, 0.3, -0.4, 0.2, 0.05, 0.1, 0.3, 0.4, -0.2, 0.05, 0.15],
+    "brusselator_cells": [2.1, 0.6, 1.8, 0.7],
+    "cstr_pair": [0.3, 1.5, 0.35, 1.6],
 }
 
 
