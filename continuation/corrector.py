@@ -227,8 +227,11 @@ def _newton_arrays(
         if rn_new != rn_new or sn != sn:
             rn, reason = rn_new, "nonfinite"
             break
+        # (the floor is the terms' rounding at z itself, |∂G/∂z|·|z|: reckoned with a typical
+        # size far above |z| it let y + 1e-8/y = b pass at y = 5e-9 with a residual of 2e-6)
         verdict = _verdict(
-            k, sn, rn_new, rn, sn_prev, lambda a=a, z=z: system.residual_floor(a[:-1], z),
+            k, sn, rn_new, rn, sn_prev,
+            lambda a=a, z=z: system.residual_floor(a[:-1], z, np.abs(z)),
             tol, sq_step_tol, rel_step_tol, strict, contract,
         )  # fmt: skip
         if verdict:
@@ -256,7 +259,7 @@ def scalar_newton(
         return None
     x, lam = z0.tolist()
     r0, r1 = row.tolist()
-    (s0, _), (w0, w1) = system.scales.tolist(), system.weights.tolist()
+    w0, w1 = system.weights.tolist()
     i0, i1 = inverse_magnitudes(system.scales, z0)
     sq_step_tol = math.sqrt(step_tol)
     rel_step_tol = _floor_step_tol(system, step_tol)
@@ -295,7 +298,7 @@ def scalar_newton(
         verdict = _verdict(
             k, sn, rn_new, rn, sn_prev,
             # (CurveSystem.residual_floor of the Jacobian row at the new point)
-            lambda a11=a11, x=x: 100 * _EPS * abs(a11) * max(s0, abs(x)),
+            lambda a11=a11, x=x: 100 * _EPS * abs(a11) * abs(x),
             tol, sq_step_tol, rel_step_tol, strict, contract,
         )  # fmt: skip
         if verdict:

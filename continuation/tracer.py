@@ -37,6 +37,7 @@ from typing import Any
 
 import numpy as np
 
+from .begin import start_state
 from .branch import Branch, SpecialPoint
 from .confirm import confirm_step, located_on_arc
 from .consistency import check_consistent
@@ -48,7 +49,7 @@ from .errors import (
     format_values,
 )
 from .events import Event
-from .linalg import bordered, factor, max_abs
+from .linalg import max_abs
 from .locate import Bracket, Located, tangent_at
 from .options import ContinuationOptions
 from .problem import as_problem
@@ -57,15 +58,12 @@ from .scaling import (
     given_scales,
     grown_sizes,
     out_of_range,
-    settled_by_motion,
-    typical_sizes,
 )
-from .start import correct_start, refuse_singular
 from .state import Point, TracerState, assemble_branch
 from .stepcontrol import next_step_size
 from .stepping import STALL_FACTOR, Failure, StepRules, Trial, advance, wnorm
 from .system import BranchSystem, CurveSystem
-from .testfunctions import BoundTest, Record, TestFunction
+from .testfunctions import BoundTest, ComponentTest, Record, TestFunction
 from .work import OutOfWork, StepWork, stalled
 
 logger = logging.getLogger(__name__)
@@ -240,85 +238,7 @@ class Tracer:
         inherited: Mapping[int, float] | None = None,
         from_guess: bool = False,
     ) -> TracerState:
-        o = self.options
-        g0 = system.residual(z0)
-        if not math.isfinite(max_abs(g0)):
-            raise NonFiniteResidualError(
-                f"the residual is not finite at the starting point {system.values(z0)}",
-                values=system.values(z0),
-            )
-        bounds = [t for t in self.tests if isinstance(t, BoundTest)]
-        given = self._scales
-        # (a component at rounding level, −1e-32 for an exact 0, must not set the size the
-        # start is corrected with: it is recognised by the Jacobian here too)
-        provisional, settled = typical_sizes(
-            z0,
-            given,
-            bounds,
-            jacobian=lambda: system.jacobian(z0),
-            inherited=inherited,
-            guess=from_guess,
-        )
-        system = system.with_scales(provisional)
-        details: dict[str, Any] = {}
-        oriented_by = None
-        if tangent is None:
-            guess = z0
-            start = correct_start(system, z0, g0, o, self._rules.e_last, self.direction)
-            z0, t0, sdet, residual, iters, oriented_by = start
-            # (zeros set exactly by start.snap_zeros take their size as zeros do)
-            settled = settled and not np.any((z0 == 0.0) & (guess != 0.0))
-            if oriented_by is not None:  # on a fold of the free parameter (module start)
-                skip_bp = True
-                details = {"fold_of": system.names[-1], "oriented_by": oriented_by}
-        else:
-            t0 = np.asarray(tangent, dtype=float)
-            residual = float(np.max(np.abs(g0)))
-            iters = 0
-            sdet = None
-        if not settled:  # components of size 0 take their size from the tangent
-            system, t0, retangent = settled_by_motion(system, z0, t0, given, bounds, inherited)
-            if retangent:  # (with the differences' steps of the new sizes)
-                sdet = None
-            sizes = system.scales
-            if tangent is None and oriented_by is None and np.any(sizes < 1e-3 * provisional):
-                # corrected in sizes far above the ones it has: again in its own, to the
-                # accuracy its sizes demand (a guess of 1e-9 for a genuine 1e-9, sized 1)
-                again = correct_start(
-                    system, z0, system.residual(z0), o, self._rules.e_last, self.direction
-                )
-                z0, t0, sdet, residual, more, oriented_by = again
-                iters += more
-        check_consistent(system, z0, "the starting point")
-        if tangent is None and oriented_by is None:
-            refuse_singular(system, z0)  # (a branch point a differenced Jacobian hides)
-        t0 = t0 / wnorm(t0, system.weights)  # (a positive factor: sdet keeps its sign)
-        system = system.refreshed(z0)
-        if skip_bp:
-            sdet = None
-        elif sdet is None:
-            sdet = factor(bordered(system.jacobian(z0), system.weights * t0)).sign_det()
-        # starting on a special point, the test functions vanish there up to rounding: their
-        # signs are taken after the first step instead
-        tests = tuple(
-            None
-            if (skip_bp and t.kind in ("branch_point", "fold"))
-            else t.value(system, z0, t0, sdet)
-            for t in self.tests
-        )
-        record: Record = ("endpoint", start_label, None, "converged", None, details)
-        first = Point(z0, t0, 0.0, iters, 0, residual, o.ds, (record,), None, 0.0)
-        self._check_start_in_bounds(z0)
-        return TracerState(first, system, o.ds, tests, 0)
-
-    def _check_start_in_bounds(self, z0: np.ndarray) -> None:
-        for t in self.tests:
-            if isinstance(t, BoundTest) and t.violated_by(z0):
-                lo, hi = t.pair
-                raise ProblemDefinitionError(
-                    f"the starting point has {t.wrt}={z0[t.k]:.10g}, outside "
-                    f"bounds[{t.wrt!r}] = ({lo:g}, {hi:g})"
-                )
+        return start_state(self, system, z0, tangent, start_label, skip_bp, inherited, from_guess)
 
     # ------------------------------------------------------------------ step
 
@@ -354,8 +274,18 @@ class Tracer:
             trial, system, values, crossings, br, deferred = self._evaluate(state, trial, work)
             # 4. locate the crossings inside the step (a corner's folds are only bracketed)
             special, located = self._locate(state, system, trial, values, crossings, br)
-            if not deferred or located_on_arc(
-                self._rules, state, trial, br, [loc for tt, loc, _ in located if tt.confirm]
+            # a component's value that Newton with it fixed cannot reach inside the step (a
+            # bound located only by regula falsi) says the step jumped (across a pole, say):
+            # the half step decides, unless it was confirmed already
+            doubtful = br is None and any(
+                isinstance(tt, ComponentTest) and loc.status != "converged"
+                for tt, loc, _ in located
+            )
+            if not doubtful and (
+                not deferred
+                or located_on_arc(
+                    self._rules, state, trial, br, [loc for tt, loc, _ in located if tt.confirm]
+                )
             ):
                 break
             # a fold not located on the step's arc: the half step decides

@@ -54,6 +54,8 @@ from .patterns import brusselator, gray_scott, lorenz
 from .reactors import cstr, enz
 from .stress import parallel_s_curves, scaled_ab, scaled_arch, scaled_cusp, scaled_truss
 from .structures import shallow_arch
+from .symmetric import chafee_infante, chen, hopfield, lorenz_stenflo
+from .symmetric_cells import brusselator_cells, cstr_pair
 from .trusses import snapback_monitor, truss_2dof, truss_green, truss_rotated
 
 KINDS = ("fold", "branch_point")
@@ -109,6 +111,14 @@ SUITE: list[tuple[str, Callable[..., Example], dict[str, Any]]] = [
     ("truss_v_x1e-6", scaled_truss, {"scale": 1e-6}),
     ("ab_u1_x1e6_u2_x1e-6", scaled_ab, {}),
     ("arch_p_x1e8", scaled_arch, {"scale": 1e8}),
+    # symmetric branch points of applications (docs/test-problems.md §13)
+    ("lorenz_stenflo", lorenz_stenflo, {}),
+    ("chen", chen, {}),
+    ("hopfield", hopfield, {}),
+    ("chafee_infante_n10", chafee_infante, {"n": 10}),
+    ("chafee_infante_n11_sparse", chafee_infante, {"n": 11, "sparse": True}),
+    ("brusselator_cells", brusselator_cells, {}),
+    ("cstr_pair", cstr_pair, {}),
 ]
 
 #: Jump risks: every traced point must lie on the branch through the start (a description

@@ -307,3 +307,26 @@ def test_switching_at_a_branch_point_from_a_real_start_reaches_both_halves(analy
         assert np.max(np.abs(x**2 - BETA * (r - 1))) < 1e-9
         signs.append(np.sign(x[-1]))
     assert sorted(signs) == [-1.0, 1.0]
+
+
+@pytest.mark.parametrize("bounds", [{"b": (0.0, 2.0)}, {"b": (0.0, 2.0), "y": (-1.0, 2.0)}])
+def test_a_step_across_a_pole_is_not_taken_for_a_bound(bounds):
+    """y + 1e-8/y = b from y = 1 downwards: a fold at y = 1e-4, b = 2e-4 (exact), then b
+    grows without bound as y → 0⁺. A long step from y ≈ 0.33 jumped the fold and the pole at
+    y = 0 onto y < 0 (b ≈ y there too), and the bound b = 0, which Newton with b fixed cannot
+    reach, was 'located' between the branches by regula falsi and the branch declared ended
+    on it. Such a bound has the step confirmed by its half step: the fold is found, every
+    point solves the equation to the tolerance (its rounding floor is that of its terms at
+    the point, |∂R/∂y·y|, not at y's typical size 1) and the branch ends at b = 2."""
+    prob = Problem(
+        lambda u, p: [u[0] + 1e-8 / u[0] - p["b"]],
+        ["y"],
+        {"b": 1.0 + 1e-8},
+        jacobian=lambda u, p: [[1 - 1e-8 / u[0] ** 2]],
+        param_jacobian=lambda u, p, n: [-1.0],
+    )
+    br = trace(prob, [1.0], free="b", bounds=bounds, direction=-1)
+    assert br.status == "bound" and br["b"][-1] == 2.0 and np.all(br["y"] > 0)
+    (fold,) = br.special("fold")
+    assert fold.status == "converged" and abs(fold.values["b"] - 2e-4) <= 1e-10 * 2e-4
+    assert np.max(np.abs(br["y"] + 1e-8 / br["y"] - br["b"])) <= 1e-10

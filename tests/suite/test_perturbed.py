@@ -174,6 +174,9 @@ def test_the_branch_point_problems_are_those_of_the_issue():
     named |= {"rigid_bar", "truss_2dof_h2", "truss_2dof_h1.8", "arch_e6", "arch_e4.8"}
     named |= {"transcritical", "pitchfork", "subcritical_pitchfork", "narrow_transcritical"}
     named |= {"enz", "arch_p_x1e8"}
+    # and the symmetric branch points of applications (docs/test-problems.md §13)
+    named |= {"lorenz_stenflo", "chen", "hopfield", "chafee_infante_n10"}
+    named |= {"chafee_infante_n11_sparse", "brusselator_cells", "cstr_pair"}
     assert set(branch_point_problems()) == named
 
 

@@ -32,6 +32,7 @@ from __future__ import annotations
 
 import math
 import time
+import warnings
 from collections.abc import Callable
 from typing import Any, NamedTuple
 
@@ -39,7 +40,7 @@ import numpy as np
 import pytest
 
 import cusp.examples as ex
-from cusp.continuation import Branch, SpecialPoint, trace
+from cusp.continuation import Branch, MaxStepsWarning, SpecialPoint, trace
 from cusp.examples.suite import ON_BRANCH, SUITE, check, expected_points, problem
 
 #: What the current engine gets wrong, per problem (strict: a fixed case fails until its mark
@@ -356,3 +357,65 @@ def test_suite_timing():
     print(
         f"  {'total (' + str(len(rows)) + ' problems)':<{width}}  {sum(t for _, t in rows):8.3f} s"
     )
+
+
+# ---------------------------------------------------------------------------------------------
+# Switching at the symmetric branch points of applications (§13)
+# ---------------------------------------------------------------------------------------------
+
+#: suite name → its pitchforks (point, mode, other branch's closed form where there is one;
+#: mpmath at 40 digits, cusp.examples.symmetric and symmetric_cells)
+PITCHFORK_CASES: dict[str, Callable[[], tuple]] = {
+    "lorenz_stenflo": ex.lorenz_stenflo_pitchforks,
+    "chen": ex.chen_pitchforks,
+    "hopfield": ex.hopfield_pitchforks,
+    "chafee_infante_n10": lambda: ex.chafee_infante_pitchforks(10),
+    "chafee_infante_n11_sparse": lambda: ex.chafee_infante_pitchforks(11),
+    "brusselator_cells": ex.brusselator_cells_pitchforks,
+    "cstr_pair": lambda: ex.cstr_pair_references()[1],
+}
+
+
+def _pitchfork_cases() -> list[Any]:
+    return [
+        pytest.param(name, i, direction, id=f"{name}-{i}-{'+' if direction > 0 else '-'}")
+        for name, pitchforks in PITCHFORK_CASES.items()
+        for i, _ in enumerate(pitchforks())
+        for direction in (1, -1)
+    ]
+
+
+@pytest.mark.parametrize(("name", "i", "direction"), _pitchfork_cases())
+def test_switch_at_symmetric_branch_points(name, i, direction):
+    """Each pitchfork located on the symmetric branch is left in both directions along its
+    mode (the tangent (mode, 0) to 1e-6 rad: the free parameter is stationary), onto the
+    other branch's closed form (to 1e-8, where there is one). The asymmetric branch of the
+    two tanks is a closed loop through both of its branch points: 60 steps of it suffice."""
+    example = problem(name)
+    pf = PITCHFORK_CASES[name]()[i]
+    free = example.free
+    br = example.trace()
+    at = pf.values[free]
+    located = [
+        sp for sp in br.special("branch_point") if abs(sp.values[free] - at) <= 1e-8 * abs(at)
+    ]
+    assert len(located) == 1, f"no branch point at {free} = {at} on the symmetric branch"
+    with warnings.catch_warnings():  # (the loop's 60 steps end with a MaxStepsWarning)
+        warnings.simplefilter("ignore", MaxStepsWarning)
+        other = trace(
+            example.problem,
+            located[0],
+            free=free,
+            bounds=dict(example.bounds),
+            direction=direction,
+            max_steps=60,
+            throw=False,
+        )
+    assert other.status in ("bound", "max_steps"), other.message
+    mode = np.concatenate([np.asarray(pf.mode, dtype=float), [0.0]])
+    assert _angle(other.tangents[0], mode) < 1e-6, "leaves along another direction"
+    amplitude = max(float(np.max(np.abs(other[u] - pf.values[u]))) for u in example.unknowns)
+    assert amplitude > AWAY, "the new branch does not leave the first one"
+    if pf.other is not None:
+        worst = max(float(np.max(np.abs(np.asarray(r)[1:]))) for r in pf.other(other))
+        assert worst <= 1e-8, f"off the other branch's closed form by {worst}"
