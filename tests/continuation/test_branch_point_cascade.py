@@ -15,7 +15,7 @@ import numpy as np
 import pytest
 import scipy.sparse as sp
 
-from cusp.continuation import Problem
+from cusp.continuation import Problem, trace
 
 pytestmark = pytest.mark.slow
 
@@ -64,6 +64,27 @@ def chafee_infante(n: int, jacobian: str) -> Problem:
     if jacobian == "sparsity":
         return Problem(residual, names, {"lam": 0.0}, sparsity=lap)
     return Problem(residual, names, {"lam": 0.0})
+
+
+@pytest.mark.parametrize("jacobian", ["sparsity", "analytic"])
+def test_short_steps_locate_sparse_branch_points_to_convergence(jacobian):
+    """The reference: with steps too short to hold two pitchforks, the same points, each
+    located by Newton on the (sparse) extended system, converged, also above 200 components
+    (where the dense extended system is not built)."""
+    n = 200
+    branch = trace(
+        chafee_infante(n, jacobian),
+        np.zeros(n),
+        free="lam",
+        bounds={"lam": (-1, 100)},
+        ds_max=0.02,
+    )
+    bps = sorted(branch.special("branch_point"), key=lambda p: p.values["lam"])
+    expected = pitchforks(n, 100.0)
+    assert [p.status for p in bps] == ["converged"] * len(expected)
+    for p, want in zip(bps, expected):
+        assert abs(p.values["lam"] / want - 1.0) <= 1e-10
+        assert p.details["method"].startswith("Newton on the extended system")
 
 
 def test_sparsity_matrix_is_not_overwritten():
