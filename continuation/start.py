@@ -29,6 +29,7 @@ from .errors import (
     format_values,
 )
 from .linalg import bordered, factor, max_abs
+from .spectrum import Factored
 
 _BORDER_SEED = 17
 """Seed of the two fixed pseudo-random borders of :func:`kernel_tangent` (the start is then
@@ -75,7 +76,8 @@ def correct_start(
             sdet = lu.sign_det()
             if t[k] * direction < 0:
                 t, sdet = -t, -sdet
-            return Start(z, t, sdet, rn, res.iterations, None)
+            # (the factorization kept for the branch-point test's partial spectrum)
+            return Start(z, t, Factored(sdet, lu), rn, res.iterations, None)
         iters = res.iterations
     elif res.reason == "singular":
         # ∂G/∂u is singular at the guess (or an iterate): a fold of the free parameter,

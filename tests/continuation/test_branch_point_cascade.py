@@ -1,5 +1,6 @@
-"""Branch points of sparse curves: the pitchforks of the trivial branch of the discretised
-Chafee–Infante (Allen–Cahn) problem u'' + λ(u − u³) = 0, u(0) = u(1) = 0.
+"""Several branch points inside one step on curves of more than 50 components, dense or
+sparse: the pitchforks of the trivial branch of the discretised Chafee–Infante (Allen–Cahn)
+problem u'' + λ(u − u³) = 0, u(0) = u(1) = 0, traced with the default options.
 
 On u = 0 the Jacobian is D₂ + λI (D₂ the second-difference matrix of N interior nodes,
 h = 1/(N + 1)), singular at λ_k = (4/h²)·sin²(kπh/2), k = 1..N, exactly: each is a simple
@@ -64,6 +65,73 @@ def chafee_infante(n: int, jacobian: str) -> Problem:
     if jacobian == "sparsity":
         return Problem(residual, names, {"lam": 0.0}, sparsity=lap)
     return Problem(residual, names, {"lam": 0.0})
+
+
+def two_species(n: int, stiffness: float, coupling: float) -> Problem:
+    """u'' + λ(u − u³) + c(v − u) = 0 and D v'' + λ(v − v³) + c(u − v) = 0: near-double
+    pitchforks (analytic sparse Jacobian)."""
+    lap = laplacian(n)
+    lap2 = sp.block_diag([lap, stiffness * lap], format="csc")
+    swap = sp.bmat([[None, sp.identity(n)], [sp.identity(n), None]], format="csc")
+    mix = coupling * (swap - sp.identity(2 * n))
+
+    def residual(w, p):
+        return lap2 @ w + p["lam"] * (w - w**3) + mix @ w
+
+    def jacobian(w, p):
+        return (lap2 + mix + sp.diags(p["lam"] * (1 - 3 * w**2))).tocsc()
+
+    names = [f"u{i}" for i in range(n)] + [f"v{i}" for i in range(n)]
+    return Problem(
+        residual, names, {"lam": 0.0}, jacobian=jacobian, param_jacobian=lambda w, p, k: w - w**3
+    )
+
+
+def check_pitchforks(branch, expected: list[float]) -> None:
+    """Each expected λ found once, converged, to 1e-10 relative; and at least one step of the
+    trace spanned two or more of them (so that the test exercises what it is about)."""
+    bps = sorted(branch.special("branch_point"), key=lambda p: p.values["lam"])
+    found = [p.values["lam"] for p in bps]
+    assert len(found) == len(expected), (found, expected)
+    assert all(p.status == "converged" for p in bps), [p.status for p in bps]
+    for lam, want in zip(found, expected):
+        assert abs(lam / want - 1.0) <= 1e-10, (lam, want)
+    inserted = {p.index for p in branch.special_points}
+    ends = [lam for i, lam in enumerate(branch["lam"]) if i not in inserted]
+    spanned = [sum(a < x < b for x in expected) for a, b in zip(ends[:-1], ends[1:])]
+    assert max(spanned) >= 2, spanned
+
+
+@pytest.mark.parametrize("n", [60, 100, 200])
+@pytest.mark.parametrize("jacobian", ["sparsity", "analytic"])
+def test_every_pitchfork_of_a_long_straight_branch(n, jacobian):
+    """Six pitchforks below λ = 400, two or three of them inside one step."""
+    branch = trace(chafee_infante(n, jacobian), np.zeros(n), free="lam", bounds={"lam": (-1, 400)})
+    assert branch.status == "bound"
+    check_pitchforks(branch, pitchforks(n, 400.0))
+
+
+def test_every_pitchfork_dense_above_the_full_spectrum():
+    """A dense Jacobian of 60 unknowns (more than SPECTRUM_MAX_DIM = 50 components)."""
+    n = 60
+    branch = trace(chafee_infante(n, "dense"), np.zeros(n), free="lam", bounds={"lam": (-1, 400)})
+    check_pitchforks(branch, pitchforks(n, 400.0))
+
+
+def test_near_double_pitchforks_of_two_species():
+    """Two species diffusing 2e-4 apart, coupled by 1e-3: each mode's pitchforks lie
+    3e-4 apart (relative) and always inside one step, with mixed eigenvectors."""
+    n, stiffness, coupling = 60, 1.0 + 2e-4, 1e-3
+    expected = pitchforks(n, 100.0, stiffness, coupling)
+    assert len(expected) == 6
+    assert min(b / a - 1.0 for a, b in zip(expected[::2], expected[1::2])) < 1e-3
+    branch = trace(
+        two_species(n, stiffness, coupling),
+        np.zeros(2 * n),
+        free="lam",
+        bounds={"lam": (-1, 100)},
+    )
+    check_pitchforks(branch, expected)
 
 
 @pytest.mark.parametrize("jacobian", ["sparsity", "analytic"])
