@@ -110,8 +110,8 @@ class Factored(float):
 class PartialSign(float):
     """The branch-point test's value (the sign of det M) on curves without a full spectrum:
     the point ``z``, its unit tangent ``t`` and the factorization ``lu`` of ``[∂G/∂z; r]``
-    there (or None: made when needed), from which :meth:`spectrum` computes M's partial
-    spectrum when a step asks for it (once per Krylov size; a point is the end of one step
+    there (or None: made when needed), from which :meth:`spectrum` computes the pencil's
+    partial spectrum when a step asks for it (once per Krylov size; a point is the end of one step
     and the start of the next)."""
 
     system: Any
@@ -140,11 +140,11 @@ class PartialSign(float):
         n = self.z.size
         rng = np.random.default_rng(n)
         v0 = rng.random(n) - 0.5
-        v0 /= np.linalg.norm(v0)
+        v0 /= _norm(v0)
         start = warm if warm is not None and warm.vectors.shape[0] == n else cached
         if start is not None and start.vectors.shape[1]:
             w = start.vectors.sum(axis=1)
-            v0 += w / np.linalg.norm(w)
+            v0 += w / _norm(w)
         with np.errstate(all="ignore"):
             found = arnoldi_spectrum(op, v0, min(size, n - 1))
         if found is not None:
@@ -174,46 +174,49 @@ class PartialSign(float):
 
 def arnoldi_spectrum(op: Any, v0: np.ndarray, p: int) -> Spectrum | None:
     """The eigenvalues μ = 1/ν of the operator ``op`` (ν its Ritz values of largest
-    modulus) from ``p`` steps of Arnoldi from ``v0`` (classical Gram–Schmidt, repeated where it
-    cancels: Daniel, Gragg, Kaufman and Stewart's criterion), and
-    their vectors; None if ``op`` gives anything but finite numbers."""
+    modulus) and their vectors, from ``p`` steps of Arnoldi from ``v0`` (classical
+    Gram–Schmidt, repeated where it cancels: the criterion of Daniel, Gragg, Kaufman and
+    Stewart); None if ``op`` gives anything but finite numbers."""
     n = v0.size
     basis = np.empty((p + 1, n))
     h = np.zeros((p + 1, p))
     v = op(v0)  # (the start in the operator's range: on its hyperplane)
-    norm = float(np.linalg.norm(v))
+    norm = _norm(v)
     if not math.isfinite(norm) or norm == 0.0:
         return None
     basis[0] = v / norm
     k = p
-    beta = 0.0
     for j in range(p):
         w = op(basis[j])
-        size = float(np.linalg.norm(w))
+        size = _norm(w)
         for _ in range(2):  # (a second pass only when the first cancelled much: DGKS)
             c = basis[: j + 1] @ w
             w -= c @ basis[: j + 1]
             h[: j + 1, j] += c
-            beta = float(np.linalg.norm(w))
+            beta = _norm(w)
             if beta > 0.7 * size:
                 break
             size = beta
         if not math.isfinite(beta):
             return None
         h[j + 1, j] = beta
-        if beta <= 1e-12 * float(np.linalg.norm(h[: j + 2, j])):
+        if beta <= 1e-12 * _norm(h[: j + 2, j]):
             k = j + 1  # an invariant subspace: its Ritz pairs are exact
             break
         basis[j + 1] = w / beta
-    exhausted = k < p or p >= n - 1
-    return _ritz_pairs(basis[:k], h, k, exhausted)
+    # (a space of n - 1 vectors is the whole hyperplane: every eigenvalue, exactly)
+    return _ritz_pairs(basis[:k], h, k, p, k < p or k >= n - 1, k >= n - 1)
 
 
-def _ritz_pairs(basis: np.ndarray, h: np.ndarray, k: int, exhausted: bool) -> Spectrum:
-    """The converged Ritz pairs of the Arnoldi relation of size ``k``, largest |ν| first,
-    up to the first one that has not converged (a complex pair only with its partner)."""
+def _ritz_pairs(
+    basis: np.ndarray, h: np.ndarray, k: int, p: int, exact: bool, whole: bool
+) -> Spectrum:
+    """The converged Ritz pairs of the Arnoldi relation of size ``k`` (of ``p`` asked for;
+    ``exact``: an invariant subspace, ``whole``: the operator's whole space), largest |ν|
+    first, up to the first one that has not converged (a complex pair only with its
+    partner)."""
     nu, s = np.linalg.eig(h[:k, :k])
-    beta = 0.0 if exhausted else abs(h[k, k - 1])
+    beta = 0.0 if exact else abs(h[k, k - 1])
     residual = beta * np.abs(s[k - 1])
     order = np.argsort(-np.abs(nu), kind="stable").tolist()
     keep: list[int] = []
@@ -229,22 +232,22 @@ def _ritz_pairs(basis: np.ndarray, h: np.ndarray, k: int, exhausted: bool) -> Sp
         if nu[i].imag < 0.0:
             continue  # (its partner, first, brings both)
         mu = 1.0 / nu[i]
-        x = basis.T @ s[:, i]
+        x = basis.T @ s[:, i].real  # (real and imaginary parts apart: no complex copy)
         if nu[i].imag == 0.0:
             wr.append(mu.real)
             wi.append(0.0)
-            cols.append(_unit(x.real))
+            cols.append(_unit(x))
         else:  # μ = 1/ν: ν's positive imaginary part is μ's negative one
             wr += [mu.real, mu.real]
             wi += [abs(mu.imag), -abs(mu.imag)]
-            cols += [_unit(x.real), _unit(x.imag)]
+            cols += [_unit(x), _unit(basis.T @ s[:, i].imag)]
     n = basis.shape[1]
     vectors = np.array(cols).T if cols else np.zeros((n, 0))
-    if exhausted and len(keep) == k:
+    if whole:  # (every ν ≠ 0 kept: every finite eigenvalue)
         radius = math.inf
     else:
         radius = float(np.hypot(wr[-1], wi[-1])) if wr else 0.0
-    return Spectrum(np.array(wr), np.array(wi), vectors, radius, k)
+    return Spectrum(np.array(wr), np.array(wi), vectors, radius, p)
 
 
 def _whole_pairs(nu: np.ndarray, keep: list[int]) -> list[int]:
@@ -261,8 +264,14 @@ def _whole_pairs(nu: np.ndarray, keep: list[int]) -> list[int]:
     return keep
 
 
+def _norm(x: np.ndarray) -> float:
+    """The 2-norm (``np.linalg.norm`` costs a hundred times the dot product on long
+    vectors)."""
+    return math.sqrt(float(x.dot(x)))
+
+
 def _unit(x: np.ndarray) -> np.ndarray:
-    norm = float(np.linalg.norm(x))
+    norm = _norm(x)
     return x / norm if norm > 0.0 else x
 
 
@@ -292,14 +301,18 @@ def follow(sa: Spectrum, sb: Spectrum, changed: bool) -> Verdict:
     cos = np.abs(sa.vectors.T @ sb.vectors)
     free_a, free_b = [True] * ka, [True] * kb
     moved = 0.0
+    # (whole spectra match every pair, as eigenvalue_crossings: a count that differs is an
+    # eigenvalue through infinity, at a fold of the free parameter)
+    least = 0.0 if math.isinf(sa.radius) and math.isinf(sb.radius) else MATCH_COS
     for f in np.argsort(-cos, axis=None).tolist():
         i, j = divmod(f, kb)
-        if cos[i, j] < MATCH_COS:
+        if cos[i, j] < least:
             break
         if free_a[i] and free_b[j]:
             free_a[i] = free_b[j] = False
             parent[root(i)] = root(ka + j)
-            moved = max(moved, abs(mu_b[j] - mu_a[i]))
+            # (a complex pair's vectors carry no order: either member is the partner)
+            moved = max(moved, min(abs(mu_b[j] - mu_a[i]), abs(mu_b[j] - mu_a[i].conjugate())))
     if free_a == [True] * ka:
         return Verdict([], "unmatched")
     for offset, wi in ((0, sa.wi), (ka, sb.wi)):
@@ -314,10 +327,10 @@ def follow(sa: Spectrum, sb: Spectrum, changed: bool) -> Verdict:
     for members in groups.values():
         at_a = [i for i in members if i < ka]
         at_b = [i - ka for i in members if i >= ka]
-        if len(at_a) != len(at_b):  # one end's partners are outside the other's spectrum
-            near_a = min((abs(mu_a[i]) for i in at_a), default=math.inf)
-            near_b = min((abs(mu_b[j]) for j in at_b), default=math.inf)
-            if min(near_a + sb.radius, near_b + sa.radius) <= reach:
+        if len(at_a) != len(at_b):  # some partners missing from the other end's spectrum
+            if any(_suspect(mu_a[i], reach, sb.radius) for i in at_a) or any(
+                _suspect(mu_b[j], reach, sa.radius) for j in at_b
+            ):
                 problem = problem or "unmatched"
             continue
         pa, pb = _product(sa, at_a), _product(sb, at_b)
@@ -328,6 +341,15 @@ def follow(sa: Spectrum, sb: Spectrum, changed: bool) -> Verdict:
     if (len(thetas) % 2 == 1) != changed:
         problem = problem or "parity"
     return Verdict(sorted(thetas), problem)
+
+
+def _suspect(mu: complex, reach: float, radius: float) -> bool:
+    """Whether an eigenvalue ``mu`` without a partner in the other end's spectrum (of
+    ``radius``) may hide a crossing: it could have crossed zero within the ``reach`` from
+    outside that spectrum, or it lies so deep inside it that a partner within the reach
+    should have been matched (the matching or the reach is wrong; an eigenvalue without
+    partner in a whole spectrum went through infinity)."""
+    return abs(mu) + radius <= reach or abs(mu) + reach < radius < math.inf
 
 
 def _product(s: Spectrum, members: list[int]) -> float:

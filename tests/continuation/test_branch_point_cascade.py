@@ -16,7 +16,7 @@ import numpy as np
 import pytest
 import scipy.sparse as sp
 
-from cusp.continuation import Problem, trace
+from cusp.continuation import Problem, spectrum, trace
 
 pytestmark = pytest.mark.slow
 
@@ -162,3 +162,72 @@ def test_sparsity_matrix_is_not_overwritten():
     before = lap.toarray()
     Problem(lambda u, p: lap @ u, [f"u{i}" for i in range(5)], {"a": 0.0}, sparsity=lap)
     assert np.array_equal(lap.toarray(), before)
+
+
+# --- the partial spectrum and the rule that accounts for a step (continuation/spectrum.py)
+
+
+def test_arnoldi_finds_the_eigenvalues_nearest_zero():
+    """Shift-invert Arnoldi on a non-normal matrix with a complex pair near zero: the
+    eigenvalues nearest zero, in order, with eigenvectors, inside the radius."""
+    rng = np.random.default_rng(3)
+    n = 200
+    reals = np.arange(3.0, n + 1.0) * (-1.0) ** np.arange(n - 2)  # 3, -4, 5, ...
+    d = np.diag(np.concatenate([[0.0, 0.0], reals]))
+    d[0, 0], d[0, 1], d[1, 0], d[1, 1] = 0.5, 1.0, -1.0, 0.5  # 0.5 ± i
+    s = np.eye(n) + np.triu(rng.standard_normal((n, n)), 1) / n
+    a = s @ d @ np.linalg.inv(s)
+    lu = np.linalg.inv(a)
+    found = spectrum.arnoldi_spectrum(lambda x: lu @ x, rng.random(n), 24)
+    mu = found.wr + 1j * found.wi
+    assert np.allclose(mu[:2], [0.5 + 1j, 0.5 - 1j], rtol=1e-8)
+    assert np.allclose(found.wr[2:5], [3.0, -4.0, 5.0], rtol=1e-8)
+    assert abs(mu[-1]) == pytest.approx(found.radius)
+    for j in range(2, found.wr.size):  # real eigenvectors
+        x = found.vectors[:, j]
+        assert np.linalg.norm(a @ x - found.wr[j] * x) <= 1e-6 * abs(found.wr[j])
+
+
+def _spectrum(values, vectors, radius):
+    values = np.asarray(values, dtype=complex)
+    return spectrum.Spectrum(values.real, values.imag, np.asarray(vectors, float), radius, 8)
+
+
+def test_follow_accounts_for_two_opposite_crossings():
+    """Two modes crossing zero in opposite directions inside one step: the determinant
+    keeps its sign, the followed eigenvalues show both crossings where their linear
+    interpolants vanish."""
+    e = np.eye(4)
+    sa = _spectrum([-1.0, 3.0, 10.0], e[:, :3], 10.0)
+    sb = _spectrum([1.0, -1.0, 11.0], e[:, [0, 1, 2]], 11.0)
+    thetas, problem = spectrum.follow(sa, sb, changed=False)
+    assert problem == ""
+    assert thetas == pytest.approx([0.5, 0.75])
+    assert spectrum.follow(sa, sb, changed=True).problem == "parity"
+
+
+def test_follow_does_not_account_for_what_it_cannot_see():
+    """An eigenvalue near zero at one end only, or spectra too narrow for the step's
+    displacements: not accounted for (the step is then split)."""
+    e = np.eye(4)
+    sa = _spectrum([-1.0, 8.0], e[:, :2], 8.0)
+    lone = _spectrum([1.0, 0.5, 8.0], e[:, [0, 3, 1]], 8.0)  # 0.5: a mode unseen at a
+    assert spectrum.follow(sa, lone, changed=True).problem == "unmatched"
+    narrow = _spectrum([-1.0, 2.0], e[:, :2], 2.0)
+    moved = _spectrum([3.0, 0.5], e[:, :2], 3.0)  # displacements up to 4: reach 8 > 2 + 3
+    assert spectrum.follow(narrow, moved, changed=True).problem == "window"
+
+
+def test_steps_the_spectra_do_not_account_for_are_split(monkeypatch, caplog):
+    """With spectra of two Arnoldi vectors (nothing converges) every step is split at its
+    midpoint, three levels deep: the six pitchforks are still found."""
+    monkeypatch.setattr(spectrum, "KRYLOV", 2)
+    monkeypatch.setattr(spectrum, "MAX_KRYLOV", 2)
+    n = 60
+    with caplog.at_level("INFO", logger="cusp.continuation.spectrum"):
+        branch = trace(
+            chafee_infante(n, "analytic"), np.zeros(n), free="lam", bounds={"lam": (-1, 400)}
+        )
+    assert any("do not account" in r.getMessage() for r in caplog.records)
+    found = sorted(p.values["lam"] for p in branch.special("branch_point"))
+    assert np.allclose(found, pitchforks(n, 400.0), rtol=1e-10, atol=0.0)
