@@ -41,7 +41,7 @@ def evaluate(
         # the sign of det [∂G/∂z; (W t_new)ᵀ] from the corrector's LU with border `row`
         # (Cramer: the two determinants differ by the factor row·t_new)
         sdet = res.lu.sign_det() * (1.0 if trial.rt > 0 else -1.0)
-        if system is state.system and system.dim > 2 and trial.aimed is None and not trial.corner:
+        if system.dim > 2 and system is state.system and trial.aimed is None and not trial.corner:
             # the factorization at the point itself (corrector.factor_at), kept for the
             # branch-point test's partial spectrum (module spectrum)
             sdet = Factored(sdet, res.lu)

@@ -10,21 +10,21 @@ factorization the step already has.
 
 **The eigenproblem** is the pencil
 
-    ∂G/∂z x = μ Ē x,   (W t)·x = 0        (Ē x: the first m of the m + 1 components of x),
+    ∂G/∂z x = μ E x,   (W t)·x = 0        (E x: the first m of the m + 1 components of x),
 
-i.e. ``det(M − μ D) = 0`` with ``D = diag(1, …, 1, 0)``. At μ = 0 that is det M, so a real
+i.e. ``det(M − μE) = 0`` with ``E = diag(1, …, 1, 0)``. At μ = 0 that is det M, so a real
 eigenvalue passes through zero exactly where the test does (a simple branch point), and
 nowhere else: unlike M's own eigenvalues, the pencil's do not depend on the scale of the
-border row (scaling M's last row scales ``det(M − μD)``), the border contributes no
+border row (scaling M's last row scales ``det(M − μE)``), the border contributes no
 eigenvalue near zero of its own, and on a branch whose tangent is the free parameter (a
 trivial branch) they are the eigenvalues of ``∂G/∂u``. Where the tangent's last component
 vanishes (a fold in the free parameter) one eigenvalue passes through infinity instead:
 det M keeps its sign there, and it is no crossing.
 
-**Shift-invert Arnoldi** at σ = 0: the operator ``x ↦ (M⁻¹ D) x`` is applied with the step's
+**Shift-invert Arnoldi** at σ = 0: the operator ``x ↦ M⁻¹E x`` is applied with the step's
 factorization ``F`` of ``[∂G/∂z; r]`` at the point (any border ``r`` with ``r·t ≠ 0``: the
 tangent's, or the previous point's of the corrector, :func:`~.corrector.factor_at`): solve
-``F y = D x``, then ``y − (W t·y) t`` solves ``M y' = D x`` (``∂G/∂z t = 0``). One solve an
+``F y = E x``, then ``y − (W t·y) t`` solves ``M y' = E x`` (``∂G/∂z t = 0``). One solve an
 Arnoldi vector, no factorization. The Ritz pairs of largest |1/μ| whose residual is below
 :data:`RITZ_TOL` form the spectrum, nearest zero first, with its *radius*: every eigenvalue
 inside it is among them (the usual convergence order of Krylov methods from a start with
@@ -41,7 +41,9 @@ interpolant). With ``D`` the largest displacement of a matched eigenvalue over t
 - an eigenvalue outside both spectra would have to move by more than the two radii to cross
   zero: the radii must add up to more than ``R``;
 - an eigenvalue seen at one end only (unmatched, or a group whose count differs between the
-  ends) must be too far from zero to cross within ``R``;
+  ends) must be too far from zero to cross within ``R``, and not so deep inside the other
+  end's spectrum that a partner within ``R`` should have been matched (in a whole spectrum
+  a missing partner went through infinity, and every pair is matched);
 - the number of crossings must have the parity of the determinant's sign change.
 
 A step that is not accounted for first gets larger spectra (twice the Krylov space), then is
@@ -152,7 +154,7 @@ class PartialSign(float):
         return found
 
     def _operator(self) -> Any:
-        """``x ↦ M⁻¹ D x`` on the hyperplane ``(W t)·x = 0`` (see the module docstring)."""
+        """``x ↦ M⁻¹E x`` on the hyperplane ``(W t)·x = 0`` (see the module docstring)."""
         system, t = self.system, self.t
         w = system.weights * t
         lu = self.lu
@@ -167,7 +169,7 @@ class PartialSign(float):
             b = x.copy()
             b[-1] = 0.0
             y = lu.solve(b)
-            return y - float(w @ y) * t
+            return y - _dot(w, y) * t
 
         return op
 
@@ -190,8 +192,8 @@ def arnoldi_spectrum(op: Any, v0: np.ndarray, p: int) -> Spectrum | None:
         w = op(basis[j])
         size = _norm(w)
         for _ in range(2):  # (a second pass only when the first cancelled much: DGKS)
-            c = basis[: j + 1] @ w
-            w -= c @ basis[: j + 1]
+            c = np.einsum("ij,j->i", basis[: j + 1], w)
+            w -= np.einsum("i,ij->j", c, basis[: j + 1])
             h[: j + 1, j] += c
             beta = _norm(w)
             if beta > 0.7 * size:
@@ -232,7 +234,7 @@ def _ritz_pairs(
         if nu[i].imag < 0.0:
             continue  # (its partner, first, brings both)
         mu = 1.0 / nu[i]
-        x = basis.T @ s[:, i].real  # (real and imaginary parts apart: no complex copy)
+        x = np.einsum("ij,i->j", basis, s[:, i].real)  # (no complex copy of the basis)
         if nu[i].imag == 0.0:
             wr.append(mu.real)
             wi.append(0.0)
@@ -240,7 +242,7 @@ def _ritz_pairs(
         else:  # μ = 1/ν: ν's positive imaginary part is μ's negative one
             wr += [mu.real, mu.real]
             wi += [abs(mu.imag), -abs(mu.imag)]
-            cols += [_unit(x), _unit(basis.T @ s[:, i].imag)]
+            cols += [_unit(x), _unit(np.einsum("ij,i->j", basis, s[:, i].imag))]
     n = basis.shape[1]
     vectors = np.array(cols).T if cols else np.zeros((n, 0))
     if whole:  # (every ν ≠ 0 kept: every finite eigenvalue)
@@ -264,10 +266,16 @@ def _whole_pairs(nu: np.ndarray, keep: list[int]) -> list[int]:
     return keep
 
 
+def _dot(x: np.ndarray, y: np.ndarray) -> float:
+    """``x·y`` without BLAS, as the other products with the long vectors here: a threaded
+    BLAS spends milliseconds waking its threads for each (a spectrum of the sparse Bratu
+    problem with 1e5 unknowns took 190 ms besides its solves on a loaded machine, 30 ms
+    with numpy's own loops; single-threaded BLAS 15 ms)."""
+    return float(np.einsum("i,i->", x, y))
+
+
 def _norm(x: np.ndarray) -> float:
-    """The 2-norm (``np.linalg.norm`` costs a hundred times the dot product on long
-    vectors)."""
-    return math.sqrt(float(x.dot(x)))
+    return math.sqrt(_dot(x, x))
 
 
 def _unit(x: np.ndarray) -> np.ndarray:
@@ -298,7 +306,7 @@ def follow(sa: Spectrum, sb: Spectrum, changed: bool) -> Verdict:
             i = parent[i]
         return i
 
-    cos = np.abs(sa.vectors.T @ sb.vectors)
+    cos = np.abs(np.einsum("ij,ik->jk", sa.vectors, sb.vectors))
     free_a, free_b = [True] * ka, [True] * kb
     moved = 0.0
     # (whole spectra match every pair, as eigenvalue_crossings: a count that differs is an

@@ -76,8 +76,9 @@ def correct_start(
             sdet = lu.sign_det()
             if t[k] * direction < 0:
                 t, sdet = -t, -sdet
-            # (the factorization kept for the branch-point test's partial spectrum)
-            return Start(z, t, Factored(sdet, lu), rn, res.iterations, None)
+            if system.dim > 2:  # (kept for the branch-point test's partial spectrum)
+                sdet = Factored(sdet, lu)
+            return Start(z, t, sdet, rn, res.iterations, None)
         iters = res.iterations
     elif res.reason == "singular":
         # ∂G/∂u is singular at the guess (or an iterate): a fold of the free parameter,
