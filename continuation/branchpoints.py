@@ -21,7 +21,9 @@ import math
 from typing import Any
 
 import numpy as np
+import scipy.sparse as sp
 
+from .derivatives import column_groups
 from .errors import SingularMatrixError
 from .linalg import bordered, dense_solve, factor, inverse_magnitudes, max_abs, scaled_max
 from .locate import (
@@ -58,7 +60,7 @@ def locate_branch_point(br: Bracket, f_a: float, f_b: float) -> Located:
 
 def _locate(br: Bracket, f_a: float, f_b: float) -> Located:
     rough = _regula_falsi(br, f_a, f_b, rtol=1e-3)
-    if br.system.dim <= MAX_DENSE and rough.status == "converged":
+    if rough.status == "converged":
         found = _newton_extended(br, rough.z)
         if found is not None:
             return found
@@ -205,18 +207,31 @@ def _left_null_vector(dg: Any) -> np.ndarray:
 
 def _newton_extended(br: Bracket, z0: np.ndarray) -> Located | None:
     """Newton on ``[G + μψ; ∂G/∂zᵀψ; ψ·ψ − 1] = 0`` from ``z0``; None if it fails or lands
-    outside the step."""
+    outside the step. Dense for dense Jacobians of up to :data:`MAX_DENSE` components (the
+    second derivatives column by column), sparse for sparse ones of any size (grouped
+    columns: :func:`_hessian_plan`); dense ones above :data:`MAX_DENSE`: None."""
     system, o = br.system, br.options
     z = z0.copy()
     dg = system.jacobian(z)
-    psi = _left_null_vector(dg)
+    plan = None
+    if sp.issparse(dg):
+        plan = _hessian_plan(dg)
+        psi = _kernel_by_inverse_iteration(dg, br.row, 0)[1]
+        psi /= np.linalg.norm(psi)
+    elif z.size <= MAX_DENSE:
+        psi = _left_null_vector(dg)
+    else:
+        return None
     mu = 0.0
     m, n = psi.size, z.size
     previous, it, converged = math.inf, 0, False
     for it in range(1, o.max_locate_iterations + 1):
-        a, rhs = _extended_system(system, z, psi, mu, dg)
         try:
-            d = dense_solve(a, rhs)[2]
+            if plan is None:
+                d = dense_solve(*_extended_system(system, z, psi, mu, dg))[2]
+            else:
+                a, rhs = _extended_sparse(system, z, psi, mu, dg, plan)
+                d = factor(a).solve(rhs)
         except SingularMatrixError:
             return None
         dz = d[:n]
@@ -233,6 +248,73 @@ def _newton_extended(br: Bracket, z0: np.ndarray) -> Located | None:
         return None
     method = "Newton on the extended system [G + mu psi; G_z^T psi; psi.psi - 1]"
     return accept_located(br, z, dg, it, size, {"method": method, "mu": float(mu)})
+
+
+def _hessian_plan(dg: Any) -> tuple[np.ndarray, np.ndarray, Any, list[np.ndarray]]:
+    """How to difference ``H = Σ ψ_i ∇²G_i`` of a sparse ``G``: ``H_kj`` can be nonzero only
+    where an equation depends on both ``z_k`` and ``z_j`` (the pattern ``SᵀS`` of the
+    Jacobian's pattern ``S``). Columns of ``S`` with many entries (the free parameter's,
+    ``wide``) are differenced one by one, giving their rows too (``H`` is symmetric); the
+    others (``narrow``) in structurally orthogonal groups of ``SᵀS`` among themselves
+    (:func:`~.derivatives.column_groups`), one difference a group. Returns ``(narrow, wide,
+    the narrow columns' pattern, the groups)``."""
+    s = sp.csc_matrix(dg, dtype=float, copy=True)
+    s.data[:] = 1.0
+    m, n = s.shape
+    wide = np.flatnonzero(np.diff(s.indptr) > max(8, m // 4))
+    narrow = np.setdiff1d(np.arange(n), wide)
+    sn = s[:, narrow]
+    pattern = (sn.T @ sn).tocsc()
+    return narrow, wide, pattern, column_groups(pattern)
+
+
+def _sparse_hessian(system: Any, z: np.ndarray, psi: np.ndarray, plan: tuple) -> Any:
+    """``H = Σ ψ_i ∇²G_i`` at ``z`` (CSC) by the grouped differences of ``plan``."""
+    narrow, wide, pattern, groups = plan
+    n = z.size
+    rows: list[np.ndarray] = []
+    cols: list[np.ndarray] = []
+    vals: list[np.ndarray] = []
+    d = np.zeros(n)
+    for g in groups:
+        d[narrow[g]] = 1.0
+        hv = second_derivative_row(system.jacobian, z, d, psi, None, system.scales)
+        d[narrow[g]] = 0.0
+        part = pattern[:, g].tocoo()
+        k = narrow[part.row]
+        rows.append(k)
+        cols.append(narrow[g[part.col]])
+        vals.append(hv[k])
+    for j in wide.tolist():  # column j, and row j where the groups left it out
+        d[j] = 1.0
+        hv = second_derivative_row(system.jacobian, z, d, psi, None, system.scales)
+        d[j] = 0.0
+        rows += [np.arange(n), np.full(narrow.size, j)]
+        cols += [np.full(n, j), narrow]
+        vals += [hv, hv[narrow]]
+    data = (np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols)))
+    return sp.csc_matrix(data, shape=(n, n))
+
+
+def _extended_sparse(
+    system: Any, z: np.ndarray, psi: np.ndarray, mu: float, dg: Any, plan: tuple
+) -> tuple[Any, np.ndarray]:
+    """:func:`_extended_system` for a sparse Jacobian (the second derivatives by
+    :func:`_sparse_hessian`)."""
+    n, m = z.size, psi.size
+    a = sp.bmat(
+        [
+            [dg, sp.diags(np.full(m, mu)), sp.csc_matrix(psi[:, None])],
+            [_sparse_hessian(system, z, psi, plan), dg.T, None],
+            [None, sp.csr_matrix(2.0 * psi[None, :]), None],
+        ],
+        format="csc",
+    )
+    rhs = np.empty(m + n + 1)
+    rhs[:m] = system.residual(z) + mu * psi
+    rhs[m : m + n] = dg.T @ psi
+    rhs[-1] = psi @ psi - 1.0
+    return a, rhs
 
 
 def _extended_system(

@@ -12,6 +12,7 @@ import numpy as np
 
 from .locate import Bracket, Located, tangent_at
 from .options import ContinuationOptions
+from .spectrum import Factored
 from .state import Point, TracerState
 from .stepping import Trial, wnorm
 from .system import CurveSystem
@@ -40,6 +41,10 @@ def evaluate(
         # the sign of det [∂G/∂z; (W t_new)ᵀ] from the corrector's LU with border `row`
         # (Cramer: the two determinants differ by the factor row·t_new)
         sdet = res.lu.sign_det() * (1.0 if trial.rt > 0 else -1.0)
+        if system.dim > 2 and system is state.system and trial.aimed is None and not trial.corner:
+            # the factorization at the point itself (corrector.factor_at), kept for the
+            # branch-point test's partial spectrum (module spectrum)
+            sdet = Factored(sdet, res.lu)
     values = tuple([tt.value(system, z1, t1, sdet) for tt in tests])
     # no crossing unless the sign changed or an end is exactly zero
     crossings: list[Crossing] = [

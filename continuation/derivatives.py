@@ -33,7 +33,7 @@ def _steps(x: np.ndarray, rel: float, typical: Any = 1.0) -> np.ndarray:
 def column_groups(pattern) -> list[np.ndarray]:
     """Greedy grouping of structurally orthogonal columns of a sparse pattern (CPR / Curtis–
     Powell–Reid), so one residual evaluation per group gives all columns of the group."""
-    pat = sp.csc_matrix(pattern)
+    pat = sp.csc_matrix(pattern, copy=True)  # (a CSC pattern would be shared: not the caller's)
     pat.data[:] = 1
     n = pat.shape[1]
     rows_of = [pat.indices[pat.indptr[j] : pat.indptr[j + 1]] for j in range(n)]

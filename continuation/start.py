@@ -29,6 +29,7 @@ from .errors import (
     format_values,
 )
 from .linalg import bordered, factor, max_abs
+from .spectrum import Factored
 
 _BORDER_SEED = 17
 """Seed of the two fixed pseudo-random borders of :func:`kernel_tangent` (the start is then
@@ -75,6 +76,8 @@ def correct_start(
             sdet = lu.sign_det()
             if t[k] * direction < 0:
                 t, sdet = -t, -sdet
+            if system.dim > 2:  # (kept for the branch-point test's partial spectrum)
+                sdet = Factored(sdet, lu)
             return Start(z, t, sdet, rn, res.iterations, None)
         iters = res.iterations
     elif res.reason == "singular":

@@ -44,6 +44,8 @@ from .locate import (
 from .problem import has_exact_jacobian
 from .realvalues import real_scalar
 from .regula import locate_on_arc
+from .spectrum import PartialSign
+from .spectrum import split_points as partial_split_points
 
 if TYPE_CHECKING:
     from .options import ContinuationOptions
@@ -327,12 +329,13 @@ def _check_fold_resolution(found: Located, br: Bracket) -> Located:
 _geev = lapack.dgeev
 
 SPECTRUM_MAX_DIM = 50
-"""Dense curve systems of 3 to this many components carry the spectrum of the branch-point
-test's matrix at every point (one eigendecomposition a step), which shows two or more branch
-points of different modes inside one step; larger ones see only the determinant's net sign
-change. So do curves with one unknown (2 components): their matrix holds one row of the
-Jacobian, one mode, and two branch points in one step are one eigenvalue crossing zero and
-back, which the spectra at the step's ends cannot show either."""
+"""Dense curve systems of 3 to this many components carry the whole spectrum of the
+branch-point test's matrix at every point (one LAPACK eigendecomposition a step), which shows
+two or more branch points of different modes inside one step. Larger or sparse ones carry a
+partial spectrum, its few eigenvalues nearest zero computed only when a step asks for them
+(:mod:`.spectrum`). Curves with one unknown (2 components) carry none: their matrix holds one
+row of the Jacobian, one mode, and two branch points in one step are one eigenvalue crossing
+zero and back, which the spectra at the step's ends cannot show either."""
 
 
 class SignWithSpectrum(float):
@@ -423,26 +426,32 @@ class BranchPointTest(TestFunction):
     def value(self, system, z, t, sdet) -> float:
         if t is None:
             return sdet
-        jac = None
-        if self.splits_on(system):  # its values carry spectra
-            jac = system.jacobian(z)
-            if type(jac) is not np.ndarray:
-                jac = None
-        if jac is None:
+        if not self.splits_on(system):  # (one unknown: a single mode, see SPECTRUM_MAX_DIM)
             if sdet is None:
                 sdet = factor(bordered(system.jacobian(z), system.weights * t)).sign_det()
             return sdet
-        m = bordered(jac, system.weights * t)
+        jac = system.jacobian(z) if system.dim <= SPECTRUM_MAX_DIM else None
+        if type(jac) is np.ndarray:  # small and dense: the whole spectrum
+            m = bordered(jac, system.weights * t)
+            if sdet is None:
+                sdet = factor(m).sign_det()
+            return SignWithSpectrum(sdet, m)
+        lu = getattr(sdet, "lu", None)
         if sdet is None:
-            sdet = factor(m).sign_det()
-        return SignWithSpectrum(sdet, m)
+            lu = factor(bordered(system.jacobian(z) if jac is None else jac, system.weights * t))
+            sdet = lu.sign_det()
+        return PartialSign(float(sdet), system, z, t, lu)
 
     def splits_on(self, system) -> bool:
-        return 3 <= system.dim <= SPECTRUM_MAX_DIM  # (see SPECTRUM_MAX_DIM)
+        return system.dim >= 3  # (see SPECTRUM_MAX_DIM)
 
     def split_points(self, old, new, br_data) -> tuple[float, ...]:
         """Several eigenvalues of the bordered matrix [∂G/∂z; (W t)ᵀ] that change sign within
-        one step (:func:`eigenvalue_crossings`): θ midway between their estimated zeros."""
+        one step (:func:`eigenvalue_crossings`; partial spectra: :func:`.spectrum.split_points`,
+        which also splits a step its spectra do not account for): θ midway between their
+        estimated zeros."""
+        if isinstance(old, PartialSign) and isinstance(new, PartialSign):
+            return partial_split_points(old, new)
         thetas = eigenvalue_crossings(old, new)
         return tuple(0.5 * (a + b) for a, b in zip(thetas[:-1], thetas[1:]))
 
