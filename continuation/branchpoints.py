@@ -222,9 +222,36 @@ def _newton_extended(br: Bracket, z0: np.ndarray) -> Located | None:
         psi = _left_null_vector(dg)
     else:
         return None
-    mu = 0.0
+    found = _extended_loop(system, o, z, psi, 0.0, dg, plan, system.jacobian)
+    if not system.derivatives_exact and hasattr(system, "accurate_jacobian"):
+        # differenced derivatives: the point solves G + μψ = 0, Gzᵀψ = 0 with the Jacobian
+        # the differences give, off by their error to first order in the free parameter;
+        # polished (or, where the plain ones did not converge, located) with the Jacobian
+        # extrapolated to a higher order (the second-derivative block, which only steers
+        # Newton, stays as it is)
+        if found is not None:
+            z, psi, mu = found[:3]
+        else:
+            mu = 0.0
+        accurate = system.accurate_jacobian
+        polished = _extended_loop(system, o, z, psi, mu, accurate(z), plan, accurate)
+        if polished is not None:
+            found = polished
+    if found is None:
+        return None
+    z, psi, mu, dg, it, size = found
+    method = "Newton on the extended system [G + mu psi; G_z^T psi; psi.psi - 1]"
+    return accept_located(br, z, dg, it, size, {"method": method, "mu": float(mu)})
+
+
+def _extended_loop(
+    system: Any, o: Any, z: np.ndarray, psi: np.ndarray, mu: float, dg: Any, plan: Any, jac: Any
+) -> tuple | None:
+    """Newton's iterations on the extended system from ``(z, ψ, μ)`` (``dg = jac(z)``) with
+    the Jacobian ``jac``: ``(z, ψ, μ, jac(z), iterations, last update)``, or None if they
+    fail."""
     m, n = psi.size, z.size
-    previous, it, converged = math.inf, 0, False
+    previous, it, size = math.inf, 0, math.inf
     for it in range(1, o.max_locate_iterations + 1):
         try:
             if plan is None:
@@ -239,15 +266,11 @@ def _newton_extended(br: Bracket, z0: np.ndarray) -> Located | None:
         if not math.isfinite(size):
             return None
         z, psi, mu = z - dz, psi - d[n : n + m], mu - float(d[-1])
-        dg = system.jacobian(z)
+        dg = jac(z)
         if newton_done(it, size, previous, o.locate_tol, stall=1e-8):
-            converged = True
-            break
+            return z, psi, mu, dg, it, size
         previous = size
-    if not converged:
-        return None
-    method = "Newton on the extended system [G + mu psi; G_z^T psi; psi.psi - 1]"
-    return accept_located(br, z, dg, it, size, {"method": method, "mu": float(mu)})
+    return None
 
 
 def _hessian_plan(dg: Any) -> tuple[np.ndarray, np.ndarray, Any, list[np.ndarray]]:

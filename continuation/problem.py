@@ -9,7 +9,7 @@ from typing import Any, Protocol, runtime_checkable
 import numpy as np
 import scipy.sparse as sp
 
-from .derivatives import STRATEGIES, column_groups, fd_derivative, fd_jacobian
+from .derivatives import STRATEGIES, column_groups, extrapolated, fd_derivative, fd_jacobian
 from .errors import ProblemDefinitionError
 from .realvalues import Where, real_array, real_matrix
 
@@ -232,6 +232,52 @@ class Problem:
             typical=typical,
             where=lambda: _point(self, u, p),
         )
+
+
+def extrapolated_derivatives(problem: Any, u: np.ndarray, p: Mapping[str, float], name: str):
+    """``(jacobian, param_jacobian for name)`` of ``problem`` at ``(u, p)``, the parts it
+    differences by central differences extrapolated to fourth order
+    (:func:`~.derivatives.extrapolated`, whatever the problem's own method); the
+    user's own functions and complex steps as they are. For locating points whose position
+    depends on the Jacobian itself, branch points above all: their parameter is off by the
+    Jacobian's error, to first order."""
+    if not isinstance(problem, Problem) or problem.derivatives == "complex":
+        return problem.jacobian(u, p), problem.param_jacobian(u, p, name)
+    method = "central"  # (also for a forward-differenced problem: accuracy is wanted here)
+    if problem.has_jacobian:
+        jac = problem.jacobian(u, p)
+    else:
+        jac = extrapolated(
+            lambda scale: fd_jacobian(
+                lambda v: problem._residual(v, p),
+                u,
+                method=method,
+                sparsity=problem.sparsity,
+                groups=problem._groups,
+                typical=problem._typical_u,
+                where=lambda: _point(problem, u, p),
+                scale=scale,
+            ),
+        )
+    if problem.has_param_jacobian:
+        return jac, problem.param_jacobian(u, p, name)
+
+    def f(value):
+        q = dict(p)
+        q[name] = value
+        return problem._residual(u, q)
+
+    dp = extrapolated(
+        lambda scale: fd_derivative(
+            f,
+            float(p[name]),
+            method=method,
+            typical=problem._typical_p.get(name, 1.0),
+            where=lambda: _point(problem, u, p),
+            scale=scale,
+        ),
+    )
+    return jac, dp
 
 
 def _point(problem: Problem, u, p) -> dict[str, Any]:

@@ -22,7 +22,13 @@ import scipy.sparse as sp
 
 from .errors import ProblemDefinitionError
 from .linalg import bordered, rounding_floor
-from .problem import Problem, as_matrix, as_vector, has_exact_jacobian
+from .problem import (
+    Problem,
+    as_matrix,
+    as_vector,
+    extrapolated_derivatives,
+    has_exact_jacobian,
+)
 from .scaling import out_of_range
 from .testfunctions import TestFunction, generic_tests
 
@@ -299,6 +305,28 @@ class BranchSystem(CurveSystem):
         except _OUT_OF_DOMAIN as exc:  # as for the residual: a matrix the corrector finds NaN
             _reraise_unless_domain(exc)
             j, fp = np.full(self._shapes[0], np.nan), np.full(self.n, np.nan)
+        return self._assembled(z, j, fp, row)
+
+    def accurate_jacobian(self, z):
+        """``∂G/∂z`` at ``z`` with the differenced parts extrapolated to a higher order
+        (:func:`~.problem.extrapolated_derivatives`); the Jacobian itself where the
+        derivatives are exact or cannot be differenced there (a non-finite value)."""
+        if self.derivatives_exact and not isinstance(self.problem, Problem):
+            return self.jacobian(z)
+        u = z[:-1]
+        p = dict(self.params)
+        p[self.free] = z[-1]
+        try:
+            j, fp = extrapolated_derivatives(self.problem, u, p, self.free)
+        except _OUT_OF_DOMAIN as exc:
+            _reraise_unless_domain(exc)
+            return self.jacobian(z)
+        a = self._assembled(z, j, fp, None)
+        data = a.data if hasattr(a, "tocsr") else a
+        return a if np.all(np.isfinite(data)) else self.jacobian(z)
+
+    def _assembled(self, z, j, fp, row):
+        """The user's ``(jacobian, param_jacobian)`` at ``z`` checked and bordered."""
         if type(fp) is not _NDARRAY or fp.dtype is not _FLOAT:
             fp = as_vector(fp, f"the param_jacobian (for {self.free!r})", lambda: self.values(z))
         if type(j) is not _NDARRAY or j.dtype is not _FLOAT:

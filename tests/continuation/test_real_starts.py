@@ -330,3 +330,31 @@ def test_a_step_across_a_pole_is_not_taken_for_a_bound(bounds):
     (fold,) = br.special("fold")
     assert fold.status == "converged" and abs(fold.values["b"] - 2e-4) <= 1e-10 * 2e-4
     assert np.max(np.abs(br["y"] + 1e-8 / br["y"] - br["b"])) <= 1e-10
+
+
+@pytest.mark.parametrize("derivatives", ["central", "forward"])
+def test_a_branch_point_located_with_differences_is_polished_to_the_tolerance(derivatives):
+    """A branch point's parameter is off by the Jacobian's error to first order. x ≈ 1000 in
+    (x − 1000)(p − (x − 1000)²): central steps of 6e-3 (relative to |x|) leave J off by
+    h² = 3.7e-5, and the pitchfork at p = 0 (exact) was 'converged' at p = 3.7e-5. Polished
+    with the Jacobian extrapolated to a higher order, within 1e-10."""
+    c = 1000.0
+    prob = Problem(
+        lambda u, p: [(u[0] - c) * (p["p"] - (u[0] - c) ** 2)],
+        ["x"],
+        {"p": -0.5},
+        derivatives=derivatives,
+    )
+    br = trace(prob, [c + 0.1], free="p", bounds={"p": (-1.0, 1.0)})
+    (bp,) = br.special("branch_point")
+    assert bp.status == "converged" and abs(bp.values["p"]) <= 1e-10
+
+
+def test_forward_differences_locate_the_turing_point_of_two_cells():
+    # brusselator_cells: B_c = (1 + 2 Dx)(1 + A²/(2 Dy)) = 1.8·1.5 = 2.7 (A = 2, Dx = 0.4,
+    # Dy = 4; cusp.examples.symmetric_cells); forward differences gave 2.69999995 before
+    from cusp.examples import brusselator_cells
+
+    ex = brusselator_cells(derivatives="forward")
+    (bp,) = ex.trace().special("branch_point")
+    assert bp.status == "converged" and abs(bp.values["B"] - 2.7) <= 1e-10 * 2.7
