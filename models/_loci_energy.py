@@ -24,6 +24,7 @@ A, B, C, D so that nothing cancels) are used instead of the quadrature (:func:`e
 
 from __future__ import annotations
 
+import inspect
 import math
 from collections.abc import Callable, Mapping
 from typing import Any
@@ -32,6 +33,8 @@ import numpy as np
 
 from cusp.continuation import ChainPoint, ConvergenceError, PointChain, points_at
 from cusp.continuation.options import RTOL_DEFAULT, quadrature_tol
+
+from ._point_errors import chain_errors, polish
 
 #: two Gauss-Legendre rules agreeing to this (relative) end the doubling, unless told
 #: otherwise: the quadrature tolerance of the default ``rtol`` (1e-13); a path or a locus
@@ -163,6 +166,17 @@ def _has_d(row: Mapping[str, float]) -> bool:
     return "D.q" in row and math.isfinite(row["D.q"])
 
 
+class EnergyError(ArithmeticError):
+    """The released energies could not be integrated on the legs (the message says why)."""
+
+
+def _accepts(func, name: str) -> bool:
+    try:
+        return name in inspect.signature(func).parameters
+    except (TypeError, ValueError):
+        return False
+
+
 def energies(
     levels,
     row: Mapping[str, float],
@@ -171,16 +185,19 @@ def energies(
     g_A: float,
     state_tol: float,
     quad_tol: float = QUAD_RTOL,
+    errors: Mapping[str, float] | None = None,
 ) -> dict[str, float]:
     """Snap-back (area ABD) and snap-through (area ABC) energies, nondimensional (times
-    μ0 F_N0 g_A for N·µm), with error estimates (``*_error``); NaN where D or C is missing
-    from ``row`` or the levels do not resolve the legs. ``state_tol``: the points' own error
-    (relative: the tolerance they were converged to). ``quad_tol``: the relative tolerance
-    of the quadratures (:func:`gauss_legendre`).
+    μ0 F_N0 g_A for N·µm), with error bounds (``*_error``); NaN where D or C is missing
+    from ``row``. ``state_tol``: the points' own error (relative: the tolerance they were
+    converged to); ``errors``: the absolute errors of the row's unknowns
+    (:func:`~._point_errors.chain_errors`), used instead where the levels take them.
+    ``quad_tol``: the relative tolerance of the quadratures. Raises :class:`EnergyError`
+    where the levels do not resolve the legs.
 
-    Levels with ``leg_areas`` (the sphere's, :mod:`cusp.models.protocol`) give the areas in
-    closed form, with their own error bound (``state_tol`` relative to each level's size);
-    the others are integrated (:func:`quadrature_energies`)."""
+    Levels with ``leg_areas`` (the sphere's, the rough surfaces', :mod:`cusp.models.protocol`)
+    give the areas with their own error bounds; the others are integrated along the legs
+    (:func:`quadrature_energies`)."""
     out = _no_energies()
     if not _has_d(row):
         return out
@@ -188,7 +205,12 @@ def energies(
     if closed is None:
         return quadrature_energies(levels, row, mu, mu0, g_A, state_tol, quad_tol)
     q_C = row.get("C.q", math.nan)  # NaN: no C (then no ABC)
-    abd, dc = closed(row["A.p"], row["A.q"], row["B.p"], row["D.q"], q_C, state_tol)
+    kw: dict[str, Any] = {}
+    if _accepts(closed, "quad_tol"):
+        kw["quad_tol"] = quad_tol
+    if errors is not None and _accepts(closed, "errors"):
+        kw["errors"] = tuple(errors.get(k, 0.0) for k in ("A.p", "A.q", "B.p", "C.q"))
+    abd, dc = closed(row["A.p"], row["A.q"], row["B.p"], row["D.q"], q_C, state_tol, **kw)
     unit = (mu / mu0) * (mu / g_A)  # ∫ T ds [µm] -> ∫ t dg (LegCurves)
     if math.isfinite(abd[0]):
         out["snap_back"] = unit * abd[0]
@@ -208,8 +230,10 @@ def quadrature_energies(
     g_A: float,
     state_tol: float,
     quad_tol: float = QUAD_RTOL,
+    errors: Mapping[str, float] | None = None,
 ) -> dict[str, float]:
-    """:func:`energies` by quadrature on the legs (module docstring), for any levels.
+    """:func:`energies` by quadrature on the legs (module docstring), for any levels
+    (``errors`` is not used: the points' error is taken as ``state_tol``).
 
     The estimate adds to the quadrature's the rounding of the gap and the effect of the
     points' own error (``state_tol``, relative to max(1, |level|)), both of order F·Δg: an
@@ -244,42 +268,61 @@ def quadrature_energies(
             out["snap_through_error"] = (
                 abd_err + extra_err + state_tol * size * abs(t_A) * (g_C - 1.0)
             )
-    except (ArithmeticError, ValueError):
-        pass  # left NaN: the levels do not resolve this leg (the caller says so)
+    except (ArithmeticError, ValueError) as exc:
+        raise EnergyError(f"the legs are not resolved between the points: {exc}") from exc
     return out
 
 
-def path_energies(model, A, B, C, D, quad_tol: float = QUAD_RTOL):
-    """Areas ABD and ABC [N·µm] of a path (:class:`~cusp.models.ContactLoss`, its points
-    ``A``...``D`` nondimensional, C and D None where missing) and their error estimates,
-    integrated on the legs AB and BC written explicitly in the levels between the points,
-    first polished to rounding (:func:`energies`, to ``quad_tol``); with a message where an
-    estimate exceeds :func:`flag_rtol` of its energy (a tiny reduction: the area shrinks
-    like ΔF_N², the rounding of the legs like ΔF_N). Returns (energies, errors, messages)."""
-    energy: dict[str, float | None] = {"snap_back": None, "snap_through": None}
-    error: dict[str, float | None] = {"snap_back": None, "snap_through": None}
-    notes: list[str] = []
-    if D is None:  # no D, hence no C either
-        return energy, error, notes
-    pts = {"A": A, "B": B, "D": D} | ({"C": C} if C is not None else {})
+def path_points(model, A, B, C, D):
+    """The points ``A``...``D`` of a path (:class:`~cusp.models.ContactLoss`, nondimensional,
+    C and D None where missing) as one chain polished to rounding, with bounds on the
+    absolute errors of its unknowns (:mod:`cusp.models._point_errors`). Returns (chain,
+    row, errors), ``row`` the polished unknowns (``"B.t"``, ...) and parameters."""
+    pts = {"A": A, "B": B} | ({"D": D} if D is not None else {}) | ({"C": C} if C else {})
     params = {"mu": model.mu0, "m_B": model.m_B}
     chain = path_chain(model, params, A["q"], "".join(pts))
     row = {f"{x}.{k}": v for x, pt in pts.items() for k, v in pt.items()} | params
-    row = polish_row(chain, row)
-    e = energies(model.levels, row, model.mu0, model.mu0, model.g_A, 64.0 * _EPS, quad_tol)
+    row = polish(chain, row)
+    return chain, row, chain_errors(model, chain, row)
+
+
+def path_energies(model, row, errors, quad_tol: float = QUAD_RTOL):
+    """Areas ABD and ABC [N·µm] of a path (:class:`~cusp.models.ContactLoss`) from its
+    polished points (``row``, ``errors``: :func:`path_points`) and their error bounds
+    (:func:`energies`, to ``quad_tol``); with a message where a bound exceeds
+    :func:`flag_rtol` of its energy, or where an energy whose point exists could not be
+    integrated. Returns (energies, errors, messages)."""
+    energy: dict[str, float | None] = {"snap_back": None, "snap_through": None}
+    error: dict[str, float | None] = {"snap_back": None, "snap_through": None}
+    notes: list[str] = []
+    if "D.q" not in row:  # no D, hence no C either
+        return energy, error, notes
     unit = model.scales["t"] * model.scales["g"]
+    try:
+        e = energies(
+            model.levels, row, model.mu0, model.mu0, model.g_A, 64.0 * _EPS, quad_tol, errors
+        )
+    except EnergyError as exc:
+        e = _no_energies()
+        notes.append(f"the released energies are not given: {exc}")
     flag = flag_rtol(quad_tol)
+    exists = {"snap_back": True, "snap_through": "C.q" in row}
     for kind in energy:
         if not math.isfinite(e[kind]):
+            if exists[kind] and not notes:
+                notes.append(
+                    f"the {kind.replace('_', '-')} energy is not given: its integral is not "
+                    f"finite ({e[kind]!r}) although its landing point exists"
+                )
             continue
         value, err = float(e[kind] * unit), float(e[f"{kind}_error"] * unit)
         energy[kind], error[kind] = value, err
         if err > flag * abs(value):
             notes.append(
                 f"the {kind.replace('_', '-')} energy's error bound is {err / abs(value):.1e}"
-                f" relative ({err:.3g} N·µm), above {flag:g}: the area is small "
-                f"against the rounding of the legs (a bound: the actual error is often "
-                f"far smaller)"
+                f" relative ({err:.3g} N·µm), above {flag:g}: the points it is integrated "
+                f"between are resolved only so far at these inputs (a bound: the actual "
+                f"error is often smaller)"
             )
     return energy, error, notes
 

@@ -83,14 +83,17 @@ def moment(surface, k: float, h: np.ndarray) -> np.ndarray:
     return out.reshape(h.shape)
 
 
-def _gauss_jacobi(m: int):
+def _gauss_jacobi(m: int, k: float):
     from scipy.special import roots_jacobi
 
-    x, w = roots_jacobi(m, 0.0, 1.5)  # weight (1 + x)^{3/2} on [−1, 1]
-    return 0.5 * (1.0 + x), w * 2.0**-2.5  # ∫_0^1 v^{3/2} f(v) dv ≈ Σ w f(v)
+    if k == 0.0:
+        x, w = np.polynomial.legendre.leggauss(m)
+    else:
+        x, w = roots_jacobi(m, 0.0, k)  # weight (1 + x)^k on [−1, 1]
+    return 0.5 * (1.0 + x), w * 2.0 ** (-k - 1.0)  # ∫_0^1 v^k f(v) dv ≈ Σ w f(v)
 
 
-_GJ: dict[int, tuple[np.ndarray, np.ndarray]] = {}
+_GJ: dict[tuple[int, float], tuple[np.ndarray, np.ndarray]] = {}
 
 
 def _pdf_values(pdf, z: np.ndarray) -> np.ndarray:
@@ -104,36 +107,38 @@ def _pdf_values(pdf, z: np.ndarray) -> np.ndarray:
     return np.array([float(pdf(float(x))) for x in z])
 
 
-def _slip_short(surface, h: float, g: float) -> float | None:
-    """S on a short interval by Gauss–Jacobi (weight v^{3/2}); None if 20 and 30 nodes disagree.
+def _slip_short(surface, h: float, g: float, k: float = 1.5) -> float | None:
+    """∫_h^{h+g} (z − h)^k Φ dz on a short interval by Gauss–Jacobi (weight v^k); None if 20
+    and 30 nodes disagree.
 
     QUADPACK's QAWS returns poor error estimates on intervals of a few ulp, where this rule
     is exact to rounding for any Φ smooth across [h, h + g].
     """
-    if not _GJ:
-        _GJ[20], _GJ[30] = _gauss_jacobi(20), _gauss_jacobi(30)
     vals = []
     for m in (20, 30):
-        v, w = _GJ[m]
+        if (m, k) not in _GJ:
+            _GJ[m, k] = _gauss_jacobi(m, k)
+        v, w = _GJ[m, k]
         vals.append(float(np.dot(w, _pdf_values(surface.pdf, h + g * v))))
     a, b = vals
     if not (math.isfinite(a) and abs(a - b) <= 2e-15 * abs(b)):
         return None
-    return g**2.5 * b
+    return g ** (k + 1.0) * b
 
 
-def slip_integral(surface, h: np.ndarray, g: np.ndarray) -> np.ndarray:
-    """S = ∫_h^{h+g} (z − h)^{3/2} Φ dz elementwise [µm^{3/2}]."""
+def slip_integral(surface, h: np.ndarray, g: np.ndarray, k: float = 1.5) -> np.ndarray:
+    """∫_h^{h+g} (z − h)^k Φ dz elementwise [µm^{k+1}] (k = 3/2: S of Eq 10; k = 1: the
+    slipping summits' share of the real contact area; k = 0: their share of the summits)."""
     lo, hi = surface.support
     out = np.empty(h.shape)
     for i, (x, y) in enumerate(zip(h.ravel(), g.ravel(), strict=True)):
         a, b = max(x, lo), min(x + y, hi)
-        if not y > 0.0:
+        if not (y > 0.0 and a < b):
             out.flat[i] = 0.0
             continue
         smooth = a == x and b == x + y and not any(a < p < b for p in surface.breakpoints)
-        short = _slip_short(surface, float(x), float(y)) if smooth else None
-        out.flat[i] = short if short is not None else _weighted(surface, 1.5, x, a, b)
+        short = _slip_short(surface, float(x), float(y), k) if smooth else None
+        out.flat[i] = short if short is not None else _weighted(surface, k, x, a, b)
     return out
 
 

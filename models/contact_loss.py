@@ -78,9 +78,11 @@ from typing import Any
 import numpy as np
 
 from cusp.continuation import Branch, ContinuationOptions, Problem, points_at, trace
+from cusp.continuation.options import point_tol
 
-from ._loci_energy import path_energies
+from ._loci_energy import path_energies, path_points
 from ._loci_energy import polish_point as _polish
+from ._point_errors import point_bounds, point_messages
 from .errors import ModelParameterError, check_positive
 from .protocol import (
     ContactLevels,
@@ -128,8 +130,10 @@ class ContactLossResult:
     ``points``: ``"O"``, ``"A"``, ``"B"``, ``"C"``, ``"D"`` → ``{"g_T" [µm], "F_T" [N],
     "F_N" [N], "A_SL", and the two levels (d, d0 [µm] or a, c [µm])}``, or None for a point
     that does not exist. ``energy``: ``snap_back`` (area ABD) and ``snap_through`` (area
-    ABC) [N·µm], None when the landing point does not exist, with the quadrature error
-    estimates in ``energy_error``. ``folds``: turning points of the controls g_T
+    ABC) [N·µm], None when the landing point does not exist, with their error
+    bounds in ``energy_error``; ``point_errors``: bounds on the absolute errors of the points
+    quantities (``{"B": {"F_T": ...}}``, :mod:`cusp.models._point_errors`; a message names
+    those above 1e-12 relative). ``folds``: turning points of the controls g_T
     (snap-back) and F_T (snap-through) along the path (the corners A and B, and any smooth
     fold the tracer located inside a leg). ``legs``: the traced branches (nondimensional, see
     the module docstring). ``gross_sliding``: which control ends in gross sliding.
@@ -148,6 +152,7 @@ class ContactLossResult:
     point_rows: dict[str, tuple[str, int]] = field(default_factory=dict)
     stats: dict[str, dict[str, Any]] = field(default_factory=dict)
     levels: Any = None
+    point_errors: dict[str, dict[str, float]] = field(default_factory=dict)
 
     def path(self, leg: str | None = None) -> dict[str, np.ndarray]:
         """Physical columns along the whole path (or one leg), with a ``leg`` label column.
@@ -395,7 +400,9 @@ class ContactLoss:
             [0.0, 0.0, 0.0, L.p0, L.p0],
             free="g",
             bounds={"g": (-math.inf, 1.0)},
-            scales={"m": 1.0},  # F_N/F_N0's size (m, its reduction, is 0 on OA)
+            # F_N/F_N0's size (m, its reduction, is 0 on OA); p stays at p0 and Â_SL moves
+            # like the slip squared at O: sizes from the start's tangent would be its noise
+            scales={"m": 1.0, "p": 1.0, "A_SL": 1.0},
             monitor=["t", "A_SL"],
             options=o,
         )
@@ -408,7 +415,9 @@ class ContactLoss:
             [A[v] for v in prob_ab.unknowns],
             free="m",
             bounds={"m": (-math.inf, self.m_B)},
-            scales={"m": 1.0},
+            # Â_SL grows by ~ΔA_r/A_r ~ m_B on AB, from its value at A (~x_A² at a small slip
+            # x_A, where a size taken at A made the leg take hundreds of steps)
+            scales={"m": 1.0, "A_SL": max(abs(A["A_SL"]), self.m_B, 1e-150)},
             monitor=["g", "t", "A_SL"],
             options=o,
         )
@@ -440,14 +449,34 @@ class ContactLoss:
         _require_end(bc, "BC", "F_T = F_A" if c_exists else "g_T = g_A")
         C = _polish(prob_bc, bc, "t", A["t"], o) if c_exists else None
         D = _polish(prob_bc, bc, "g", 1.0, o) if d_exists else None
-        messages = self._gross_sliding_messages(A["t"], c_exists, d_exists)
         legs = {"OA": oa, "AB": ab, "BC": bc}
-        energy, error, notes = path_energies(self, A, B, C, D, o.quad_tol)
-        messages += notes
-        raw = {"O": oa.point(0), "A": A, "B": B, "C": C, "D": D}
+        problems = {"OA": prob, "AB": prob_ab, "BC": prob_bc}
+        return self._result(legs, problems, {"A": A, "B": B, "C": C, "D": D}, o)
+
+    def _result(self, legs, problems, named, o: ContinuationOptions) -> ContactLossResult:
+        """The result of :meth:`run` from its traced legs and their named points (``named``:
+        A, B, C, D nondimensional, None where missing): the points polished together and
+        their error bounds (:mod:`._point_errors`), the energies, the folds, the messages."""
+        L = self.levels
+        c_exists, d_exists = named["C"] is not None, named["D"] is not None
+        messages = self._gross_sliding_messages(named["A"]["t"], c_exists, d_exists)
+        _, row, errors = path_points(self, *(named[x] for x in "ABCD"))
+        energy, error, notes = path_energies(self, row, errors, o.quad_tol)
+        raw = {"O": legs["OA"].point(0)} | {
+            x: None if pt is None else {v: row[f"{x}.{v}"] for v in VARIABLES}
+            for x, pt in named.items()
+        }
         points = {
             k: None if v is None else _point(v, self.scales, L.names, L) for k, v in raw.items()
         }
+        point_err = {
+            x: point_bounds(self, v, {k: errors[f"{x}.{k}"] for k in VARIABLES})
+            for x, v in raw.items()
+            if v is not None and x != "O"
+        }
+        floors = dict.fromkeys(L.names, float(L.scale))  # the levels: against their unit
+        messages += point_messages(points, point_err, max(point_tol(o.rtol), 1e-12), floors)
+        messages += notes
         return ContactLossResult(
             points=points,
             energy=energy,
@@ -458,10 +487,11 @@ class ContactLoss:
             messages=messages,
             level_names=L.names,
             scales=self.scales,
-            problems={"OA": prob, "AB": prob_ab, "BC": prob_bc},
+            problems=problems,
             point_rows=_point_rows(legs, c_exists, d_exists),
             stats={name: _leg_stats(br) for name, br in legs.items()},
             levels=L,
+            point_errors=point_err,
         )
 
     def _gross_sliding_messages(self, t_A: float, c_exists: bool, d_exists: bool) -> list[str]:

@@ -21,8 +21,10 @@ import math
 import numpy as np
 from scipy import special as sc
 
+from ._leg_areas import rough_leg_areas
 from .errors import ModelParameterError, check_finite_array, check_ratio
-from .rough import RoughSurface, slip_in_mu_lambda
+from .rough import RoughSurface
+from .rough_levels import slip_in_mu_lambda
 
 __all__ = ["ExponentialRoughSurface", "ExponentialLevels"]
 
@@ -76,6 +78,31 @@ class ExponentialRoughSurface(RoughSurface):
     def load_integral_difference(self, h, g):
         h, g = self._hg(h, g)
         return self.load_integral(h) * -np.expm1(-g / self.sigma)
+
+    def load_integral_second_derivative(self, h):
+        """d²J/dh² = J/σ*²  [µm^{−1/2}]."""
+        return self.load_integral(h) / self.sigma**2
+
+    def log_load_integral_second_derivative(self, h):
+        return self.log_load_integral(h) - 2.0 * math.log(self.sigma)
+
+    def area_integral_difference(self, h, g):
+        h, g = self._hg(h, g)
+        return self.area_integral(h) * -np.expm1(-g / self.sigma)
+
+    def tail_difference(self, h, g):
+        h, g = self._hg(h, g)
+        return self.tail_probability(h) * -np.expm1(-g / self.sigma)
+
+    def slip_area_integral(self, h, g):
+        """∫_h^{h+g} (z − h) Φ dz = A(h) P(2, g/σ*) [µm] (P the regularized incomplete gamma
+        function)."""
+        h, g = self._hg(h, g)
+        return self.area_integral(h) * sc.gammainc(2.0, g / self.sigma)
+
+    def integral_rtol(self, h) -> float:
+        """Closed forms: a few ulp."""
+        return 16.0 * float(np.finfo(float).eps)
 
     def slip_load_integral(self, h, g):
         h, g = self._hg(h, g)
@@ -153,19 +180,25 @@ class ExponentialLevels:
     p = d/u, q = d0/u, every relation in closed form.
 
     The unit u = σ*·c [µm], c = max(1, x_A) with x_A = g_A/(μλ) the stick-threshold gap at A
-    over σ*, keeps q − p of order one at A however large x_A is (small μ or σ*). With
-    x = c(q − p) = g_N0/σ* and J ∝ e^{−d/σ*}:
+    over σ*, keeps q − p of order one at A however large x_A is (small μ or σ*), and the levels
+    are measured from d_A, the separation under F_N0 (the datum d_A = 0 without a load
+    scale), so that small differences keep their digits. With x = c(q − p) = g_N0/σ* and
+    J ∝ e^{−d/σ*}:
 
-    * log(F_N/F_N0) = −c(p − p0)             (Eq 11)
+    * log(F_N/F_N0) = −cp                    (Eq 11)
     * F̂_T = 1 − e^{−x}                       (Eq 9)
     * g_T = μλ(d0 − d)/σ* = μ (λc)(q − p)    (Eqs 4–5)
     * Â_ST = e^{−x}(1 + x)                   (Eq 15)
-    * A_r/A_r(F_N0) = e^{−c(p − p0)}         (Eq 13, A_r ∝ F_N)
+    * A_r/A_r(F_N0) = e^{−cp}                (Eq 13, A_r ∝ F_N)
 
-    and the surface never slides as a whole at finite slip (``slip_limit`` = inf).
+    and the surface never slides as a whole at finite slip (``slip_limit`` = inf). The path
+    reports d = d_A + up and d0 = d_A + uq [µm] (``lengths``).
     """
 
     names = ("d", "d0")
+    p0 = 0.0
+    #: the closed forms' relative error (the bounds of the path's points and energies)
+    relative_error = 16.0 * float(np.finfo(float).eps)
 
     def __init__(self, surf: ExponentialRoughSurface, F_N0: float, g_A: float) -> None:
         x_A = slip_in_mu_lambda(surf, g_A)
@@ -176,11 +209,19 @@ class ExponentialLevels:
         self.lam = surf.lam * self.c
         # the response is invariant under shifts of the mean plane: without a load scale the
         # datum is put at d = 0 under F_N0
-        self.p0 = float(surf.separation(F_N0)) / self.scale if surf.has_load_scale else 0.0
+        self.d_A = float(surf.separation(F_N0)) if surf.has_load_scale else 0.0
+        #: a bound on the error of d_A [µm] (its closed form, a few ulp of its terms; the
+        #: datum d_A = 0 is exact)
+        eps = float(np.finfo(float).eps)
+        self.origin_error = 8.0 * eps * (abs(self.d_A) + surf.sigma) if surf.has_load_scale else 0.0
+
+    def lengths(self, p, q):
+        """d = d_A + u p and d0 = d_A + u q [µm]."""
+        return self.d_A + self.scale * p, self.d_A + self.scale * q
 
     def log_normal_load(self, p: float) -> tuple[float, float]:
-        """log(F_N/F_N0) = −c(p − p0) and its derivative (Eq 11)."""
-        return -self.c * (p - self.p0), -self.c
+        """log(F_N/F_N0) = −cp and its derivative (Eq 11)."""
+        return -self.c * p, -self.c
 
     def tangential_ratio(self, p: float, q: float) -> tuple[float, float, float]:
         """F̂_T = 1 − e^{−c(q − p)} and its derivatives (Eq 9)."""
@@ -211,18 +252,34 @@ class ExponentialLevels:
         return value, -c * x * e, c * x * e
 
     def area_loss(self, p: float) -> tuple[float, float]:
-        """1 − A_r/A_r(F_N0) = −expm1(−c(p − p0)) and its derivative."""
-        d = -self.c * (p - self.p0)
+        """1 − A_r/A_r(F_N0) = −expm1(−cp) and its derivative."""
+        d = -self.c * p
         return -math.expm1(d), self.c * math.exp(d)
 
     def area_ratio(self, p: float) -> tuple[float, float]:
-        """A_r/A_r(F_N0) = e^{−c(p − p0)} and its derivative (Eq 13)."""
-        r = math.exp(-self.c * (p - self.p0))
+        """A_r/A_r(F_N0) = e^{−cp} and its derivative (Eq 13)."""
+        r = math.exp(-self.c * p)
         return r, -self.c * r
 
     def slip_limit(self, p: float) -> float:
         """inf: a rough surface does not slide as a whole at finite slip."""
         return math.inf
+
+    def curvature(self, y: np.ndarray) -> np.ndarray:
+        """u² J''(d_A + u y)/J(d_A) = c² e^{−cy} (the integrand of :meth:`leg_areas`)."""
+        return self.c**2 * np.exp(-self.c * np.asarray(y, dtype=float))
+
+    def slope(self, y: np.ndarray) -> np.ndarray:
+        """−u J'(d_A + u y)/J(d_A) = c e^{−cy} (the integrand of :meth:`leg_areas`)."""
+        return self.c * np.exp(-self.c * np.asarray(y, dtype=float))
+
+    def leg_areas(self, p_A, q_A, p_B, q_D, q_C, level_rtol, *, quad_tol=1e-13, errors=None):
+        """The released areas ABD and ABC − ABD as ∫ T ds between the legs [µm], with error
+        bounds (:func:`cusp.models._leg_areas.rough_leg_areas`: positive integrands in the
+        differences between the levels; the gap between the legs, integrated before, lost
+        its digits at small μ: the snap-back energy of Fig 9's locus was 0.0 below
+        μ = 1.2e-16, where it is 28.8 μ² N·µm)."""
+        return rough_leg_areas(self, p_A, q_A, p_B, q_C, level_rtol, quad_tol, errors)
 
 
 def _check_unused_load(normal_load, separation) -> None:

@@ -19,10 +19,12 @@ import numpy as np
 from scipy import special as sc
 
 from .errors import check_finite_array
-from .gw import gw_difference, gw_integral, log_gw_integral
+from .gw import gw_difference, gw_integral, log_gw_integral, mills_ratios, normal_pdf
 from .rough import RoughSurface
 
 __all__ = ["GaussianRoughSurface"]
+
+_EPS = float(np.finfo(float).eps)
 
 
 class GaussianRoughSurface(RoughSurface):
@@ -61,6 +63,23 @@ class GaussianRoughSurface(RoughSurface):
         t = h / self.sigma
         return -1.5 / self.sigma * np.exp(log_gw_integral(0.5, t) - log_gw_integral(1.5, t))
 
+    def integral_rtol(self, h) -> float:
+        """Relative error bound of the GW integrals near h [µm]: 3e-14 (measured ≤ 2e-14 for
+        F_n and their differences), plus the rounding of h/σ* right of the mean, where
+        F_n(t) ~ φ(t) turns ε|t| into ε t² relative."""
+        t = max(float(h) / self.sigma, 0.0)
+        return 3e-14 + 16.0 * _EPS * (1.0 + t) ** 2
+
+    def load_integral_second_derivative(self, h):
+        """d²J/dh² = (3/4) σ*^{−1/2} F_{−1/2}(h/σ*)  [µm^{−1/2}] (> 0)."""
+        h = check_finite_array("h", h, unit="µm")
+        return 0.75 / math.sqrt(self.sigma) * gw_integral(-0.5, h / self.sigma)
+
+    def log_load_integral_second_derivative(self, h):
+        """log d²J/dh² (finite far in the tail, where J'' underflows)."""
+        h = check_finite_array("h", h, unit="µm")
+        return math.log(0.75) - 0.5 * math.log(self.sigma) + log_gw_integral(-0.5, h / self.sigma)
+
     def area_integral(self, h):
         """A(h) = σ* F_1(h/σ*)  [µm]."""
         h = check_finite_array("h", h, unit="µm")
@@ -73,6 +92,22 @@ class GaussianRoughSurface(RoughSurface):
     def load_integral_difference(self, h, g):
         h, g = self._hg(h, g)
         return self.sigma**1.5 * gw_difference(1.5, h / self.sigma, g / self.sigma)
+
+    def area_integral_difference(self, h, g):
+        """A(h) − A(h + g) = σ* [F_1(t) − F_1(t + x)] [µm], without cancellation."""
+        h, g = self._hg(h, g)
+        return self.sigma * gw_difference(1, h / self.sigma, g / self.sigma)
+
+    def tail_difference(self, h, g):
+        """∫_h^{h+g} Φ dz = ∫_t^{t+x} φ (dimensionless), without cancellation."""
+        h, g = self._hg(h, g)
+        return _phi_moment(0, h / self.sigma, g / self.sigma)
+
+    def slip_area_integral(self, h, g):
+        """∫_h^{h+g} (z − h) Φ dz = σ* ∫_0^x v φ(t + v) dv [µm] (the slipping summits' share
+        of the real contact area, Eq 14), without cancellation."""
+        h, g = self._hg(h, g)
+        return self.sigma * _phi_moment(1, h / self.sigma, g / self.sigma)
 
     def slip_load_integral(self, h, g):
         """S = ∫_h^{h+g} (z − h)^{3/2} Φ dz  [µm^{3/2}], by quadrature with the (z − h)^{3/2}
@@ -90,3 +125,53 @@ class GaussianRoughSurface(RoughSurface):
         if np.any(direct):
             out[direct] = super().stick_load_integral(h[direct], g[direct])
         return out
+
+
+#: Gauss–Legendre rule of the short φ-moments, and the exponent range it integrates exactly
+_GL_X, _GL_W = np.polynomial.legendre.leggauss(20)
+_GL_RANGE = 12.0
+
+
+def _phi_moment(k: int, t, x) -> np.ndarray:
+    """∫_0^x v^k φ(t + v) dv for k ∈ {0, 1} and x ≥ 0, to a few ulp wherever it is a normal
+    number.
+
+    φ(t + v) = φ(t) exp(E), E = −tv − v²/2: where E spans at most 12 on [0, x], 20-point
+    Gauss–Legendre in v (exact to rounding); otherwise the closed forms, each taken where
+    it does not cancel: k = 0, Φ(t + x) − Φ(t) left of 0, Q(t) − Q(t + x) otherwise; k = 1,
+    F_1(t) − F_1(t + x) − x F_0(t + x) where t + x > 0, and left of 0 (where that cancels:
+    both terms ≈ |t|) φ(t + x)[x G_0 − G_1](|t + x|) + φ(t) G_1(|t|) with the Mills ratio
+    G_0 = Φ(−z)/φ(z) and G_1 = 1 − z G_0 (a continued fraction, as in :mod:`.gw`)."""
+    t, x = np.broadcast_arrays(np.asarray(t, dtype=float), np.asarray(x, dtype=float))
+    t1, x1 = np.atleast_1d(t).astype(float), np.atleast_1d(x).astype(float)
+    e_end = -x1 * (t1 + 0.5 * x1)
+    e_top = np.where((t1 < 0.0) & (-t1 < x1), 0.5 * t1 * t1, np.maximum(e_end, 0.0))
+    span = e_top - np.minimum(e_end, 0.0)
+    out = np.empty(t1.shape)
+    short = span <= _GL_RANGE
+    if np.any(short):
+        ts, xs = t1[short], x1[short]
+        v = 0.5 * xs[:, None] * (1.0 + _GL_X)
+        f = np.exp(-v * (ts[:, None] + 0.5 * v)) * (v if k else 1.0)
+        out[short] = normal_pdf(ts) * 0.5 * xs * (f @ _GL_W)
+    long = ~short
+    if np.any(long):
+        out[long] = _phi_moment_long(k, t1[long], x1[long])
+    return out.reshape(t.shape)
+
+
+def _phi_moment_long(k: int, t: np.ndarray, x: np.ndarray) -> np.ndarray:
+    """:func:`_phi_moment` where φ varies by more than e^12 on the interval."""
+    top = t + x
+    left = top <= 0.0
+    if k == 0:
+        q0 = gw_integral(0, np.where(left, -top, t))
+        q1 = gw_integral(0, np.where(left, -t, top))
+        return q0 - q1  # Φ(t + x) − Φ(t) = Q(−t − x) − Q(−t) left of 0
+    out = gw_integral(1, t) - gw_integral(1, top) - x * gw_integral(0, top)
+    if np.any(left):
+        z1, z0 = -top[left], -t[left]
+        g0_1, g1_1 = mills_ratios(z1)
+        g1_0 = mills_ratios(z0)[1]
+        out[left] = normal_pdf(z1) * (x[left] * g0_1 - g1_1) + normal_pdf(z0) * g1_0
+    return out

@@ -10,7 +10,7 @@ Method (accuracy and speed measured in ``docs/benchmarks/gw.md``):
 * n = 1: F_1 = φ(t) + |t| Φ(|t|) for t < 0 (two positive terms). For t ≥ 0,
   F_1 = φ(t) G_1(t), G_1 = 1 − t G_0 with G_0 = √(π/2) erfcx(t/√2) for t < 2, and the
   continued fraction G_1/G_0 = 1/(t + 2/(t + 3/(t + …))) for t ≥ 2, where 1 − t G_0 cancels.
-* n = 1/2, 3/2: substituting s = t + x² gives an entire, even integrand,
+* n = −1/2, 1/2, 3/2: substituting s = t + x² gives an entire, even integrand,
   F_n(t) = ∫_ℝ x^{2n+1} φ(t + x²) dx, for which the trapezoidal rule converges geometrically.
   A fixed number of nodes spans the region where the integrand exceeds e^{-50} of its peak
   (the peak sits at x = 0 for t ≥ 0 and near x = √−t for t < 0), and the peak factor is taken
@@ -31,7 +31,7 @@ import math
 import numpy as np
 from scipy import special as sc
 
-__all__ = ["gw_integral", "log_gw_integral", "gw_difference"]
+__all__ = ["gw_integral", "log_gw_integral", "gw_difference", "normal_pdf", "mills_ratios"]
 
 _LOG_SQRT_2PI = 0.5 * math.log(2.0 * math.pi)
 _SQRT_PI_2 = math.sqrt(math.pi / 2.0)
@@ -48,9 +48,13 @@ _K_CF = 160
 _GL_X, _GL_W = np.polynomial.legendre.leggauss(20)
 #: values per block (bounds the (block, M+1) work arrays to ~0.4 MB, cache friendly)
 _BLOCK = 1024
+#: below this t, F_n (n half-integer) by its expansion in 1/t² (:func:`_far_left`): the
+#: trapezoid forms x² + t there, which rounds to ε|t| (1.3e-11 relative at t = −3.4e5)
+_T_LEFT = -20.0
+_K_LEFT = 14
 
 
-def _check_order(n: float, allowed=(0, 0.5, 1, 1.5)) -> float:
+def _check_order(n: float, allowed=(-0.5, 0, 0.5, 1, 1.5)) -> float:
     if n not in allowed:
         from .errors import ModelParameterError
 
@@ -111,6 +115,23 @@ def _trapezoid_sum(t: np.ndarray, p: int) -> np.ndarray:
     return (2.0 * f[..., 1:].sum(axis=-1) + f[..., 0]) * h[..., 0]
 
 
+def _far_left_series(n: float, t: np.ndarray) -> np.ndarray:
+    """Σ_k C(n, 2k) (2k − 1)!! t^{−2k}, so that F_n(t) = |t|^n Σ for t ≤ −20.
+
+    F_n(t) = E[(S + |t|)^n; S > t] for a standard normal S; for t ≤ −20 the mass of S below
+    t is < 1e-87, and the binomial series of (1 + S/|t|)^n averaged over S (odd moments
+    vanish, E S^{2k} = (2k − 1)!!) is asymptotic with terms below 1e-18 by k = 14."""
+    inv2 = 1.0 / (t * t)
+    total = np.ones_like(t)
+    term = np.ones_like(t)
+    coef = 1.0  # C(n, 2k) (2k − 1)!!, from the previous one
+    for k in range(1, _K_LEFT):
+        coef *= (n - 2 * k + 2) * (n - 2 * k + 1) / ((2 * k) * (2 * k - 1)) * (2 * k - 1)
+        term = term * inv2
+        total = total + coef * term
+    return total
+
+
 def _g1(t: np.ndarray, g0: np.ndarray) -> np.ndarray:
     """G_1 = F_1/φ = 1 − t G_0, by a continued fraction where that cancels (t ≥ 2)."""
     g1 = 1.0 - t * g0
@@ -124,8 +145,23 @@ def _g1(t: np.ndarray, g0: np.ndarray) -> np.ndarray:
     return g1
 
 
+def normal_pdf(t) -> np.ndarray:
+    """φ(t) = exp(−t²/2)/√(2π), with t² split exactly (no ε t² relative error)."""
+    t = np.asarray(t, dtype=float)
+    return _exp_minus_half_square(t) * _INV_SQRT_2PI
+
+
+def mills_ratios(z) -> tuple[np.ndarray, np.ndarray]:
+    """(G_0, G_1) at z ≥ 0: G_0 = Q(z)/φ(z) = √(π/2) erfcx(z/√2) (the Mills ratio) and
+    G_1 = F_1(z)/φ(z) = 1 − z G_0, the latter by a continued fraction where it cancels."""
+    z = np.atleast_1d(np.asarray(z, dtype=float))
+    g0 = _SQRT_PI_2 * sc.erfcx(z * _INV_SQRT2)
+    return g0, _g1(z, g0)
+
+
 def log_gw_integral(n: float, t) -> np.ndarray:
-    """log F_n(t) for n ∈ {0, 1/2, 1, 3/2}; finite for every finite t (no underflow)."""
+    """log F_n(t) for n ∈ {−1/2, 0, 1/2, 1, 3/2}; finite for every finite t (no underflow).
+    (F_{−1/2} = −2 dF_{1/2}/dt: (4/3)σ*^{1/2} J'' of a Gaussian surface.)"""
     n = _check_order(n)
     t = _finite(t)
     if n == 0:
@@ -140,44 +176,70 @@ def log_gw_integral(n: float, t) -> np.ndarray:
         out[neg] = np.log(np.exp(-0.5 * tn * tn - _LOG_SQRT_2PI) - tn * sc.ndtr(-tn))
     else:
         tp = np.maximum(t1, 0.0)
-        out = np.log(_trapezoid_sum(t1, int(2 * n + 1))) - _LOG_SQRT_2PI - 0.5 * tp * tp
+        far = t1 <= _T_LEFT
+        out = np.empty(t1.shape)
+        near = ~far
+        out[near] = (
+            np.log(_trapezoid_sum(t1[near], int(2 * n + 1))) - _LOG_SQRT_2PI - 0.5 * tp[near] ** 2
+        )
+        tf = t1[far]
+        out[far] = n * np.log(-tf) + np.log(_far_left_series(n, tf))
     return out.reshape(t.shape)
 
 
 def gw_integral(n: float, t) -> np.ndarray:
-    """F_n(t) = ∫_t^∞ (s − t)^n φ(s) ds for n ∈ {0, 1/2, 1, 3/2} (dimensionless)."""
+    """F_n(t) = ∫_t^∞ (s − t)^n φ(s) ds for n ∈ {−1/2, 0, 1/2, 1, 3/2} (dimensionless)."""
     n = _check_order(n)
     t = _finite(t)
     t1 = np.atleast_1d(t)
     if n == 0:
-        scaled = _exp_minus_half_square(t1) * (_INV_SQRT_2PI * _SQRT_PI_2)
-        out = np.where(t1 > 1.0, scaled * sc.erfcx(t1 * _INV_SQRT2), sc.ndtr(-t1))
+        out = sc.ndtr(-t1)
+        right = t1 > 1.0  # (erfcx overflows far left: evaluated right of 1 only)
+        tr = t1[right]
+        out[right] = (
+            _exp_minus_half_square(tr) * (_INV_SQRT_2PI * _SQRT_PI_2) * sc.erfcx(tr * _INV_SQRT2)
+        )
     elif n == 1:
         # t < 0: φ(t) + |t| Φ(|t|), two positive terms (erfcx(t/√2) would carry e^{t²/2})
         phi = _exp_minus_half_square(t1) * _INV_SQRT_2PI
         g0 = _SQRT_PI_2 * sc.erfcx(np.maximum(t1, 0.0) * _INV_SQRT2)
         out = np.where(t1 < 0.0, phi - t1 * sc.ndtr(-t1), phi * _g1(np.maximum(t1, 0.0), g0))
     else:
-        scale = np.where(t1 > 0.0, _exp_minus_half_square(t1), 1.0) * _INV_SQRT_2PI
-        out = _trapezoid_sum(t1, int(2 * n + 1)) * scale
+        out = _half_integer(n, t1)
     return out.reshape(t.shape)
 
 
-def gw_difference(n: float, t, delta) -> np.ndarray:
-    """F_n(t) − F_n(t + δ) for δ ≥ 0 and n ∈ {1/2, 3/2}, without cancellation for small δ.
+def _half_integer(n: float, t: np.ndarray) -> np.ndarray:
+    """F_n(t) for n ∈ {−1/2, 1/2, 3/2}: the trapezoid, or the expansion far left."""
+    far = t <= _T_LEFT
+    out = np.empty(t.shape)
+    near = ~far
+    tn = t[near]
+    scale = np.where(tn > 0.0, _exp_minus_half_square(tn), 1.0) * _INV_SQRT_2PI
+    out[near] = _trapezoid_sum(tn, int(2 * n + 1)) * scale
+    tf = t[far]
+    out[far] = (-tf) ** n * _far_left_series(n, tf)
+    return out
 
-    For δ (max(t, 0) + δ + 1) ≤ 4 it is n ∫_t^{t+δ} F_{n−1}(τ) dτ by 20-point Gauss–Legendre
-    (F_{n−1} is smooth on that interval: F_{−1/2} and F_{1/2} from the same trapezoidal rule);
-    otherwise F_n(t + δ) is well below F_n(t) and the plain difference loses < 1 digit.
+
+def gw_difference(n: float, t, delta) -> np.ndarray:
+    """F_n(t) − F_n(t + δ) for δ ≥ 0 and n ∈ {1/2, 1, 3/2}, without cancellation for small δ.
+
+    For δ (max(t, 0) + δ + 1) ≤ 4, or t < 0 and δ ≤ 3|t|/4, it is n ∫_t^{t+δ} F_{n−1}(τ) dτ by
+    20-point Gauss–Legendre (F_{n−1} is smooth on that interval: F_{−1/2} and F_{1/2} from the
+    same trapezoidal rule); otherwise F_n(t + δ) is well below F_n(t) and the plain difference
+    loses < 1 digit.
     """
-    n = _check_order(n, (0.5, 1.5))
+    n = _check_order(n, (0.5, 1, 1.5))
     t, delta = np.broadcast_arrays(_finite(t), _finite(delta))
     if np.any(delta < 0):
         from .errors import ModelParameterError
 
         raise ModelParameterError(f"delta must be >= 0, got {delta[delta < 0].ravel()[0]!r}")
     t1, d1 = np.atleast_1d(t).astype(float), np.atleast_1d(delta).astype(float)
-    small = d1 * (np.maximum(t1, 0.0) + d1 + 1.0) <= 4.0
+    # (far left, F_n ~ |t|^n: the difference cancels while t + δ < t/4, where F_{n−1} is
+    # smooth on the interval: its singularity-free region reaches a third of its length)
+    small = (d1 * (np.maximum(t1, 0.0) + d1 + 1.0) <= 4.0) | ((t1 < 0.0) & (d1 <= -0.75 * t1))
     out = np.empty(t1.shape)
     if np.any(~small):
         tl, dl = t1[~small], d1[~small]
@@ -191,6 +253,7 @@ def gw_difference(n: float, t, delta) -> np.ndarray:
 
 
 def _f_minus_one(n: float, t: np.ndarray) -> np.ndarray:
-    """F_{n−1}(t) for n = 1/2 (F_{−1/2}, the trapezoid with p = 0) or n = 3/2 (F_{1/2})."""
-    scale = np.where(t > 0.0, _exp_minus_half_square(t), 1.0) * _INV_SQRT_2PI
-    return _trapezoid_sum(t, int(2 * n - 1)) * scale
+    """F_{n−1}(t) for n = 1/2 (F_{−1/2}), 1 (F_0) or 3/2 (F_{1/2})."""
+    if n == 1:
+        return gw_integral(0, t)
+    return _half_integer(n - 1.0, t)

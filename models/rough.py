@@ -28,7 +28,6 @@ adaptive quadrature (imported lazily, only when a default is actually used).
 
 from __future__ import annotations
 
-import functools
 import math
 from typing import TYPE_CHECKING, cast
 
@@ -43,11 +42,12 @@ from .errors import (
     check_positive,
     check_ratio,
 )
+from .rough_levels import RoughLevels, slip_in_mu_lambda
 
 if TYPE_CHECKING:
     from .protocol import ContactLevels
 
-__all__ = ["RoughSurface", "RoughLevels", "monotone_root"]
+__all__ = ["RoughSurface", "RoughLevels", "monotone_root", "slip_in_mu_lambda"]
 
 _LOAD_SCALE_KEYS = ("E", "radius", "density", "nominal_area")
 
@@ -257,6 +257,43 @@ class RoughSurface:
         h, g = self._hg(h, g)
         return self.slip_load_integral(h, g) + self.stick_load_integral(h, g)
 
+    def load_integral_second_derivative(self, h):
+        """d²J/dh² = (3/4) ∫_h^∞ (z − h)^{−1/2} Φ dz > 0  [µm^{−1/2}]."""
+        from ._quadrature import moment
+
+        return 0.75 * moment(self, -0.5, check_finite_array("h", h, unit="µm"))
+
+    def log_load_integral_second_derivative(self, h):
+        """log d²J/dh² (J'' in µm^{−1/2})."""
+        with np.errstate(divide="ignore"):
+            return np.log(self.load_integral_second_derivative(h))
+
+    def slip_area_integral(self, h, g):
+        """∫_h^{h+g} (z − h) Φ dz [µm]: the slipping summits' share of the real contact area
+        over π ρ* η A_n (A(h) minus the stick area of Eq 14), without cancellation."""
+        from ._quadrature import slip_integral
+
+        h, g = self._hg(h, g)
+        return slip_integral(self, h, g, k=1.0)
+
+    def tail_difference(self, h, g):
+        """∫_h^{h+g} Φ dz (dimensionless), without cancellation for tiny g."""
+        from ._quadrature import slip_integral
+
+        h, g = self._hg(h, g)
+        return slip_integral(self, h, g, k=0.0)
+
+    def area_integral_difference(self, h, g):
+        """A(h) − A(h + g) = ∫_h^{h+g} (z − h) Φ dz + g ∫_{h+g}^∞ Φ dz ≥ 0 [µm] (two
+        nonnegative terms)."""
+        h, g = self._hg(h, g)
+        return self.slip_area_integral(h, g) + g * self.tail_probability(h + g)
+
+    def integral_rtol(self, h) -> float:
+        """A bound on the relative error of this surface's integrals near level h [µm]
+        (QUADPACK asked for 1.2e-14; the bounds of the path's points and energies use it)."""
+        return 2e-13
+
     @staticmethod
     def _hg(h, g):
         h = check_finite_array("h", h, unit="µm")
@@ -443,105 +480,3 @@ class RoughSurface:
         keys = ["sigma", "nu", "mu", *_LOAD_SCALE_KEYS]
         args = ", ".join(f"{k}={getattr(self, k)!r}" for k in keys if getattr(self, k) is not None)
         return f"{type(self).__name__}({args})"
-
-
-class RoughLevels:
-    """Contact levels of a rough surface over any height density
-    (:class:`cusp.models.protocol.ContactLevels`), from the surface's GW integrals.
-
-    p = d/u, q = d0/u with u = σ*·c [µm], c = max(1, g_A/(μλ)) (as for the exponential
-    surface: q − p of order one at A). With J, A, Q = ∫_h^∞ Φ the load, area and tail
-    integrals of the surface (module docstring) and d_A the separation under F_N0:
-
-    * log(F_N/F_N0) = log J(d) − log J(d_A)                  (Eq 11)
-    * F̂_T = 1 − J(d0)/J(d)                                   (Eq 9)
-    * g_T = μλ(d0 − d)/σ* = μ (λc)(q − p)                    (Eqs 4–5)
-    * Â_ST = [A(d0) + (d0 − d) Q(d0)]/A(d)                    (Eq 14 over Eq 13)
-    * A_r/A_r(F_N0) = A(d)/A(d_A)                            (Eq 13)
-
-    and the surface never slides as a whole at finite slip (``slip_limit`` = inf). Needs the
-    load scale (d_A is absolute).
-    """
-
-    names = ("d", "d0")
-
-    def __init__(self, surf: RoughSurface, F_N0: float, g_A: float) -> None:
-        self.surf = surf
-        x_A = slip_in_mu_lambda(surf, g_A)
-        c = max(1.0, x_A)
-        #: u [µm]
-        self.scale = s = surf.sigma * c
-        #: λc [µm]: g_T = μ λc (q − p)
-        self.lam = surf.lam * c
-        d0 = float(surf.separation(F_N0))  # raises MissingLoadScaleError without the scale
-        self.p0 = d0 / s
-        self.j0 = math.log(F_N0 / surf.load_scale)
-        self.A0 = float(surf.area_integral(d0))
-
-    @functools.lru_cache(maxsize=16)  # noqa: B019 - levels live as long as their model
-    def _at(self, p: float) -> tuple[float, float, float, float, float]:
-        """(log J, d log J/dp, A, ∫Φ, Φ) at h = u·p: each GW integral once per level (a
-        residual and its Jacobian need them at p and q, several times over)."""
-        surf, h = self.surf, self.scale * p
-        if hasattr(surf, "log_load_integral_derivative"):  # finite where J underflows
-            dlog = float(surf.log_load_integral_derivative(h))
-        else:
-            J = float(surf.load_integral(h))
-            dlog = float(surf.load_integral_derivative(h)) / J if J > 0.0 else math.nan
-        return (
-            float(surf.log_load_integral(h)),
-            self.scale * dlog,
-            float(surf.area_integral(h)),
-            float(surf.tail_probability(h)),
-            float(surf.pdf(h)),
-        )
-
-    def log_normal_load(self, p: float) -> tuple[float, float]:
-        """log(F_N/F_N0) = log J(d) − log J(d_A) and its derivative (Eq 11)."""
-        j, dj = self._at(p)[:2]
-        return j - self.j0, dj
-
-    def tangential_ratio(self, p: float, q: float) -> tuple[float, float, float]:
-        """F̂_T = 1 − J(d0)/J(d) and its derivatives (Eq 9)."""
-        jp, djp = self._at(p)[:2]
-        jq, djq = self._at(q)[:2]
-        e = math.exp(jq - jp)
-        return -math.expm1(jq - jp), e * djp, -e * djq
-
-    def slip(self, p: float, q: float) -> tuple[float, float, float]:
-        """g_T/μ = λc (q − p) [µm] and its derivatives (Eqs 4–5)."""
-        return self.lam * (q - p), -self.lam, self.lam
-
-    def stick_area(self, p: float, q: float) -> tuple[float, float, float]:
-        """Â_ST = [A(d0) + (d0 − d) Q(d0)]/A(d) and its derivatives (Eqs 13–14)."""
-        s = self.scale
-        _, _, den, tail, _ = self._at(p)
-        _, _, area0, tail0, pdf0 = self._at(q)
-        num = area0 + s * (q - p) * tail0
-        val = num / den
-        dnum_p = -s * tail0
-        dnum_q = -s * s * (q - p) * pdf0
-        return val, (dnum_p + val * s * tail) / den, dnum_q / den
-
-    def area_ratio(self, p: float) -> tuple[float, float]:
-        """A_r/A_r(F_N0) = A(d)/A(d_A) and its derivative (Eq 13)."""
-        _, _, area, tail, _ = self._at(p)
-        return area / self.A0, -self.scale * tail / self.A0
-
-    def slip_limit(self, p: float) -> float:
-        """inf: a rough surface does not slide as a whole at finite slip."""
-        return math.inf
-
-
-def slip_in_mu_lambda(surf, g_A: float) -> float:
-    """x_A = g_A/(μλ) (formed without μλ, which can underflow), or a ModelParameterError when
-    it is beyond the float range (a σ* or μ so small that the levels cannot be scaled)."""
-    with np.errstate(over="ignore"):
-        x = float((g_A / surf.sigma) * surf._sigma_over_lam / surf.mu)
-    if not math.isfinite(x):
-        raise ModelParameterError(
-            f"sigma = {surf.sigma!r} µm and mu = {surf.mu!r} with max_slip = {g_A!r} µm give "
-            f"g_A/(mu lambda) beyond the float range: the contact-loss path cannot be scaled; "
-            f"choose sigma and mu with max_slip/(mu sigma) < 1e300"
-        )
-    return x

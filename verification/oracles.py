@@ -113,9 +113,10 @@ def gaussian_path(sigma, nu, mu, E, radius, density, nominal_area, F_N0, g_A, F_
         return pts, energy
 
 
-def sphere_path(radius, E, nu, mu, F_N0, g_A, F_Np):
-    """Hertz–Mindlin sphere: Eq 2 with Hertz, c invariant along AB (μF_N − F_T ∝ c³)."""
-    with mp.workdps(DPS):
+def sphere_path(radius, E, nu, mu, F_N0, g_A, F_Np, *, dps=DPS):
+    """Hertz–Mindlin sphere: Eq 2 with Hertz, c invariant along AB (μF_N − F_T ∝ c³); at
+    ``dps`` digits."""
+    with mp.workdps(dps):
         R, E, nu, mu = (mp.mpf(v) for v in (radius, E, nu, mu))
         F_N0, g_A, F_Np = mp.mpf(F_N0), mp.mpf(g_A), mp.mpf(F_Np)
         E_star = E / (2 * (1 - nu**2))
