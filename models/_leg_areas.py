@@ -41,7 +41,9 @@ _EPS = float(np.finfo(float).eps)
 _X16, _W16 = np.polynomial.legendre.leggauss(16)
 _X32, _W32 = np.polynomial.legendre.leggauss(32)
 #: intervals an integral may be split into before its estimate is returned as it is
-_MAX_INTERVALS = 400
+_MAX_INTERVALS = 600
+#: the first interval of the geometric split [levels]
+_FIRST = 2.0**-6
 
 __all__ = ["adaptive_gauss_legendre", "rough_leg_areas"]
 
@@ -62,12 +64,29 @@ def adaptive_gauss_legendre(
     first row a nonnegative integrand), halving the interval of the largest error until the
     errors sum to ``rtol`` of the first row's integral (at most 400 intervals). Returns the
     integrals and the first row's error estimate (the sum of the two rules' differences,
-    which bounds the finer rule's error on smooth integrands by a wide margin)."""
+    which bounds the finer rule's error on smooth integrands by a wide margin).
+
+    The interval is first split geometrically from ``a`` (widths 2⁻⁶, 2⁻⁵, ... levels): the
+    integrands here decay away from ``a`` on a scale of a level or less, and a first rule
+    over a long interval would put no node where they live (the snap-back energy of Fig 9's
+    locus in μ came out 19 times too small below μ = 1e-7, where q_A is 1e7 levels)."""
     if not width > 0.0:
         return np.zeros(np.asarray(f(np.array([a]))).shape[0]), 0.0
-    fine, err = _panel(f, a, width)
-    heap = [(-err, a, width, fine)]
-    total, errsum = fine.copy(), err
+    edges = [0.0]
+    step = _FIRST
+    while edges[-1] + step < width:
+        edges.append(edges[-1] + step)
+        step *= 2.0
+    edges.append(width)
+    heap = []
+    total, errsum = None, 0.0
+    for lo, hi in zip(edges[:-1], edges[1:]):
+        v, d = _panel(f, a + lo, hi - lo)
+        heap.append((-d, a + lo, hi - lo, v))
+        total = v.copy() if total is None else total + v
+        errsum += d
+    heapq.heapify(heap)
+    assert total is not None
     while errsum > rtol * abs(total[0]) and len(heap) < _MAX_INTERVALS:
         e, x, w, val = heapq.heappop(heap)
         total -= val
@@ -95,7 +114,7 @@ def rough_leg_areas(levels, p_A, q_A, p_B, q_C, level_rtol, quad_tol, errors=Non
     tol = 0.25 * quad_tol
     curv = levels.curvature
 
-    def first(tau):  # W = τ², its sensitivity weight 2τ
+    def first(tau):  # W = τ², and |∂W/∂level| = 2τ
         c = curv(p_A + tau)
         return np.array([c * tau * tau, 2.0 * c * tau])
 
@@ -108,24 +127,67 @@ def rough_leg_areas(levels, p_A, q_A, p_B, q_C, level_rtol, quad_tol, errors=Non
         r = delta - tau
         return np.array([c * r * r, 2.0 * c * np.abs(r)])
 
-    value = sens = quad = 0.0
+    value = quad = 0.0
+    sens = []  # per piece: ∫ curvature |∂W/∂level| (W moves with p_A on every piece, with
+    # p_B on the last two, with q_A on the last; its ends move with W continuous)
     for f, width in ((first, delta), (middle, w_B), (last, delta)):
         (v, s), e = adaptive_gauss_legendre(f, 0.0, width, tol)
-        value, sens, quad = value + v, sens + s, quad + e
+        value, quad = value + v, quad + e
+        sens.append(s)
     abd = 0.5 * lam * value
-    abd_err = 0.5 * lam * (quad + sens * (e_pA + e_qA + e_pB)) + eta * abd
+    spread = sum(sens) * e_pA + (sens[1] + sens[2]) * e_pB + sens[2] * e_qA
+    abd_err = 0.5 * lam * (quad + spread) + eta * abd
     if not math.isfinite(q_C):
         return (abd, abd_err), (math.nan, math.nan)
     q_D = q_A + delta
-    h = q_C - q_D
+    h, e_h = _c_beyond_d(levels, p_A, q_A, p_B, q_C, (e_pA, e_qA, e_pB, e_qC), eta, tol)
     slope = levels.slope
 
-    def rest(tau):
-        s = slope(q_D + tau)
-        return np.array([s * tau, s])
+    def rest(tau):  # and the derivative in q_D at fixed h: −∫ curvature·τ
+        return np.array([slope(q_D + tau) * tau, curv(q_D + tau) * tau])
 
-    (v, s0), e = adaptive_gauss_legendre(rest, 0.0, max(h, 0.0), tol)
+    (v, s0), e = adaptive_gauss_legendre(rest, 0.0, h, tol)
     dc = lam * v
-    at_c = float(slope(np.array([q_C]))[0]) * max(h, 0.0)
-    dc_err = lam * (e + at_c * e_qC + s0 * (e_qA + e_pA + e_pB)) + eta * dc
+    at_c = float(slope(np.array([q_D + h]))[0]) * h
+    dc_err = lam * (e + at_c * e_h + s0 * (e_qA + e_pA + e_pB)) + eta * dc
     return (abd, abd_err), (dc, dc_err)
+
+
+def _c_beyond_d(levels, p_A, q_A, p_B, q_C, errors, eta, tol):
+    """h = q_C − q_D (C beyond D on the reloading leg, in levels) and its error bound.
+
+    Not from the chain's q_C (at a tiny reduction C and D are a rounding of their levels
+    apart): from T_A − T_D, the drop of the force from A to D, integrated without
+    cancellation as ∫ curvature(p_A + y) K(y) dy with K(y) = min(y, δ, w_A, δ + w_A − y)
+    (δ = p_B − p_A, w_A = q_A − p_A), h solving ∫_0^h slope(q_D + s) ds = T_A − T_D by
+    Newton's method from the chain's q_C − q_D."""
+    e_pA, e_qA, e_pB, e_qC = errors
+    delta, w_A = p_B - p_A, q_A - p_A
+    q_D = q_A + delta
+    h = q_C - q_D
+    lo, hi = sorted((delta, w_A))
+    curv = levels.curvature
+
+    def drop(y):  # the measure of {τ ∈ [0, δ], σ ∈ [0, w_A]: τ + σ = y}, and 1
+        c = curv(p_A + y)
+        return np.array([c * np.minimum(np.minimum(y, lo), delta + w_A - y), c])
+
+    value = err = 0.0
+    pieces = []  # ∫ curvature on each piece: K moves with the smaller of δ, w_A on the last
+    # two, with the larger on the last
+    for a, b in ((0.0, lo), (lo, hi), (hi, delta + w_A)):
+        (v, c0), e = adaptive_gauss_legendre(drop, a, b - a, tol)
+        value, err = value + v, err + e
+        pieces.append(c0)
+    e_delta, e_w = e_pA + e_pB, e_qA + e_pA
+    e_lo, e_hi = (e_delta, e_w) if delta <= w_A else (e_w, e_delta)
+    e_drop = err + (pieces[1] + pieces[2]) * e_lo + pieces[2] * e_hi + eta * value
+    slope = levels.slope
+    x = max(h, value / float(slope(np.array([q_D]))[0]))
+    for _ in range(50):
+        (reached,), _ = adaptive_gauss_legendre(lambda s: slope(q_D + s)[None, :], 0.0, x, tol)
+        step = (reached - value) / float(slope(np.array([q_D + x]))[0])
+        x = max(x - step, 0.5 * x)
+        if abs(step) <= 4.0 * _EPS * x:
+            break
+    return x, (e_drop + 4.0 * _EPS * value) / float(slope(np.array([q_D + x]))[0]) + 4 * _EPS * x

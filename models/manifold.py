@@ -43,8 +43,10 @@ from cusp.continuation import (
     points_at,
     trace,
 )
+from cusp.continuation.options import point_tol
 
-from ._loci_energy import energies, flag_rtol, path_chain, polish_row
+from ._loci_energy import EnergyError, energies, flag_rtol, path_chain, polish_row
+from ._point_errors import chain_errors, point_bounds, relative
 from .contact_loss import DEFAULT_OPTIONS as PATH_OPTIONS
 from .contact_loss import ContactLoss
 from .errors import ModelParameterError
@@ -233,7 +235,7 @@ def trace_loci(
                 chain_c, seed[0], free=free, events=[near], scales=_sizes(model, "ABCD", free), **kw
             )
         chains["A-B-C-D"] = chain_c
-    return _assemble(model, parameter, free, branches, chains, o.quad_tol)
+    return _assemble(model, parameter, free, branches, chains, o)
 
 
 def _sizes(model: ContactLoss, names: str, free: str) -> dict[str, float]:
@@ -287,22 +289,23 @@ def _c_seed(model, start, params, main: Branch, o):
     return pt, params
 
 
-def _assemble(model: ContactLoss, parameter: str, free: str, branches, chains, quad_tol: float):
+def _assemble(model: ContactLoss, parameter: str, free: str, branches, chains, o):
     """The rows of the loci (the chain with C where it ran, the other beyond), polished to
-    rounding, their physical columns and energies (to ``quad_tol``), the events and how each
-    locus ended."""
+    rounding, their physical columns, error bounds and energies (to the options' ``quad_tol``),
+    the events and how each locus ended."""
     main = branches[next(iter(branches))]
     with_c = branches.get("A-B-C-D")
-    rows: list[dict[str, float]] = []
-    events: list[dict[str, Any]] = []
+    rows: list[tuple[dict[str, float], Any]] = []  # (row, its chain)
+    events: list[tuple[dict[str, Any], Any]] = []
     messages = [f"locus of {name}: {br.message}" for name, br in branches.items()]
     inside = (math.inf, -math.inf)
     if with_c is not None and len(with_c) > 1:
         # (widened by rounding: both loci end at a common bound, F'_T = 0, located twice)
         ends = float(np.min(with_c[free])), float(np.max(with_c[free]))
         inside = (ends[0] * (1.0 - 1e-9), ends[1] * (1.0 + 1e-9))
-        rows += [polish_row(chains["A-B-C-D"], with_c.point(i)) for i in range(len(with_c))]
-        events += [polish_row(chains["A-B-C-D"], ev) for ev in _events(with_c)]
+        chain_c = chains["A-B-C-D"]
+        rows += [(polish_row(chain_c, with_c.point(i)), chain_c) for i in range(len(with_c))]
+        events += [(polish_row(chain_c, ev), chain_c) for ev in _events(with_c)]
         for sp in with_c.special("event", label="C unresolved"):
             at = _user_value(model, free, sp.values[free])
             messages.append(
@@ -312,26 +315,53 @@ def _assemble(model: ContactLoss, parameter: str, free: str, branches, chains, q
             )
     first = chains[next(iter(chains))]
     rows += [
-        polish_row(first, main.point(i))
+        (polish_row(first, main.point(i)), first)
         for i in range(len(main))
         if not inside[0] <= main[free][i] <= inside[1]
     ]
-    located = [(ev["event"], ev[free]) for ev in events]
+    located = [(ev["event"], ev[free]) for ev, _ in events]
     events += [
-        polish_row(first, ev)
+        (polish_row(first, ev), first)
         for ev in _events(main)
         if not inside[0] <= ev[free] <= inside[1]
         and not any(n == ev["event"] and abs(v - ev[free]) <= 1e-9 * abs(v) for n, v in located)
     ]
-    rows.sort(key=lambda r: _user_value(model, free, r[free]))
-    events.sort(key=lambda r: _user_value(model, free, r[free]))
-    tol = (64.0 * float(np.finfo(float).eps), quad_tol)  # the rows' error once polished
-    table = [_physical(model, row, tol, messages) for row in rows]
+    if free == "m_B":  # each row at the F'_N it reports (module docstring)
+        rows = [(polish_row(c, _at_reported_load(model, r)), c) for r, c in rows]
+        events = [(polish_row(c, _at_reported_load(model, r)), c) for r, c in events]
+    rows.sort(key=lambda r: _user_value(model, free, r[0][free]))
+    events.sort(key=lambda r: _user_value(model, free, r[0][free]))
+    worst: dict[tuple[str, str], tuple[float, str]] = {}  # the points' largest error bounds
+    table = [_physical(model, row, chain, o.quad_tol, messages, worst) for row, chain in rows]
     columns = {key: np.array([r[key] for r in table]) for key in LOCI_UNITS}
     event_rows = [
-        {"event": ev.pop("event"), **_physical(model, ev, tol, messages)} for ev in events
+        {"event": ev.pop("event"), **_physical(model, ev, chain, o.quad_tol, messages, worst)}
+        for ev, chain in events
     ]
-    return Loci(parameter, columns, event_rows, messages, dict(branches), rows)
+    messages += _bound_messages(worst, max(point_tol(o.rtol), 1e-12))
+    return Loci(parameter, columns, event_rows, messages, dict(branches), [r for r, _ in rows])
+
+
+def _at_reported_load(model: ContactLoss, row: dict[str, Any]) -> dict[str, Any]:
+    """``row`` moved to m_B = (F_N0 − F'_N)/F_N0 of the F'_N it reports, the float F_N0 −
+    F_N0·m_B: that F'_N rounds ΔF_N to ε F_N0, which at a reduction of 1e-9 F_N0 is 1e-7 of
+    it (and 2e-7 of the released energies, ∝ ΔF_N²). As :class:`ContactLoss` forms m_B."""
+    load = _user_value(model, "m_B", row["m_B"])
+    return {**row, "m_B": (model.F_N0 - load) / model.F_N0}
+
+
+def _bound_messages(worst, threshold: float) -> list[str]:
+    """A message per quantity of the loci whose error bound exceeds ``threshold`` somewhere
+    (relative), with the largest bound and where it is."""
+    out = []
+    for (point, name), (rel, at) in sorted(worst.items()):
+        if rel > threshold:
+            out.append(
+                f"{name} of {point} along the loci is resolved only to its error bound, up to "
+                f"{rel:.1e} relative (at {at}), above {threshold:g}: float64 "
+                "does not resolve it better there"
+            )
+    return out
 
 
 def _events(br: Branch) -> list[dict[str, Any]]:
@@ -346,26 +376,40 @@ def _events(br: Branch) -> list[dict[str, Any]]:
 
 
 def _physical(
-    model: ContactLoss, row: dict[str, float], tol: tuple[float, float], messages: list[str]
+    model: ContactLoss,
+    row: dict[str, float],
+    chain,
+    quad_tol: float,
+    messages: list[str],
+    worst: dict[tuple[str, str], tuple[float, str]],
 ) -> dict[str, float]:
     """One row of a locus in physical units (NaN for a point the row does not carry), with
-    the released energies at it (``tol``: the row's relative error and the quadrature
-    tolerance; NaN where not resolved to :func:`~._loci_energy.flag_rtol`)."""
+    the released energies at it (to ``quad_tol``; NaN where not resolved to
+    :func:`~._loci_energy.flag_rtol`, or not integrated, with a message saying so); the
+    largest relative error bounds of the points' quantities are kept in ``worst``."""
     sg, st = model.scales["g"], model.scales["t"]
     out = {"mu": row["mu"], "reduced_normal_load": _user_value(model, "m_B", row["m_B"])}
     for x in "ABCD":
         out[f"g_{x}"] = row.get(f"{x}.g", math.nan) * sg
         out[f"F_{x}"] = row.get(f"{x}.t", math.nan) * st
         out[f"A_SL_{x}"] = row.get(f"{x}.A_SL", math.nan)
-    e = energies(model.levels, row, row["mu"], model.mu0, model.g_A, *tol)
-    flag = flag_rtol(tol[1])
+    errors = chain_errors(model, chain, row)
+    where = f"mu = {row['mu']!r}, F'_N = {out['reduced_normal_load']!r} N"
+    _track_bounds(model, row, errors, out, worst, where)
+    try:
+        e = energies(model.levels, row, row["mu"], model.mu0, model.g_A, _ROW_TOL, quad_tol, errors)
+    except EnergyError as exc:
+        e = {k: math.nan for k in ("snap_back", "snap_through")}
+        e |= {"snap_back_error": math.nan, "snap_through_error": math.nan}
+        _note(messages, f"energies not given at {where} (left empty): {exc}")
+    flag = flag_rtol(quad_tol)
     for kind in ("snap_back", "snap_through"):
         value, error = e[kind] * st * sg, e[f"{kind}_error"] * st * sg
         if error > flag * abs(value):
             note = (
-                f"{kind} energies below {flag:g} relative accuracy are left empty (an "
-                f"area much smaller than F_T times the slip it spans, e.g. a tiny reduction): "
-                f"first at mu = {row['mu']!r}, F'_N = {out['reduced_normal_load']!r} N"
+                f"{kind} energies whose error bound exceeds {flag:g} relative are left "
+                f"empty (the points they are integrated between are resolved only so far): "
+                f"first at {where}"
             )
             if not any(m.startswith(note[:40]) for m in messages):
                 messages.append(note)
@@ -374,10 +418,29 @@ def _physical(
     if ("D.q" in row and math.isnan(e["snap_back"])) or (
         "C.q" in row and math.isnan(e["snap_through"])
     ):
-        note = (
-            f"energies not resolved at mu = {row['mu']!r}, F'_N = "
-            f"{out['reduced_normal_load']!r} N (left empty)"
-        )
-        if note not in messages:
-            messages.append(note)
+        _note(messages, f"energies not resolved at {where} (left empty)")
     return out
+
+
+#: the relative error of a row's levels once polished (where the chain's bounds are not used)
+_ROW_TOL = 64.0 * float(np.finfo(float).eps)
+
+
+def _note(messages: list[str], note: str) -> None:
+    if note not in messages:
+        messages.append(note)
+
+
+def _track_bounds(model, row, errors, out, worst, where: str) -> None:
+    """Keep in ``worst`` the largest relative error bound of each point's quantities."""
+    names = {"g_T": "g", "F_T": "F", "A_SL": "A_SL"}
+    for x in "ABCD":
+        if f"{x}.t" not in row:
+            continue
+        values = {v: row[f"{x}.{v}"] for v in ("g", "t", "m", "A_SL", "p", "q")}
+        bounds = point_bounds(model, values, {v: errors[f"{x}.{v}"] for v in values})
+        for quantity, column in names.items():
+            value = out[f"{column}_{x}"]
+            rel = relative(quantity, value, bounds[quantity], {})
+            if rel > worst.get((x, quantity), (-1.0, ""))[0]:
+                worst[x, quantity] = (rel, where)
