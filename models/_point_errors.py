@@ -38,24 +38,47 @@ def _relative_error(levels) -> float:
 
 def equation_errors(model, x, mu: float, leg: str, const) -> np.ndarray:
     """The evaluation errors of the five residual equations of ``leg`` at x = (g, t, m,
-    A_SL, p, q) (the terms' rounding plus the levels' relative error)."""
+    A_SL, p, q): the terms' rounding, the levels' relative error, and the rounding of the
+    absolute level at which a two-level relation is evaluated (a rough surface's d = d_A +
+    u·p: ε|d| shifts both levels, costing |∂_p + ∂_q|·ε|d|/u, which far in a Gaussian tail,
+    where F_n ~ φ, is ε t² relative)."""
     g, t, red, a_sl, p, q = x
     L = model.levels
     eta = _relative_error(L)
     ell = L.log_normal_load(p)[0]
-    F = L.tangential_ratio(p, q)[0]
+    F, dF_p, dF_q = L.tangential_ratio(p, q)
     s = L.slip(p, q)[0]
     a = slipped_area(L, p, q, model.area_reading)[0]
     k = model.mu0 / mu
     m = mu / model.g_A
     n = 1.0 - red
+    shift = _position_rounding(L, p, q)
     e = np.empty(5)
-    e[0] = 2.0 * _EPS * abs(math.log1p(-red) if red < 1.0 else 0.0) + eta * abs(ell)
+    if leg == "OA":  # p − p0
+        e[0] = _EPS * (abs(p) + abs(L.p0))
+    else:
+        e[0] = 2.0 * _EPS * abs(math.log1p(-red) if red < 1.0 else 0.0) + eta * abs(ell)
     e[1] = 2.0 * _EPS * abs(k * t) + (eta + 2.0 * _EPS) * abs(n * F)
+    e[1] += abs(n * (dF_p + dF_q)) * shift
     e[2] = 2.0 * _EPS * abs(g) + (eta + 2.0 * _EPS) * abs(m * s)
-    e[3] = 2.0 * _EPS * abs(a_sl) + (eta + 2.0 * _EPS) * abs(a)
+    e[3] = 2.0 * _EPS * abs(a_sl) + (eta + 2.0 * _EPS) * abs(a) + _area_shift(L, p, q) * shift
     e[4] = _EPS * (abs(q) + abs(const) if leg == "AB" else abs(red) + abs(const or 0.0))
     return e
+
+
+def _position_rounding(L, p: float, q: float) -> float:
+    """2ε|the level as a length| in units of the levels: the rounding of the absolute level
+    a relation is evaluated at (and of h/σ* inside it)."""
+    lp = float(level_lengths(L, [p], [q])[0][0])
+    return 2.0 * _EPS * abs(lp) / float(L.scale)
+
+
+def _area_shift(L, p: float, q: float) -> float:
+    """|∂_p + ∂_q| of the part of Â_SL evaluated at the absolute level, 1 − Â_ST (the lost
+    area is formed from d_A and an increment)."""
+    slip_area = getattr(L, "slip_area", None)
+    _, d_p, d_q = slip_area(p, q) if slip_area is not None else L.stick_area(p, q)
+    return abs(d_p + d_q)
 
 
 def _point_values(row: Mapping[str, float], name: str) -> list[float]:
@@ -107,8 +130,8 @@ def polish(chain, row: dict[str, float], iterations: int = 6) -> dict[str, float
         u = u + du
         r = chain.residual(u, p)
         size = _size(r)
-        if size < best:
-            best_u, best = u, size
+        if size <= best:  # (the latest of equal ones: a tiny component's own equation
+            best_u, best = u, size  # may still improve under a larger one's rounding)
         if np.all(np.abs(du) <= 2.0 * _EPS * np.abs(u)) or size == 0.0:
             break
     return {**row, **dict(zip(chain.unknowns, map(float, best_u)))}

@@ -82,6 +82,7 @@ from cusp.continuation.options import point_tol
 
 from ._loci_energy import path_energies, path_points
 from ._loci_energy import polish_point as _polish
+from ._path_folds import path_folds
 from ._point_errors import point_bounds, point_messages
 from .errors import ModelParameterError, check_positive
 from .protocol import (
@@ -300,10 +301,14 @@ class ContactLoss:
         m = mu / self.g_A
         R = np.empty(5)
         J = np.zeros((5, 7))
-        # (a trial point of the tracer may have m >= 1: non-finite, its step is shortened)
-        R[0] = (math.log1p(-red) if red < 1.0 else math.nan) - ell
-        J[0, 2] = -1.0 / n
-        J[0, 4] = -dell
+        if leg == "OA":  # F_N = F_N0 (m = 0 below): the contact level is p0, exactly (a
+            # level of rounding noise made Â_SL, 0 to 1e-700000 at F_N0 = 1e9 N, turn 50 times)
+            R[0] = p - L.p0
+            J[0, 4] = 1.0
+        else:  # (a trial point may have m >= 1: non-finite, its step is shortened)
+            R[0] = (math.log1p(-red) if red < 1.0 else math.nan) - ell
+            J[0, 2] = -1.0 / n
+            J[0, 4] = -dell
         R[1] = k * t - n * F
         J[1, 1] = k
         J[1, 2] = F
@@ -481,7 +486,7 @@ class ContactLoss:
             points=points,
             energy=energy,
             energy_error=error,
-            folds=self._folds(legs, points),
+            folds=path_folds(legs, points, self._physical_point, 100.0 * o.step_tol),
             legs=legs,
             gross_sliding={"force_control": not c_exists, "displacement_control": not d_exists},
             messages=messages,
@@ -493,6 +498,9 @@ class ContactLoss:
             levels=L,
             point_errors=point_err,
         )
+
+    def _physical_point(self, values: dict[str, float]) -> dict[str, float]:
+        return _point(values, self.scales, self.levels.names, self.levels)
 
     def _gross_sliding_messages(self, t_A: float, c_exists: bool, d_exists: bool) -> list[str]:
         """Why C or D does not exist (t_A = F_A/(μ0 F_N0))."""
@@ -510,46 +518,6 @@ class ContactLoss:
                 f"point D and no snap-back energy"
             )
         return messages
-
-    def _folds(self, legs, points) -> list[dict[str, Any]]:
-        """Turning points of the controls g_T and F_T along the path."""
-        out: list[dict[str, Any]] = []
-        kinds = {"g": ("snap-back", "g_T"), "t": ("snap-through", "F_T")}
-        order = [("A", "OA", "AB"), ("B", "AB", "BC")]
-        for point, before, after in order:
-            t_before = _path_derivatives(legs[before], -1)
-            t_after = _path_derivatives(legs[after], 0)
-            for var, (kind, control) in kinds.items():
-                if t_before[var] * t_after[var] < 0.0:
-                    out.append(
-                        {
-                            "kind": kind,
-                            "control": control,
-                            "point": point,
-                            "corner": True,
-                            "values": points[point],
-                            "direction_before": "increasing" if t_before[var] > 0 else "decreasing",
-                            "direction_after": "increasing" if t_after[var] > 0 else "decreasing",
-                        }
-                    )
-        names = {"g": "g_T", "t": "F_T", "m": "F_N", "A_SL": "A_SL"}
-        for leg, br in legs.items():
-            for sp in br.special("fold"):
-                phys = _point(sp.values, self.scales, self.levels.names, self.levels)
-                wrt = sp.with_respect_to
-                label = kinds.get(wrt, ("turning point", names.get(wrt, wrt)))
-                out.append(
-                    {
-                        "kind": label[0],
-                        "control": label[1],
-                        "point": None,
-                        "corner": False,
-                        "leg": leg,
-                        "status": sp.status,
-                        "values": phys,
-                    }
-                )
-        return out
 
 
 # ------------------------------------------------------------------------------------------
@@ -576,12 +544,6 @@ def _point_rows(legs, c_exists: bool, d_exists: bool) -> dict[str, tuple[str, in
     elif d_exists:
         rows["D"] = ("BC", last)
     return rows
-
-
-def _path_derivatives(br: Branch, row: int) -> dict[str, float]:
-    """Tangent components (oriented along the direction of travel) at a row of a leg."""
-    t = br.tangents[row]
-    return dict(zip(br.variables, map(float, t)))
 
 
 def _leg_stats(br: Branch) -> dict[str, Any]:

@@ -100,7 +100,7 @@ class ExponentialRoughSurface(RoughSurface):
         h, g = self._hg(h, g)
         return self.area_integral(h) * sc.gammainc(2.0, g / self.sigma)
 
-    def integral_rtol(self, h) -> float:
+    def integral_rtol(self) -> float:
         """Closed forms: a few ulp."""
         return 16.0 * float(np.finfo(float).eps)
 

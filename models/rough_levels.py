@@ -40,10 +40,11 @@ _TINY = 1e-290
 class RoughLevels:
     """Contact levels of a rough surface over any height density (module docstring).
 
-    ``relative_error``: a bound on the relative error of the surface's integrals as the
-    levels evaluate them (the GW functions and the rounding of d_A + u·p for a Gaussian
-    surface; QUADPACK's for a general density), used by the error bounds of the points and
-    the energies. Needs the load scale (d_A is absolute).
+    ``relative_error``: a bound on the relative error of the surface's integrals at given
+    levels (the GW functions' for a Gaussian surface, QUADPACK's for a general density),
+    used by the error bounds of the points and the energies (which add the rounding of the
+    absolute levels d = d_A + u·p through the relations' derivatives:
+    :mod:`cusp.models._point_errors`). Needs the load scale (d_A is absolute).
     """
 
     names = ("d", "d0")
@@ -63,8 +64,7 @@ class RoughLevels:
         self.J_A = math.exp(self.log_jA)
         self.A0 = float(surf.area_integral(self.d_A))
         rtol = getattr(surf, "integral_rtol", None)
-        d_top = self.d_A + s * (x_A / c)  # d0 at A: the farthest level of a denominator
-        self.relative_error = float(rtol(d_top)) if rtol is not None else 2e-13
+        self.relative_error = float(rtol()) if rtol is not None else 2e-13
         #: a bound on the error of d_A [µm] (the root of log J(d) = log(F_N0/K) to a few ulp,
         #: off by the error of J over d log J/dd)
         slope = abs(self._at(0.0)[1]) / s

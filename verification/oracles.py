@@ -27,6 +27,17 @@ from .implementation import exact_value
 DPS = 40
 
 
+def scaled_quad(f, points):
+    """∫ f over the intervals between ``points`` by ``mp.quad``, with f divided by its
+    largest magnitude at points inside the finite intervals: mp.quad's tolerance is absolute
+    (10^−dps), so an integrand of 1e-283 was accepted after one level, 4e-9 off."""
+    finite = [p for p in points if mp.isfinite(p)]
+    inside = [a + (b - a) * k / 8 for a, b in zip(finite[:-1], finite[1:]) for k in (1, 4, 7)]
+    values = [abs(f(p)) for p in inside]
+    scale = max((v for v in values if mp.isfinite(v)), default=mp.mpf(0)) or mp.mpf(1)
+    return scale * mp.quad(lambda z: f(z) / scale, points)
+
+
 def gw(n, t):
     """F_n(t) = ∫_t^∞ (s − t)^n φ(s) ds."""
     t = mp.mpf(t)
@@ -115,7 +126,8 @@ def gaussian_path(sigma, nu, mu, E, radius, density, nominal_area, F_N0, g_A, F_
 
 def sphere_path(radius, E, nu, mu, F_N0, g_A, F_Np, *, dps=DPS):
     """Hertz–Mindlin sphere: Eq 2 with Hertz, c invariant along AB (μF_N − F_T ∝ c³); at
-    ``dps`` digits."""
+    ``dps`` digits. No D (and no C, no energies) where g_A is beyond the gross-sliding slip
+    under F'_N."""
     with mp.workdps(dps):
         R, E, nu, mu = (mp.mpf(v) for v in (radius, E, nu, mu))
         F_N0, g_A, F_Np = mp.mpf(F_N0), mp.mpf(g_A), mp.mpf(F_Np)
@@ -145,21 +157,24 @@ def sphere_path(radius, E, nu, mu, F_N0, g_A, F_Np, *, dps=DPS):
         F_A = force(g_A, F_N0)
         F_B = F_A - mu * (F_N0 - F_Np)
         pts = {"O": pt(mp.mpf(0), F_N0), "A": pt(F_A, F_N0), "B": pt(F_B, F_Np)}
+        if g_A >= g_lim(F_Np):  # the spheres slide under F'_N before g_A: no D, no C
+            pts["C"] = pts["D"] = None
+            return pts, {"snap_back": None, "snap_through": None}
         pts["D"] = pt(force(g_A, F_Np), F_Np)
         g_B = pts["B"]["g_T"]
         # A -> B parametrised by the load f: F = F_A - mu (F_N0 - f), g = slip(F, f)
-        along_ab = mp.quad(
+        along_ab = scaled_quad(
             lambda f: (
                 (F_A - mu * (F_N0 - f)) * mp.diff(lambda ff: slip(F_A - mu * (F_N0 - ff), ff), f)
             ),
             [F_N0, F_Np],
         )
-        b_to_d = mp.quad(lambda g: force(g, F_Np), [g_B, g_A])
+        b_to_d = scaled_quad(lambda g: force(g, F_Np), [g_B, g_A])
         energy = {"snap_back": -(along_ab + b_to_d), "snap_through": None}
         if F_A < mu * F_Np:
             pts["C"] = pt(F_A, F_Np)
             g_C = pts["C"]["g_T"]
-            b_to_c = mp.quad(lambda g: force(g, F_Np), [g_B, g_C])
+            b_to_c = scaled_quad(lambda g: force(g, F_Np), [g_B, g_C])
             energy["snap_through"] = -(along_ab + b_to_c - F_A * (g_C - g_A))
         else:
             pts["C"] = None

@@ -15,12 +15,17 @@ The height densities (σ* the standard deviation, heights in µm):
 
 * ``"exponential"``: Φ = e^{−z/σ*}/σ* (Eq 1): M_n(h) = Γ(n + 1) σ*^n e^{−h/σ*};
 * ``"gaussian"``: M_n(h) = σ*^n F_n(h/σ*), F_n(t) = Γ(n + 1) e^{−t²/4} D_{−n−1}(t)/√(2π)
-  (parabolic-cylinder functions);
+  (parabolic-cylinder functions), and for t < −30 (where mpmath's D_ν loses its digits)
+  E[(|t| + S)^n] over a standard normal S, by its binomial series in the moments of S while
+  that converges to the working precision, else by quadrature;
 * ``("weibull", k)``: Φ = (k/s)(z/s)^{k−1} e^{−(z/s)^k}, z > 0, s = σ*/√(Γ(1 + 2/k) −
   Γ(1 + 1/k)²): Q and A by incomplete gamma functions, M_{3/2} and M_{5/2} by tanh-sinh
   quadrature,
 
-with M_n(h) = ∫_h^∞ (z − h)^n Φ dz (Q = M_0, A = M_1, J = M_{3/2}).
+with M_n(h) = ∫_h^∞ (z − h)^n Φ dz (Q = M_0, A = M_1, J = M_{3/2}), and the slipping
+summits' share of the contact area, 1 − Â_ST, by quadrature of its definition
+∫_d^{d0} (z − d) Φ dz / A(d) (as 1 − Â_ST it cancels to exactly 0 at every precision where
+it is below 10^−dps: two zeros agree, and the self-check cannot see it).
 """
 
 from __future__ import annotations
@@ -30,10 +35,12 @@ from typing import Any
 
 import mpmath as mp
 
+from .oracles import scaled_quad
+
 __all__ = ["rough_path", "sphere_path", "self_checked"]
 
 #: the working precision is raised up to this many digits before giving up
-MAX_DPS = 800
+MAX_DPS = 400
 
 
 def self_checked(compute: Callable[[int], dict], digits: int = 30, dps: int = 50) -> dict:
@@ -59,15 +66,60 @@ def _agree(a: Any, b: Any, tol) -> bool:
     return abs(a - b) <= tol * abs(b) or a == b
 
 
+def _pdf(heights, s):
+    """The height density Φ(z) [1/µm] (module docstring)."""
+    if heights == "exponential":
+        return lambda z: mp.exp(-z / s) / s
+    if heights == "gaussian":
+        return lambda z: mp.npdf(z / s) / s
+    k = mp.mpf(heights[1])
+    scale = s / mp.sqrt(mp.gamma(1 + 2 / k) - mp.gamma(1 + 1 / k) ** 2)
+    return lambda z: (
+        (k / scale) * (z / scale) ** (k - 1) * mp.exp(-((z / scale) ** k)) if z > 0 else 0
+    )
+
+
+def _slipping(heights, s, d, d0):
+    """∫_d^{d0} (z − d) Φ(z) dz [µm]: A_r − A_ST over π ρ* η A_n, the contact area of the
+    summits that slide (w < g_N0), by its definition (1 − Â_ST = this over A(d) would
+    cancel to 0 at every working precision where it is below 10^−dps)."""
+    pdf = _pdf(heights, s)
+    lo = max(d, mp.mpf(0)) if heights not in ("exponential", "gaussian") else d
+    if not lo < d0:
+        return mp.mpf(0)
+    # (split where the density lives: a rule over [d, d0] 8000 σ* wide saw none of it)
+    inner = [lo + k * s for k in (1, 4, 16)] + [k * s for k in (-40, -10, -3, 0, 3, 10, 40)]
+    points = [lo, *sorted({x for x in inner if lo < x < d0}), d0]
+    return sum(scaled_quad(lambda z: (z - d) * pdf(z), [a, b]) for a, b in zip(points, points[1:]))
+
+
 def _moments(heights, s):
-    """M(n, h) for the density ``heights`` of standard deviation s (module docstring)."""
+    """M(n, h) for the density ``heights`` of standard deviation s (module docstring),
+    each (n, h) computed once."""
+    moment = _moment(heights, s)
+    cache: dict[tuple, Any] = {}
+
+    def cached(n, h):
+        key = (n, h)
+        if key not in cache:
+            cache[key] = moment(n, h)
+        return cache[key]
+
+    return cached
+
+
+def _moment(heights, s):
     if heights == "exponential":
         return lambda n, h: mp.gamma(n + 1) * s**n * mp.exp(-h / s)
     if heights == "gaussian":
 
         def gauss(n, h):
             t = h / s
-            f = mp.gamma(n + 1) * mp.exp(-t * t / 4) * mp.pcfd(-n - 1, t) / mp.sqrt(2 * mp.pi)
+            if t < -30:  # (pcfd loses its digits there)
+                f = _far_left(n, t)
+            else:
+                f = mp.gamma(n + 1) * mp.exp(-t * t / 4) * mp.pcfd(-n - 1, t)
+                f /= mp.sqrt(2 * mp.pi)
             return s**n * f
 
         return gauss
@@ -87,9 +139,30 @@ def _moments(heights, s):
         def f(z):
             return (z - h) ** n * (k / scale) * (z / scale) ** (k - 1) * mp.exp(-((z / scale) ** k))
 
-        return mp.quad(f, [a, a + scale / 4, a + scale, a + 4 * scale, mp.inf])
+        return scaled_quad(f, [a, a + scale / 4, a + scale, a + 4 * scale, mp.inf])
 
     return weibull
+
+
+def _far_left(n, t):
+    """F_n(t) = ∫ (x − t)^n φ(x) dx for t < −30: E[(|t| + S)^n] over a standard normal S
+    summed as Σ_k C(n, 2k) E[S^{2k}] |t|^{n−2k} (E S^{2k} = (2k − 1)!!) while its terms fall
+    below the working precision, which they do before the series turns (near k = t²/2) for
+    t² > 9.2 digits; otherwise the integral by quadrature over |x| ≤ 50 (the rest is below
+    φ(50) ~ 1e-544 of it)."""
+    tol = mp.mpf(10) ** (-mp.mp.dps - 5)
+    if t * t > 9.2 * (mp.mp.dps + 10):
+        a = -t
+        total, term, k = mp.mpf(1), mp.mpf(1), 0
+        while abs(term) > tol * abs(total):
+            k += 1
+            term *= (n - 2 * k + 2) * (n - 2 * k + 1) / ((2 * k) * (2 * k - 1)) * (2 * k - 1)
+            term /= a * a
+            total += term
+        return a**n * total
+    cut = mp.mpf(50)
+    pts = [max(t, -cut)] + [x for x in (-10, -3, 0, 3, 10) if x > t] + [cut]
+    return scaled_quad(lambda x: (x - t) ** n * mp.npdf(x), pts)
 
 
 def _root(f, df, lo, hi, guess=None):
@@ -161,11 +234,11 @@ def _rough(dps, roots, heights, sigma, nu, mu, E, radius, density, nominal_area,
         A_A = M(1, d_A)
 
         def point(d, d0, load):
-            a_st = (M(1, d0) + (d0 - d) * M(0, d0)) / M(1, d)
+            slipping = _slipping(heights, s, d, d0) / M(1, d)  # 1 − Â_ST (Eqs 13, 14)
             if reading == "printed":
-                a_sl = (1 - a_st) + (A_A - M(1, d)) / A_A
+                a_sl = slipping + (A_A - M(1, d)) / A_A
             else:
-                a_sl = 1 - a_st * M(1, d) / A_A
+                a_sl = 1 - (1 - slipping) * M(1, d) / A_A
             g_T = mu * lam / s * (d0 - d)
             return {"g_T": g_T, "F_T": mu * K * (J(d) - J(d0)), "F_N": load, "A_SL": a_sl,
                     "d": d, "d0": d0}  # fmt: skip
