@@ -300,8 +300,7 @@ class NumericalFailure(RuntimeError):
 def _failures(where: str) -> Iterator[None]:
     """Turn what the library raises while computing ``where`` into NumericalFailure (a
     SceneError passes through)."""
-    from cusp.continuation import ContinuationError
-    from cusp.continuation.errors import OptionsError, ProblemDefinitionError
+    from cusp.continuation import ContinuationError, OptionsError, ProblemDefinitionError
     from cusp.models.contact_loss import PathError
     from cusp.models.errors import ModelParameterError
 
