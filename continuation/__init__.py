@@ -53,7 +53,8 @@ from .problem._problem import ContinuationProblem, Problem
 from .results._branch import Branch, SpecialPoint
 from .results._resample import points_at
 from .stepping._state import TracerState
-from .stepping._tracer import Tracer, trace
+from .stepping._trace import trace
+from .stepping._tracer import Tracer
 from .systems._branch import BranchSystem
 from .systems._curve import CurveSystem
 

@@ -8,6 +8,8 @@ from __future__ import annotations
 
 from collections.abc import Mapping
 
+from ._outcomes import Guard
+
 
 class OptionsError(ValueError):
     """An option has a value outside its allowed range (the message names field and value)."""
@@ -86,14 +88,32 @@ class StepGuardError(ConvergenceError):
     """Newton converged at ``ds_min``, but a guard of the step rejects it: the branch cannot
     be followed safely from the last point (status ``"guard_failure"``).
 
-    ``guard`` is ``"angle"`` (the tangent turned more than the limits allow),
-    ``"contraction"`` (Newton's first contraction too weak: the corrector may be converging
-    to another branch) or ``"distance"`` (the corrector moved too far from the predictor);
-    the other attributes are those of :class:`ConvergenceError`."""
+    ``guard`` (a :class:`~._outcomes.Guard`, equal to its string) is ``"angle"`` (the tangent
+    turned more than the limits allow), ``"contraction"`` (Newton's first contraction too
+    weak: the corrector may be converging to another branch) or ``"distance"`` (the corrector
+    moved too far from the predictor); the other attributes are those of
+    :class:`ConvergenceError`."""
 
-    def __init__(self, what: str, *, guard: str, **kwargs) -> None:
+    def __init__(
+        self,
+        what: str,
+        *,
+        guard: Guard,
+        values: Mapping[str, float],
+        ds: float,
+        iterations: int,
+        residual_norm: float,
+        remedy: str,
+    ) -> None:
         self.guard = guard
-        super().__init__(what, **kwargs)
+        super().__init__(
+            what,
+            values=values,
+            ds=ds,
+            iterations=iterations,
+            residual_norm=residual_norm,
+            remedy=remedy,
+        )
 
 
 class StalledError(ContinuationError):

@@ -3,7 +3,10 @@
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping
 from dataclasses import dataclass, field, fields, replace
+from enum import Enum
+from typing import Any
 
 from ._errors import OptionsError
 
@@ -54,6 +57,11 @@ _RESIDUAL_TOL_MAX = 1e-10
 
 #: the tolerances ``rtol`` sets (a value given explicitly overrides it)
 DERIVED = ("tol", "step_tol", "locate_tol")
+
+FROM_RTOL: float = float("nan")
+"""The default of the tolerances that follow ``rtol`` (:data:`DERIVED`): a NaN object of its
+own, told apart by identity (a NaN given as a tolerance is refused, as any other invalid
+value). ``None`` given for one of them means the same."""
 
 
 def point_tol(rtol: float) -> float:
@@ -122,10 +130,10 @@ class ContinuationOptions:
     max_steps: int = 5000
     """Accepted steps after which the branch ends, incomplete: status ``"max_steps"`` (not a
     success) and a :class:`~._errors.MaxStepsWarning`."""
-    tol: float = None  # type: ignore[assignment]
+    tol: float = FROM_RTOL
     """Newton converges when the max-norm of the residual is below ``tol`` (default from
     ``rtol``: ``100·step_tol``, 1e-10 at the default)..."""
-    step_tol: float = None  # type: ignore[assignment]
+    step_tol: float = FROM_RTOL
     """... and the error left after the last update, about its square, is below ``step_tol``
     (default from ``rtol``: :func:`point_tol`, 1e-12 at the default)
     relative to each component's magnitude ``max(typical size, |z_i|)``. Located special
@@ -167,7 +175,7 @@ class ContinuationOptions:
     """Weight of each unknown in the arclength norm; None means 1/n."""
     detect_folds: bool = True
     detect_branch_points: bool = True
-    locate_tol: float = None  # type: ignore[assignment]
+    locate_tol: float = FROM_RTOL
     """Relative tolerance to which special points are located (default from ``rtol``:
     ``(rtol/1000)²``, 1e-12 at the default)."""
     max_locate_iterations: int = 40
@@ -195,27 +203,34 @@ class ContinuationOptions:
             "step_tol": eps,
             "locate_tol": max(eps, _LOCATE_TOL_FLOOR),
         }
-        unset = frozenset(name for name in DERIVED if getattr(self, name) is None)
+        unset = frozenset(name for name in DERIVED if _not_given(getattr(self, name)))
         for name in unset:
             object.__setattr__(self, name, derived[name])
         object.__setattr__(self, "_from_rtol", unset)
 
     def __post_init__(self) -> None:
         self._follow_rtol()
-        for name in (
-            "ds",
-            "ds_min",
-            "ds_max",
-            "tol",
-            "step_tol",
-            "max_angle",
-            "target_angle",
-            "target_contraction",
-            "target_distance",
-            "curve_tol",
-            "locate_tol",
-        ):
+        for name in _POSITIVE:
             _positive(name, getattr(self, name))
+        self._check_step_sizes()
+        for name in _COUNTS:
+            value = getattr(self, name)
+            _check(
+                name,
+                value,
+                isinstance(value, int) and not isinstance(value, bool) and value >= 1,
+                "an integer >= 1",
+            )
+        self._check_guards()
+        _check("predictor", self.predictor, self.predictor in PREDICTORS, f"one of {PREDICTORS}")
+        if self.state_weight is not None:
+            _positive("state_weight", self.state_weight)
+        for name in ("detect_folds", "detect_branch_points"):
+            value = getattr(self, name)
+            _check(name, value, isinstance(value, bool), "True or False")
+
+    def _check_step_sizes(self) -> None:
+        """``ds_min <= ds <= ds_max``, naming the one the user moved."""
         if self.ds_min > self.ds_max:
             # name the one the user moved: ds_min at its default means ds_max went below it
             if self.ds_min == _DS_MIN_DEFAULT:
@@ -233,20 +248,9 @@ class ContinuationOptions:
             self.ds_min <= self.ds <= self.ds_max,
             f"within [ds_min, ds_max] = [{self.ds_min!r}, {self.ds_max!r}]",
         )
-        for name in (
-            "max_steps",
-            "max_step_solves",
-            "max_newton_iterations",
-            "target_newton_iterations",
-            "max_locate_iterations",
-        ):
-            value = getattr(self, name)
-            _check(
-                name,
-                value,
-                isinstance(value, int) and not isinstance(value, bool) and value >= 1,
-                "an integer >= 1",
-            )
+
+    def _check_guards(self) -> None:
+        """The angles and the growth factor of the step's guards."""
         _check("max_angle", self.max_angle, self.max_angle < 180.0, "< 180 degrees")
         _check(
             "target_angle",
@@ -262,12 +266,6 @@ class ContinuationOptions:
             and self.growth >= 1.0,
             "a finite number >= 1",
         )
-        _check("predictor", self.predictor, self.predictor in PREDICTORS, f"one of {PREDICTORS}")
-        if self.state_weight is not None:
-            _positive("state_weight", self.state_weight)
-        for name in ("detect_folds", "detect_branch_points"):
-            value = getattr(self, name)
-            _check(name, value, isinstance(value, bool), "True or False")
 
     def replace(self, **changes) -> ContinuationOptions:
         """A copy with some fields changed (validated again)."""
@@ -282,5 +280,88 @@ class ContinuationOptions:
             if isinstance(lo, (int, float)) and isinstance(hi, (int, float)) and lo <= hi:
                 changes["ds"] = min(max(self.ds, lo), hi)
         for name in self._from_rtol:  # still following rtol unless given now
-            changes.setdefault(name, None)
+            changes.setdefault(name, FROM_RTOL)
         return replace(self, **changes)
+
+
+class Keep(Enum):
+    """The default of the option keywords of the entry points (``trace(..., ds_max=...)``):
+    not given, the field of ``options`` is kept."""
+
+    KEEP = "keep"
+
+
+KEEP = Keep.KEEP
+"""See :class:`Keep`."""
+
+
+def with_overrides(
+    options: ContinuationOptions | None,
+    default: ContinuationOptions,
+    arguments: Mapping[str, Any],
+) -> ContinuationOptions:
+    """``options`` (None: ``default``) with the fields given by keyword to an entry point,
+    validated as any options (:meth:`ContinuationOptions.replace`). ``arguments``: the entry
+    point's arguments by name (its ``locals()``), among them every option keyword
+    (:data:`OPTION_KEYWORDS`), :data:`KEEP` where not given."""
+    base = default if options is None else options
+    changes = {name: arguments[name] for name in OPTION_KEYWORDS if arguments[name] is not KEEP}
+    return base.replace(**changes) if changes else base
+
+
+def _not_given(value: object) -> bool:
+    """Whether a tolerance that follows ``rtol`` was left to it (:data:`FROM_RTOL` or None)."""
+    return value is FROM_RTOL or value is None
+
+
+OPTION_KEYWORDS = (
+    "rtol",
+    "ds",
+    "ds_min",
+    "ds_max",
+    "max_steps",
+    "tol",
+    "step_tol",
+    "max_step_solves",
+    "max_newton_iterations",
+    "target_newton_iterations",
+    "max_angle",
+    "target_angle",
+    "target_contraction",
+    "target_distance",
+    "curve_tol",
+    "growth",
+    "predictor",
+    "state_weight",
+    "detect_folds",
+    "detect_branch_points",
+    "locate_tol",
+    "max_locate_iterations",
+)
+"""The fields of :class:`ContinuationOptions` that the entry points (``trace``,
+``fold_curve``, ``locus``, ``point_locus``, :class:`~.stepping._tracer.Tracer`) take by
+keyword, overriding their ``options`` (every field there is)."""
+
+#: the options that must be finite numbers > 0, in the order they are checked
+_POSITIVE = (
+    "ds",
+    "ds_min",
+    "ds_max",
+    "tol",
+    "step_tol",
+    "max_angle",
+    "target_angle",
+    "target_contraction",
+    "target_distance",
+    "curve_tol",
+    "locate_tol",
+)
+
+#: the options that must be integers >= 1, in the order they are checked
+_COUNTS = (
+    "max_steps",
+    "max_step_solves",
+    "max_newton_iterations",
+    "target_newton_iterations",
+    "max_locate_iterations",
+)

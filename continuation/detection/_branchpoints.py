@@ -18,12 +18,13 @@ only bracketed (regula falsi on the determinant's sign, each trial a corrected p
 from __future__ import annotations
 
 import math
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 import scipy.sparse as sp
 
 from .._errors import SingularMatrixError
+from .._outcomes import PointStatus
 from ..numerics._differences import second_derivative_row
 from ..numerics._linalg import (
     bordered,
@@ -34,6 +35,7 @@ from ..numerics._linalg import (
     scaled_max,
 )
 from ..problem._derivatives import column_groups
+from ..systems._curve import CurveSystem
 from ._bracket import (
     Bracket,
     Located,
@@ -41,6 +43,9 @@ from ._bracket import (
     newton_done,
 )
 from ._regula import locate_on_arc
+
+if TYPE_CHECKING:
+    from .._options import ContinuationOptions
 
 #: largest curve dimension for which the extended system is built and solved densely
 MAX_DENSE = 200
@@ -54,10 +59,10 @@ def locate_branch_point(br: Bracket, f_a: float, f_b: float) -> Located:
     the two branches' tangents there (:func:`branch_point_directions`): its ``tangent`` is
     this branch's, its details the other's (``other_tangent``), for branch switching."""
     found = _locate(br, f_a, f_b)
-    if found.status == "pole":  # the determinant changed sign through infinity
+    if found.status is PointStatus.POLE:  # the determinant changed sign through infinity
         return found
     theta = min(1.0, max(0.0, br.sigma(found.z) / br.h))
-    estimate = br.guess_derivative(theta)  # this branch's tangent, from the step's arc
+    estimate = br.arc.derivative(theta)  # this branch's tangent, from the step's arc
     directions = branch_point_directions(br.system, found.z, estimate, br.weights)
     tangent = directions.pop("tangent")
     if float(tangent @ br.row) < 0:
@@ -67,23 +72,23 @@ def locate_branch_point(br: Bracket, f_a: float, f_b: float) -> Located:
 
 def _locate(br: Bracket, f_a: float, f_b: float) -> Located:
     rough = _regula_falsi(br, f_a, f_b, rtol=1e-3)
-    if rough.status == "converged":
+    if rough.status is PointStatus.CONVERGED:
         found = _newton_extended(br, rough.z)
         if found is not None:
             return found
     found = _regula_falsi(br, f_a, f_b)
-    if found.status == "pole":
+    if found.status is PointStatus.POLE:
         return found
-    if found.status == "converged" and not found.details.get("exact_zero"):
+    if found.status is PointStatus.CONVERGED and not found.details.get("exact_zero"):
         # the sign change is bracketed, but the points next to a branch point are corrected
         # only to about √tol (the corrector's matrix is singular there): not converged
         details = {**found.details, "reason": "extended-system Newton failed; bracketed only"}
-        return found._replace(status="guess", details=details)
+        return found._replace(status=PointStatus.GUESS, details=details)
     return found
 
 
 def branch_point_directions(
-    system: Any, z: np.ndarray, estimate: np.ndarray, weights: np.ndarray, seed: int = 0
+    system: CurveSystem, z: np.ndarray, estimate: np.ndarray, weights: np.ndarray, seed: int = 0
 ) -> dict[str, Any]:
     """The tangents of the two branches that cross at the simple branch point ``z``.
 
@@ -174,7 +179,7 @@ def _kernel_by_inverse_iteration(
     return phi, psi[:-1]
 
 
-def _bordered_det(system: Any, z: np.ndarray, row: np.ndarray) -> tuple[float, float]:
+def _bordered_det(system: CurveSystem, z: np.ndarray, row: np.ndarray) -> tuple[float, float]:
     lu = factor(bordered(system.jacobian(z), row))
     return lu.sign_det(), lu.log_abs_det()
 
@@ -252,7 +257,14 @@ def _newton_extended(br: Bracket, z0: np.ndarray) -> Located | None:
 
 
 def _extended_loop(
-    system: Any, o: Any, z: np.ndarray, psi: np.ndarray, mu: float, dg: Any, plan: Any, jac: Any
+    system: CurveSystem,
+    o: ContinuationOptions,
+    z: np.ndarray,
+    psi: np.ndarray,
+    mu: float,
+    dg: Any,
+    plan: Any,
+    jac: Any,
 ) -> tuple | None:
     """Newton's iterations on the extended system from ``(z, ψ, μ)`` (``dg = jac(z)``) with
     the Jacobian ``jac``: ``(z, ψ, μ, jac(z), iterations, last update)``, or None if they
@@ -262,7 +274,7 @@ def _extended_loop(
     for it in range(1, o.max_locate_iterations + 1):
         try:
             if plan is None:
-                d = dense_solve(*_extended_system(system, z, psi, mu, dg))[2]
+                d = dense_solve(*_extended_system(system, z, psi, mu, dg))[1]
             else:
                 a, rhs = _extended_sparse(system, z, psi, mu, dg, plan)
                 d = factor(a).solve(rhs)
@@ -298,7 +310,7 @@ def _hessian_plan(dg: Any) -> tuple[np.ndarray, np.ndarray, Any, list[np.ndarray
     return narrow, wide, pattern, column_groups(pattern)
 
 
-def _sparse_hessian(system: Any, z: np.ndarray, psi: np.ndarray, plan: tuple) -> Any:
+def _sparse_hessian(system: CurveSystem, z: np.ndarray, psi: np.ndarray, plan: tuple) -> Any:
     """``H = Σ ψ_i ∇²G_i`` at ``z`` (CSC) by the grouped differences of ``plan``."""
     narrow, wide, pattern, groups = plan
     n = z.size
@@ -327,7 +339,7 @@ def _sparse_hessian(system: Any, z: np.ndarray, psi: np.ndarray, plan: tuple) ->
 
 
 def _extended_sparse(
-    system: Any, z: np.ndarray, psi: np.ndarray, mu: float, dg: Any, plan: tuple
+    system: CurveSystem, z: np.ndarray, psi: np.ndarray, mu: float, dg: Any, plan: tuple
 ) -> tuple[Any, np.ndarray]:
     """:func:`_extended_system` for a sparse Jacobian (the second derivatives by
     :func:`_sparse_hessian`)."""
@@ -348,7 +360,7 @@ def _extended_sparse(
 
 
 def _extended_system(
-    system: Any, z: np.ndarray, psi: np.ndarray, mu: float, dg: Any
+    system: CurveSystem, z: np.ndarray, psi: np.ndarray, mu: float, dg: Any
 ) -> tuple[np.ndarray, np.ndarray]:
     """The Newton matrix of the extended system at ``(z, ψ, μ)`` and its residual (the system
     for minus the update)."""

@@ -10,15 +10,22 @@
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
 import scipy.sparse as sp
 
 from .._errors import SingularMatrixError
+from .._outcomes import Kind, PointStatus
 from ..numerics._linalg import factor, inverse_magnitudes, scaled_max
+from ..systems._curve import CurveSystem
 from ..systems._fold import FoldSystem
 from ._bracket import Bracket, Located, newton_done, tangent_at
 from ._regula import locate_on_arc
 from ._tests import TestFunction
+
+if TYPE_CHECKING:
+    from .._options import ContinuationOptions
 
 _EPS = np.finfo(float).eps
 
@@ -28,7 +35,7 @@ class CuspTest(TestFunction):
     (located by Newton on ``[F; g; a] = 0``)."""
 
     __slots__ = ()
-    kind = "cusp"
+    kind = Kind.CUSP
 
     def __init__(self) -> None:
         super().__init__("cusp")
@@ -45,7 +52,7 @@ class Codim2Test(TestFunction):
     eigenvalue (a limit point meeting a branch point, a Bogdanov–Takens point)."""
 
     __slots__ = ()
-    kind = "codim2"
+    kind = Kind.CODIM2
 
     def __init__(self) -> None:
         super().__init__("second zero eigenvalue")
@@ -57,50 +64,21 @@ class Codim2Test(TestFunction):
         return _locate_codim2(br.system, br, f_a, f_b)
 
 
-def _locate_cusp(system: FoldSystem, br: Bracket, f_a: float, f_b: float) -> Located:
+def _locate_cusp(system: CurveSystem, br: Bracket, f_a: float, f_b: float) -> Located:
     """Newton on ``[F; g; a] = 0`` from the regula-falsi estimate; Illinois if it fails."""
-    o = br.options
+    assert isinstance(system, FoldSystem)
     theta = f_a / (f_a - f_b) if f_a != f_b else 0.5
     start = br.point_at(theta * br.h)
-    z = start.z if start.converged else br.guess(theta)
-    dim = system.dim
-    converged = False
-    it = 0
-    previous = np.inf
-    size = np.inf
-    while it < o.max_locate_iterations:
-        it += 1
-        if dim > 200:
-            break  # a dense gradient of the coefficient is too costly: Illinois below
-        G = system.residual(z)
-        a = system.cusp_coefficient(z)
-        jac = system.jacobian(z)
-        jac = jac.toarray() if sp.issparse(jac) else jac
-        grad = np.empty(dim)
-        for i in range(dim):
-            h = _EPS ** (1.0 / 3.0) * max(system.scales[i], abs(z[i]))
-            e = np.zeros(dim)
-            e[i] = h
-            grad[i] = (system.cusp_coefficient(z + e) - system.cusp_coefficient(z - e)) / (2 * h)
-        big = np.vstack([jac, grad[None, :]])
-        rhs = -np.concatenate([G, [a]])
-        try:
-            dz = factor(big).solve(rhs)
-        except SingularMatrixError:
-            break
-        z = z + dz
-        if not np.all(np.isfinite(z)):
-            break
-        size = scaled_max(dz, inverse_magnitudes(system.scales, z))
-        # the gradient of the coefficient is a finite difference: Newton converges linearly
-        # and, with finite-difference Jacobians, stalls at the noise floor of the coefficient
-        if newton_done(it, size, previous, o.locate_tol, stall=1e-9):
-            converged = True
-            break
-        previous = size
-    if converged:
+    z = start.z if start.converged else br.arc.at(theta)
+    newton = _cusp_newton(system, br.options, z)
+    if newton is not None:
+        z, it, size = newton
         found = Located(
-            z, br.sigma(z), "converged", it, {"method": "Newton on [F; g; a]", "last_update": size}
+            z=z,
+            sigma=br.sigma(z),
+            status=PointStatus.CONVERGED,
+            iterations=it,
+            details={"method": "Newton on [F; g; a]", "last_update": size},
         )
     else:
         found = locate_on_arc(br, system.cusp_coefficient, f_a, f_b)
@@ -124,7 +102,58 @@ def _locate_cusp(system: FoldSystem, br: Bracket, f_a: float, f_b: float) -> Loc
     return found._replace(details=details)
 
 
-def _locate_codim2(system: FoldSystem, br: Bracket, f_a: float, f_b: float) -> Located:
+#: the largest fold curve whose cusp is located by Newton (its coefficient's gradient is
+#: differenced densely, component by component); larger ones by Illinois
+CUSP_NEWTON_MAX_DIM = 200
+
+
+def _cusp_newton(
+    system: FoldSystem, o: ContinuationOptions, z: np.ndarray
+) -> tuple[np.ndarray, int, float] | None:
+    """Newton on ``[F; g; a] = 0`` from ``z``: the point, the iterations and the last
+    update, or None if it fails (or the curve is too large)."""
+    dim = system.dim
+    previous = size = np.inf
+    for it in range(1, o.max_locate_iterations + 1):
+        if dim > CUSP_NEWTON_MAX_DIM:
+            return None  # a dense gradient of the coefficient is too costly
+        G = system.residual(z)
+        a = system.cusp_coefficient(z)
+        jac = system.jacobian(z)
+        jac = jac.toarray() if sp.issparse(jac) else jac
+        big = np.vstack([jac, _coefficient_gradient(system, z)[None, :]])
+        rhs = -np.concatenate([G, [a]])
+        try:
+            dz = factor(big).solve(rhs)
+        except SingularMatrixError:
+            return None
+        z = z + dz
+        if not np.all(np.isfinite(z)):
+            return None
+        size = scaled_max(dz, inverse_magnitudes(system.scales, z))
+        # the gradient of the coefficient is a finite difference: Newton converges linearly
+        # and, with finite-difference Jacobians, stalls at the noise floor of the coefficient
+        if newton_done(it, size, previous, o.locate_tol, stall=1e-9):
+            return z, it, size
+        previous = size
+    return None
+
+
+def _coefficient_gradient(system: FoldSystem, z: np.ndarray) -> np.ndarray:
+    """The cusp coefficient's gradient at ``z`` by central differences (steps ε^{1/3} of
+    the components' magnitudes)."""
+    dim = system.dim
+    grad = np.empty(dim)
+    for i in range(dim):
+        h = _EPS ** (1.0 / 3.0) * max(system.scales[i], abs(z[i]))
+        e = np.zeros(dim)
+        e[i] = h
+        grad[i] = (system.cusp_coefficient(z + e) - system.cusp_coefficient(z - e)) / (2 * h)
+    return grad
+
+
+def _locate_codim2(system: CurveSystem, br: Bracket, f_a: float, f_b: float) -> Located:
+    assert isinstance(system, FoldSystem)
     ref = system.double_zero_test(br.z_a)
 
     def f(z):

@@ -1,6 +1,6 @@
-"""Locating a fold (a turning point of any component ``z_k``) inside an accepted step:
-Newton on the minimally augmented system ``[G(z); g_k(z)] = 0``, with ``g_k`` from the
-bordered system of ``∂G/∂z`` without column ``k`` (Govaerts, *Numerical methods for
+"""The fold locator (:func:`locate_fold`): a turning point of any component ``z_k`` inside an
+accepted step, by Newton on the minimally augmented system ``[G(z); g_k(z)] = 0``, with
+``g_k`` from the bordered system of ``∂G/∂z`` without column ``k`` (Govaerts, *Numerical methods for
 bifurcations of dynamical equilibria*, 2000) — quadratic convergence, bordering vectors
 updated every iteration.
 
@@ -19,6 +19,7 @@ from typing import Any
 import numpy as np
 
 from .._errors import SingularMatrixError
+from .._outcomes import PointStatus
 from ..numerics._differences import _CBRT_EPS, _SQRT_EPS, second_derivative_row
 from ..numerics._linalg import (
     PairLU,
@@ -27,19 +28,22 @@ from ..numerics._linalg import (
     delete_column,
     dense_solve,
     factor,
-    getrs,
     inverse_magnitudes,
     max_abs,
     scaled_max,
     unit_last,
 )
+from ..problem._problem import has_exact_jacobian
+from ..systems._curve import CurveSystem
 from ._bracket import (
     Bracket,
     Located,
     accept_located,
     newton_done,
     oriented_tangent,
+    tangent_at,
 )
+from ._regula import locate_on_arc
 
 FOLD_SLACK = 1e-6
 """How far outside its step (as a fraction of it) a located fold may lie: the tangent's
@@ -52,7 +56,7 @@ _FORWARD_D2_ERROR = 1e-7
 
 
 def minimally_augmented(
-    system,
+    system: CurveSystem,
     z: np.ndarray,
     k: int,
     b: np.ndarray | None,
@@ -75,30 +79,91 @@ def minimally_augmented(
     if e is None:
         e = unit_last(b.size + 1)
     if type(a) is np.ndarray:
-        lu, piv, x = dense_solve(a, e)
-        y = getrs(lu, piv, e, trans=True)
+        lu, x = dense_solve(a, e)
     else:
         lu = factor(a)
         x = lu.solve(e)
-        y = lu.solve(e, trans=True)
+    y = lu.solve(e, trans=True)
     return x[-1], x[:-1], y[:-1], dg
 
 
-def locate_fold(
+def locate_fold(br: Bracket, k: int, f_a: float, f_b: float) -> Located:
+    """The fold (turning point of component ``k``) inside the step ``br`` whose tangent
+    component ``t_k`` changed sign from ``f_a`` to ``f_b``: the one fold locator.
+
+    Newton on the minimally augmented system from the turning point of the step's arc
+    (:func:`fold_newton`); from a poor start (a long step, two folds close together) the
+    fold is first bracketed coarsely by regula falsi on ``t_k`` and Newton restarted there;
+    where Newton fails (the fold system has no regular solution: a kink, or derivatives too
+    rough to locate it) the point is a regula-falsi estimate only, a guess. With
+    finite-difference derivatives a fold whose radius of curvature is within 100 difference
+    steps is a guess too (:func:`_resolved`)."""
+    found = fold_newton(br, k)
+    if found is not None:
+        return _resolved(found, br)
+
+    def tangent_k(z: np.ndarray) -> float:
+        return float(tangent_at(br.system, z, br.row, br.weights)[k])
+
+    rough = locate_on_arc(br, tangent_k, f_a, f_b, rtol=1e-3)
+    start_tangent = tangent_at(br.system, rough.z, br.row, br.weights)
+    found = fold_newton(br, k, start=rough.z, tangent=start_tangent)
+    if found is not None:
+        method = "minimally augmented Newton (after regula falsi)"
+        return _resolved(found._replace(details={**found.details, "method": method}), br)
+    found = locate_on_arc(br, tangent_k, f_a, f_b)
+    details = {**found.details, "method": "Illinois on the tangent component (Newton failed)"}
+    ends = details.get("test_values", (0.0, 0.0))
+    if min(abs(ends[0]), abs(ends[1])) > 1e-6:
+        # the tangent component jumps instead of passing through zero
+        details["non_smooth"] = True
+    return _resolved(found._replace(status=PointStatus.GUESS, details=details), br)
+
+
+def _resolved(found: Located, br: Bracket) -> Located:
+    """``found``, a guess where, with finite-difference derivatives, the fold's radius of
+    curvature is within 100 difference steps: it cannot be told from a kink smoothed by
+    the stencil."""
+    problem = br.system.problem
+    if problem is None or has_exact_jacobian(problem):
+        return found
+    method = getattr(problem, "derivatives", "central")
+    # the difference step, relative to the components' magnitudes; arclength is measured
+    # in the same relative terms (the weights are 1/scale²)
+    h_fd = np.finfo(float).eps ** (1 / 3 if method == "central" else 1 / 2)
+    cos = float(br.t_a @ (br.weights * br.t_b))
+    turn = math.acos(max(-1.0, min(1.0, cos)))
+    if turn > 0 and abs(br.h) / turn < 100 * h_fd:
+        reason = (
+            f"radius of curvature {abs(br.h) / turn:.2g} is within 100 finite-difference "
+            f"steps ({h_fd:.2g}): possibly a kink; supply a jacobian to decide"
+        )
+        details = {**found.details, "non_smooth": True, "reason": reason}
+        return found._replace(status=PointStatus.GUESS, details=details)
+    return found
+
+
+def fold_newton(
     br: Bracket, k: int, start: np.ndarray | None = None, tangent: np.ndarray | None = None
 ) -> Located | None:
-    """Newton on ``[G(z); g_k(z)] = 0`` started from the Hermite interpolant of the bracket
-    (or from ``start`` with its ``tangent``); None if it fails or leaves the bracket."""
-    o = br.options
-    system = br.system
+    """Newton on ``[G(z); g_k(z)] = 0`` from the turning point of the step's arc (or from
+    ``start`` with its ``tangent``); None if it fails or leaves the step. A curve of two
+    components is iterated in plain floats (:func:`_on_floats`), with the same stopping test
+    and acceptance; what that cannot decide, on arrays (:func:`_on_arrays`)."""
     if start is None or tangent is None:
-        z, tangent = br.guess_and_derivative(br.turning_theta(k))
+        z, tangent = br.arc.at_and_derivative(br.arc.turning(k))
     if start is not None:
         z = start.copy()
-    if getattr(system, "scalar", False):  # a curve of two components: in plain floats
-        found = _locate_fold_pair(br, k, z, tangent)
+    if br.system.scalar:
+        found = _on_floats(br, k, z, tangent)
         if found is not _UNDECIDED:
             return found
+    return _on_arrays(br, k, z, tangent)
+
+
+def _on_arrays(br: Bracket, k: int, z: np.ndarray, tangent: np.ndarray) -> Located | None:
+    """:func:`fold_newton` on arrays (any size, dense or sparse)."""
+    o, system = br.options, br.system
     # the components other than k (a slice for the usual fold in the last one)
     keep = slice(None, -1) if k == z.size - 1 else np.arange(z.size) != k
     # the bordering row in relative terms: c = v̂/m with v̂ = v/m of unit length and m
@@ -108,11 +173,8 @@ def locate_fold(
     scales, local = system.scales, local_magnitudes(br, z)
     mags = 1.0 / np.asarray(inverse_magnitudes(scales, z), dtype=float)[keep]
     b, c = None, _relative_border(tangent[keep], mags)
-    rhs = np.empty(z.size)
-    vt = np.zeros(z.size)
-    e = unit_last(z.size)
-    exact = getattr(system, "exact_jacobian", False)
-    jacobian, residual = system.jacobian, system.residual
+    rhs, vt, e = np.empty(z.size), np.zeros(z.size), unit_last(z.size)
+    exact = system.exact_jacobian
     converged, it, sizes = False, 0, (math.inf, math.inf)
     for it in range(1, o.max_locate_iterations + 1):
         try:
@@ -122,11 +184,12 @@ def locate_fold(
         vt[keep] = v
         # the Newton system [∂G/∂z; ∇g] dz = −[G; g] with ∇g = −w·D²G[v, ·], solved for
         # d = −dz with that row negated (sign flips are exact: bitwise the same update)
-        rhs[:-1] = residual(z)
+        rhs[:-1] = system.residual(z)
         rhs[-1] = -g
-        a = bordered(dg, second_derivative_row(jacobian, z, vt, w, dg if exact else None, scales))
+        second = second_derivative_row(system.jacobian, z, vt, w, dg if exact else None, scales)
+        a = bordered(dg, second)
         try:
-            d = dense_solve(a, rhs)[2] if type(a) is np.ndarray else factor(a).solve(rhs)
+            d = dense_solve(a, rhs)[1] if type(a) is np.ndarray else factor(a).solve(rhs)
         except SingularMatrixError:
             return None
         update = (scaled_max(d, inverse_magnitudes(local, z)), scaled_max(d, 1.0 / scales))
@@ -146,8 +209,8 @@ def locate_fold(
     # the tangent at a fold in z_k spans the kernel of ∂G/∂z, which has no k component: v
     # (from the last iterate, one update of ≤ locate_tol away)
     details = {"method": "minimally augmented Newton", "test_function": float(g)}
-    tangent = oriented_tangent(vt, br.row, br.weights)
-    return accept_located(br, z, dg, it, update[0], details, tangent, FOLD_SLACK, local)
+    t_fold = oriented_tangent(vt, br.row, br.weights)
+    return accept_located(br, z, dg, it, update[0], details, t_fold, FOLD_SLACK, local)
 
 
 def local_magnitudes(br: Bracket, z: np.ndarray) -> np.ndarray:
@@ -203,8 +266,8 @@ def _relative_border(v: np.ndarray, d: np.ndarray) -> np.ndarray:
 _UNDECIDED = object()
 
 
-def _locate_fold_pair(br: Bracket, k: int, z: np.ndarray, tangent: np.ndarray) -> Any:
-    """:func:`locate_fold` on a curve of two components in plain floats (``system.scalar``):
+def _on_floats(br: Bracket, k: int, z: np.ndarray, tangent: np.ndarray) -> Any:
+    """:func:`fold_newton` on a curve of two components in plain floats (``system.scalar``):
     with one unknown the minimally augmented system has a closed form — ``M = ∂G/∂z_j``
     (j ≠ k) is a number, ``v = 1/c``, ``w = 1/b``, ``g = −M/(bc)`` — and the Newton matrix
     ``[∂G/∂z; w·D²G[v, ·]]`` is 2×2 (:class:`~..numerics._linalg.PairLU`); the second
@@ -218,7 +281,7 @@ def _locate_fold_pair(br: Bracket, k: int, z: np.ndarray, tangent: np.ndarray) -
         return _UNDECIDED
     x = z.tolist()
     s = system.scales.tolist()
-    local = local_magnitudes(br, z)  # (the updates' measure, as in locate_fold)
+    local = local_magnitudes(br, z)  # (the updates' measure, as on arrays)
     b = c = 1.0 if tangent[j] > 0 else -1.0
     exact = system.exact_jacobian
     jac_row, res = system.scalar_jacobian, system.scalar_residual
@@ -234,6 +297,8 @@ def _locate_fold_pair(br: Bracket, k: int, z: np.ndarray, tangent: np.ndarray) -
         # w·D²G[v·e_j, ·] by differences of the Jacobian row along e_j (the step of
         # second_derivative_row: forward for exact derivatives, central otherwise)
         scale = 1.0 / (abs(v) * (1.0 / max(s[j], abs(x[j]))))
+        up: tuple[float, float] | None
+        down: tuple[float, float] | None
         if exact:
             z1 = list(x)
             z1[j] = x[j] + (_SQRT_EPS * scale) * v

@@ -61,9 +61,12 @@ import math
 from typing import Any, NamedTuple
 
 import numpy as np
+from scipy.linalg import lapack
 
 from .._errors import SingularMatrixError
+from .._outcomes import Outcome
 from ..numerics._linalg import bordered, factor
+from ..systems._curve import CurveSystem
 
 logger = logging.getLogger(__name__)
 
@@ -116,14 +119,14 @@ class PartialSign(float):
     partial spectrum when a step asks for it (once per Krylov size; a point is the end of one step
     and the start of the next)."""
 
-    system: Any
+    system: CurveSystem
     z: np.ndarray
     t: np.ndarray
     lu: Any
     cached: Spectrum | None
 
     def __new__(
-        cls, sign: float, system: Any, z: np.ndarray, t: np.ndarray, lu: Any = None
+        cls, sign: float, system: CurveSystem, z: np.ndarray, t: np.ndarray, lu: Any = None
     ) -> PartialSign:
         self = super().__new__(cls, sign)
         self.system, self.z, self.t, self.lu, self.cached = system, z, t, lu, None
@@ -249,7 +252,7 @@ def _ritz_pairs(
         radius = math.inf
     else:
         radius = float(np.hypot(wr[-1], wi[-1])) if wr else 0.0
-    return Spectrum(np.array(wr), np.array(wi), vectors, radius, p)
+    return Spectrum(wr=np.array(wr), wi=np.array(wi), vectors=vectors, radius=radius, size=p)
 
 
 def _whole_pairs(nu: np.ndarray, keep: list[int]) -> list[int]:
@@ -283,12 +286,22 @@ def _unit(x: np.ndarray) -> np.ndarray:
     return x / norm if norm > 0.0 else x
 
 
+class Unaccounted(Outcome):
+    """Why the spectra at a step's ends do not account for it (:func:`follow`)."""
+
+    NOTHING = "", "the step is accounted for"
+    EMPTY = "empty", "a spectrum is empty"
+    UNMATCHED = "unmatched", "an eigenvalue seen at one end only may have crossed zero"
+    WINDOW = "window", "the radii add up to less than an eigenvalue's reach over the step"
+    PARITY = "parity", "the crossings' count has not the parity of the determinant's change"
+
+
 class Verdict(NamedTuple):
     """What the spectra at a step's ends say: the crossings' estimated places θ ∈ (0, 1),
-    ascending, and why the step is not accounted for ("" when it is)."""
+    ascending, and why the step is not accounted for (NOTHING when it is)."""
 
     thetas: list[float]
-    problem: str
+    problem: Unaccounted
 
 
 def follow(sa: Spectrum, sb: Spectrum, changed: bool) -> Verdict:
@@ -296,7 +309,7 @@ def follow(sa: Spectrum, sb: Spectrum, changed: bool) -> Verdict:
     (``changed``: whether det M changed sign): see the module docstring."""
     ka, kb = sa.wr.size, sb.wr.size
     if ka == 0 or kb == 0:
-        return Verdict([], "empty")
+        return Verdict(thetas=[], problem=Unaccounted.EMPTY)
     mu_a, mu_b = sa.wr + 1j * sa.wi, sb.wr + 1j * sb.wi
     parent = list(range(ka + kb))  # union-find: eigenvalue i of a is i, j of b is ka + j
 
@@ -322,7 +335,7 @@ def follow(sa: Spectrum, sb: Spectrum, changed: bool) -> Verdict:
             # (a complex pair's vectors carry no order: either member is the partner)
             moved = max(moved, min(abs(mu_b[j] - mu_a[i]), abs(mu_b[j] - mu_a[i].conjugate())))
     if free_a == [True] * ka:
-        return Verdict([], "unmatched")
+        return Verdict(thetas=[], problem=Unaccounted.UNMATCHED)
     for offset, wi in ((0, sa.wi), (ka, sb.wi)):
         for i in np.flatnonzero(wi > 0.0).tolist():
             parent[root(offset + i + 1)] = root(offset + i)
@@ -331,7 +344,7 @@ def follow(sa: Spectrum, sb: Spectrum, changed: bool) -> Verdict:
     for i in range(ka + kb):
         groups.setdefault(root(i), []).append(i)
     thetas: list[float] = []
-    problem = ""
+    problem = Unaccounted.NOTHING
     for members in groups.values():
         at_a = [i for i in members if i < ka]
         at_b = [i - ka for i in members if i >= ka]
@@ -339,16 +352,16 @@ def follow(sa: Spectrum, sb: Spectrum, changed: bool) -> Verdict:
             if any(_suspect(mu_a[i], reach, sb.radius) for i in at_a) or any(
                 _suspect(mu_b[j], reach, sa.radius) for j in at_b
             ):
-                problem = problem or "unmatched"
+                problem = problem or Unaccounted.UNMATCHED
             continue
         pa, pb = _product(sa, at_a), _product(sb, at_b)
         if pa != 0.0 and pb != 0.0 and (pa < 0) != (pb < 0):
             thetas.append(pa / (pa - pb))
     if sa.radius + sb.radius <= reach:
-        problem = problem or "window"
+        problem = problem or Unaccounted.WINDOW
     if (len(thetas) % 2 == 1) != changed:
-        problem = problem or "parity"
-    return Verdict(sorted(thetas), problem)
+        problem = problem or Unaccounted.PARITY
+    return Verdict(thetas=sorted(thetas), problem=problem)
 
 
 def _suspect(mu: complex, reach: float, radius: float) -> bool:
@@ -382,10 +395,12 @@ def split_points(old: PartialSign, new: PartialSign) -> tuple[float, ...]:
         sb = new.spectrum(size, warm=sa)
         if sa is None or sb is None:
             return ()
-        thetas, problem = follow(sa, sb, changed)
-        if not problem:
+        verdict = follow(sa, sb, changed)
+        problem = verdict.problem
+        if problem is Unaccounted.NOTHING:
+            thetas = verdict.thetas
             return tuple(0.5 * (a + b) for a, b in zip(thetas[:-1], thetas[1:]))
-        grow = problem != "parity" and size < MAX_KRYLOV
+        grow = problem is not Unaccounted.PARITY and size < MAX_KRYLOV
         if not grow or (math.isinf(sa.radius) and math.isinf(sb.radius)):
             break
         size = min(2 * size, MAX_KRYLOV)
@@ -396,4 +411,102 @@ def split_points(old: PartialSign, new: PartialSign) -> tuple[float, ...]:
     return (0.5,)
 
 
-__all__ = ["Factored", "PartialSign", "Spectrum", "arnoldi_spectrum", "follow", "split_points"]
+_geev = lapack.dgeev
+
+SPECTRUM_MAX_DIM = 50
+"""Dense curve systems of 3 to this many components carry the whole spectrum of the
+branch-point test's matrix at every point (one LAPACK eigendecomposition a step), which shows
+two or more branch points of different modes inside one step. Larger or sparse ones carry a
+partial spectrum, its few eigenvalues nearest zero computed only when a step asks for them
+(:mod:`.spectrum`). Curves with one unknown (2 components) carry none: their matrix holds one
+row of the Jacobian, one mode, and two branch points in one step are one eigenvalue crossing
+zero and back, which the spectra at the step's ends cannot show either."""
+
+
+class SignWithSpectrum(float):
+    """The branch-point test's value (the sign of det M, M = [∂G/∂z; (W t)ᵀ]) that also
+    carries M's spectrum from LAPACK's dgeev: ``spectrum`` = (real parts, imaginary parts,
+    unit real eigenvectors; a complex pair j, j + 1 has the vectors Re v, Im v), or None."""
+
+    spectrum: tuple[list[float], list[float], np.ndarray] | None
+
+    def __new__(cls, sign: float, m: np.ndarray) -> SignWithSpectrum:
+        self = super().__new__(cls, sign)
+        if not np.all(np.isfinite(m)):  # LAPACK's xerbla would print to stdout
+            self.spectrum = None
+            return self
+        wr, wi, _, vr, info = _geev(m, compute_vl=0, compute_vr=1)
+        if info != 0 or not np.all(np.isfinite(vr)):
+            self.spectrum = None
+        else:
+            norms = np.sqrt(np.einsum("ij,ij->j", vr, vr))
+            self.spectrum = (wr.tolist(), wi.tolist(), vr / np.where(norms > 0, norms, 1.0))
+        return self
+
+
+def eigenvalue_crossings(old: Any, new: Any) -> list[float]:
+    """Where eigenvalues of the branch-point matrix change sign between two points (values
+    :class:`SignWithSpectrum`), as estimates θ ∈ (0, 1), ascending; empty when either point
+    carries no spectrum.
+
+    Each eigenvector at the first point is matched to the one at the second most parallel
+    to it (greedily, best match first); matched eigenvalues and complex-conjugate pairs form
+    groups (a complex pair may turn into two real eigenvalues inside the step and one of
+    them cross zero). A group whose product of eigenvalues changes sign holds a crossing,
+    estimated where the linear interpolant of that product vanishes, θ = P_a/(P_a − P_b).
+
+    Two modes crossing zero in opposite directions within one step leave the determinant's
+    sign (and the count of negative eigenvalues) unchanged: only following each eigenvalue
+    shows them (a Turing window of the Brusselator, where one mode destabilises as another
+    restabilises)."""
+    sa, sb = getattr(old, "spectrum", None), getattr(new, "spectrum", None)
+    if sa is None or sb is None or len(sa[0]) != len(sb[0]):
+        return []
+    n = len(sa[0])
+    parent = list(range(2 * n))  # union-find: eigenvalue i of a is i, j of b is n + j
+
+    def root(i: int) -> int:
+        while parent[i] != i:
+            parent[i] = parent[parent[i]]
+            i = parent[i]
+        return i
+
+    flat = np.argsort(-np.abs(sa[2].T @ sb[2]), axis=None).tolist()
+    free_a, free_b = [True] * n, [True] * n
+    for f in flat:
+        i, j = divmod(f, n)
+        if free_a[i] and free_b[j]:
+            free_a[i] = free_b[j] = False
+            parent[root(i)] = root(n + j)
+    # products of each group at each end: a complex pair contributes |λ|² (> 0) once
+    factors = []
+    for offset, (wr, wi, _) in ((0, sa), (n, sb)):
+        for i in range(n):
+            if wi[i] > 0.0:  # the first of a pair (LAPACK: positive imaginary part first)
+                parent[root(offset + i + 1)] = root(offset + i)
+                factors.append((offset + i, wr[i] * wr[i] + wi[i] * wi[i]))
+            elif wi[i] == 0.0:
+                factors.append((offset + i, wr[i]))
+    products: dict[int, list[float]] = {}
+    for k, value in factors:
+        pair = products.setdefault(root(k), [1.0, 1.0])
+        pair[k >= n] *= value
+    out = []
+    for a, b in products.values():
+        if a != 0.0 and b != 0.0 and (a < 0) != (b < 0):
+            out.append(a / (a - b))
+    return sorted(out)
+
+
+__all__ = [
+    "SPECTRUM_MAX_DIM",
+    "Unaccounted",
+    "Factored",
+    "PartialSign",
+    "SignWithSpectrum",
+    "Spectrum",
+    "arnoldi_spectrum",
+    "eigenvalue_crossings",
+    "follow",
+    "split_points",
+]

@@ -6,7 +6,8 @@ from collections.abc import Callable
 
 from ..results._branch import Branch, join_halves
 from ..stepping._state import TracerState
-from ..stepping._tracer import Tracer, run
+from ..stepping._trace import run
+from ..stepping._tracer import Tracer
 
 
 def trace_directions(

@@ -27,15 +27,19 @@ from __future__ import annotations
 from collections.abc import Mapping, Sequence
 from typing import Any
 
+import numpy as np
+
 from .._errors import ProblemDefinitionError
-from .._options import ContinuationOptions
-from ..problem._problem import as_problem
+from .._options import KEEP, ContinuationOptions, Keep, with_overrides
+from .._outcomes import Kind
+from ..problem._events import Event
+from ..problem._problem import ContinuationProblem, as_problem
 from ..results._branch import Branch, SpecialPoint
 from ..stepping._state import TracerState
-from ..stepping._tracer import Tracer
+from ..stepping._tracer import DEFAULT_OPTIONS, Tracer
 from ._chain import ChainPoint, PointChain, _Renamed
 from ._directions import trace_directions
-from ._foldcurve import fold_curve
+from ._foldcurve import FOLD_OPTIONS, fold_curve
 
 
 def locus(
@@ -45,18 +49,90 @@ def locus(
     free: str,
     params: Mapping[str, float] | None = None,
     direction: str | int = "both",
+    bounds: Mapping[str, Sequence[float]] | None = None,
+    targets: Mapping[str, Sequence[float]] | None = None,
+    events: Sequence[Event] = (),
+    monitor: Sequence[str] = (),
+    scales: Mapping[str, float] | None = None,
     options: ContinuationOptions | None = None,
-    **kwargs: Any,
+    throw: bool = True,
+    rtol: float | Keep = KEEP,
+    ds: float | Keep = KEEP,
+    ds_min: float | Keep = KEEP,
+    ds_max: float | Keep = KEEP,
+    max_steps: int | Keep = KEEP,
+    tol: float | Keep = KEEP,
+    step_tol: float | Keep = KEEP,
+    max_step_solves: int | Keep = KEEP,
+    max_newton_iterations: int | Keep = KEEP,
+    target_newton_iterations: int | Keep = KEEP,
+    max_angle: float | Keep = KEEP,
+    target_angle: float | Keep = KEEP,
+    target_contraction: float | Keep = KEEP,
+    target_distance: float | Keep = KEEP,
+    curve_tol: float | Keep = KEEP,
+    growth: float | Keep = KEEP,
+    predictor: str | Keep = KEEP,
+    state_weight: float | None | Keep = KEEP,
+    detect_folds: bool | Keep = KEEP,
+    detect_branch_points: bool | Keep = KEEP,
+    locate_tol: float | Keep = KEEP,
+    max_locate_iterations: int | Keep = KEEP,
 ) -> Branch:
     """The locus of a chain of points as the parameter ``free`` varies.
 
-    ``start``: each point's values (``{point: {variable: value}}``) at the chain's parameter
-    values (corrected by Newton first). ``direction``: ``"both"`` (default; the two halves
-    joined at the start, ``info["start_index"]``), +1 or −1. Other keyword arguments
-    (``bounds``, ``targets``, ``events``, ``monitor``, ``scales``, ``throw`` and option
-    overrides) are those of :func:`~..stepping._tracer.trace`, on the chain's names (``"B.g"``) and
-    parameters; a turning point of ``free`` along the locus is reported as a fold.
+    Parameters
+    ----------
+    chain : PointChain or sequence of ChainPoint
+        The points (built into a :class:`PointChain` with ``params`` if a sequence).
+    start : mapping of str to mapping of str to float
+        Each point's values, ``{point: {variable: value}}``, at the chain's parameter values
+        (corrected by Newton first).
+    free : str
+        The parameter of the chain that varies; a turning point of it along the locus is
+        reported as a fold.
+    params : mapping of str to float, optional
+        The chain's parameter values (only with a sequence of points).
+    direction : {"both", 1, -1}
+        ``"both"`` (default; the two halves joined at the start, ``info["start_index"]``),
+        +1 or −1.
+    bounds, targets, events, monitor, scales, options, throw
+        As for :func:`~..stepping._trace.trace`, on the chain's names (``"B.g"``) and
+        parameters.
+
+    Other Parameters
+    ----------------
+    rtol, ds, ds_min, ds_max, max_steps, tol, step_tol, max_step_solves, \
+max_newton_iterations, target_newton_iterations, max_angle, target_angle, \
+target_contraction, target_distance, curve_tol, growth, predictor, state_weight, \
+detect_folds, detect_branch_points, locate_tol, max_locate_iterations
+        The field of the same name of ``options``, overridden.
+
+    Returns
+    -------
+    Branch
     """
+    options = with_overrides(options, DEFAULT_OPTIONS, locals())
+    chain, u0 = _chain_start(chain, start, free, params, direction)
+    curve: dict[str, Any] = dict(
+        bounds=bounds, targets=targets, events=events, monitor=monitor, scales=scales
+    )
+
+    def begin(d: int) -> tuple[Tracer, TracerState]:
+        tracer = Tracer(chain, free=free, direction=d, options=options, throw=throw, **curve)
+        return tracer, tracer.init(u0)
+
+    return trace_directions(begin, direction)
+
+
+def _chain_start(
+    chain: PointChain | Sequence[ChainPoint],
+    start: Mapping[str, Mapping[str, float]],
+    free: str,
+    params: Mapping[str, float] | None,
+    direction: str | int,
+) -> tuple[PointChain, np.ndarray]:
+    """The chain of :func:`locus` (checked) and its start's unknowns."""
     if not isinstance(chain, PointChain):
         chain = PointChain(chain, params)
     elif params:
@@ -68,29 +144,94 @@ def locus(
         )
     if direction not in ("both", 1, -1):
         raise ProblemDefinitionError(f"direction must be 'both', +1 or -1, got {direction!r}")
-    u0 = chain.start(start)
-
-    def begin(d: int) -> tuple[Tracer, TracerState]:
-        tracer = Tracer(chain, free=free, direction=d, options=options, **kwargs)
-        return tracer, tracer.init(u0)
-
-    return trace_directions(begin, direction)
+    return chain, chain.start(start)
 
 
 def point_locus(
-    problem: Any, point: SpecialPoint, *, free: tuple[str, str], **kwargs: Any
+    problem: ContinuationProblem,
+    point: SpecialPoint,
+    *,
+    free: tuple[str, str],
+    direction: str | int = "both",
+    bounds: Mapping[str, Sequence[float]] | None = None,
+    targets: Mapping[str, Sequence[float]] | None = None,
+    events: Sequence[Event] = (),
+    monitor: Sequence[str] = (),
+    scales: Mapping[str, float] | None = None,
+    options: ContinuationOptions | None = None,
+    throw: bool = True,
+    rtol: float | Keep = KEEP,
+    ds: float | Keep = KEEP,
+    ds_min: float | Keep = KEEP,
+    ds_max: float | Keep = KEEP,
+    max_steps: int | Keep = KEEP,
+    tol: float | Keep = KEEP,
+    step_tol: float | Keep = KEEP,
+    max_step_solves: int | Keep = KEEP,
+    max_newton_iterations: int | Keep = KEEP,
+    target_newton_iterations: int | Keep = KEEP,
+    max_angle: float | Keep = KEEP,
+    target_angle: float | Keep = KEEP,
+    target_contraction: float | Keep = KEEP,
+    target_distance: float | Keep = KEEP,
+    curve_tol: float | Keep = KEEP,
+    growth: float | Keep = KEEP,
+    predictor: str | Keep = KEEP,
+    state_weight: float | None | Keep = KEEP,
+    detect_folds: bool | Keep = KEEP,
+    detect_branch_points: bool | Keep = KEEP,
+    locate_tol: float | Keep = KEEP,
+    max_locate_iterations: int | Keep = KEEP,
 ) -> Branch:
     """The locus of a located point of a branch of ``problem`` as the second parameter of
     ``free = (p1, p2)`` varies (``p1``: the branch's free parameter): a fold by
     :func:`~._foldcurve.fold_curve`, a bound hit or target by holding its variable at its
     value (:func:`locus` of a one-point chain, whose variables keep their problem's names).
-    Keyword arguments as for :func:`locus`."""
+
+    Parameters
+    ----------
+    problem : Problem or ContinuationProblem
+        The problem of the branch the point lies on.
+    point : SpecialPoint
+        A fold, a target or a bound hit (``"endpoint"`` with ``with_respect_to``).
+    free : (str, str)
+        ``(p1, p2)``.
+    direction, bounds, targets, events, monitor, scales, options, throw
+        As for :func:`locus` (for a fold, :func:`~._foldcurve.fold_curve`, whose default
+        options detect no branch points).
+
+    Other Parameters
+    ----------------
+    rtol, ds, ds_min, ds_max, max_steps, tol, step_tol, max_step_solves, \
+max_newton_iterations, target_newton_iterations, max_angle, target_angle, \
+target_contraction, target_distance, curve_tol, growth, predictor, state_weight, \
+detect_folds, detect_branch_points, locate_tol, max_locate_iterations
+        The field of the same name of ``options``, overridden.
+
+    Returns
+    -------
+    Branch
+    """
     if not isinstance(point, SpecialPoint):
         raise ProblemDefinitionError(f"point must be a SpecialPoint of a branch, got {point!r}")
-    if point.kind == "fold":
-        return fold_curve(problem, point, free=free, **kwargs)
+    fold = point.kind == Kind.FOLD
+    options = with_overrides(options, FOLD_OPTIONS if fold else DEFAULT_OPTIONS, locals())
+    curve: dict[str, Any] = dict(
+        direction=direction, bounds=bounds, targets=targets, events=events, monitor=monitor,
+        scales=scales, options=options, throw=throw,
+    )  # fmt: skip
+    if fold:
+        return fold_curve(problem, point, free=free, **curve)
+    return _held_locus(problem, point, free, curve)
+
+
+def _held_locus(
+    problem: ContinuationProblem, point: SpecialPoint, free: tuple[str, str], curve: dict
+) -> Branch:
+    """:func:`point_locus` of a target or bound hit: the locus of a one-point chain that
+    holds the point's variable at its value (``curve``: the arguments of :func:`locus`)."""
     var = point.with_respect_to
-    if point.kind not in ("target", "endpoint") or var is None:
+    if point.kind not in (Kind.TARGET, Kind.ENDPOINT) or var is None:
         raise ProblemDefinitionError(
             f"point_locus continues folds, targets and bound hits; got a {point.kind!r} point "
             f"{point.label!r} (for an event or a corner between legs, build a PointChain)"
@@ -104,7 +245,7 @@ def point_locus(
     pt = ChainPoint("", problem, p1, (var, float(values[var])))
     chain = _Renamed(PointChain([pt], fixed))
     start = {"": {v: float(values[v]) for v in tuple(problem.unknowns) + (p1,)}}
-    return locus(chain, start, free=p2, **kwargs)
+    return locus(chain, start, free=p2, **curve)
 
 
 __all__ = ["locus", "point_locus"]

@@ -45,22 +45,19 @@ def dense_factors(a: np.ndarray):
     return lu, piv
 
 
-def dense_solve(a: np.ndarray, b: np.ndarray):
-    """LAPACK gesv (factor and solve in one call) of a square float array: ``(lu, piv, x)``;
-    SingularMatrixError as :func:`dense_factors`."""
+def dense_solve(a: np.ndarray, b: np.ndarray) -> tuple[DenseLU, np.ndarray]:
+    """LAPACK gesv (factor and solve in one call) of a square float array: the factors and
+    the solution; SingularMatrixError as :func:`dense_factors`."""
     lu, piv, x, info = _gesv(a, b)
     if info > 0 or not math.isfinite(lu[-1, -1]):
         raise SingularMatrixError(f"matrix is singular (zero pivot {info})")
-    return lu, piv, x
-
-
-def getrs(lu: np.ndarray, piv: np.ndarray, b: np.ndarray, trans: bool = False) -> np.ndarray:
-    """Solve (the transposed system if ``trans``) with the factors of :func:`dense_factors`
-    or :func:`dense_solve`."""
-    return _getrs(lu, piv, b, 1 if trans else 0)[0]  # (positional: f2py parses keywords slowly)
+    return DenseLU.from_factors(lu, piv), x
 
 
 class DenseLU:
+    """The LU factorization (partial pivoting) of a dense square matrix, by LAPACK getrf:
+    solves (also transposed), the determinant's sign and log-magnitude."""
+
     __slots__ = ("lu", "piv", "n")
 
     def __init__(self, a: np.ndarray) -> None:
@@ -149,6 +146,9 @@ class PairLU:
 
 
 class SparseLU:
+    """The LU factorization of a sparse square matrix by SuperLU, with the interface of
+    :class:`DenseLU` (the determinant's sign from U's diagonal and the permutations')."""
+
     __slots__ = ("lu", "n")
 
     def __init__(self, a) -> None:

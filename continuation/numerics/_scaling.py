@@ -36,30 +36,30 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping, Sequence
-from typing import Any
+from typing import Any, NamedTuple
 
 import numpy as np
 import scipy.sparse as sp
 
-from .._errors import ProblemDefinitionError, SingularMatrixError
-from ._linalg import bordered, factor, unit_last
+from .._errors import ProblemDefinitionError
 
 
-def given_scales(system: Any, scales: Mapping[str, float] | None) -> dict[int, float]:
-    """The user's typical sizes by component index (checked: traced names, finite > 0)."""
+def given_scales(names: Sequence[str], scales: Mapping[str, float] | None) -> dict[int, float]:
+    """The user's scales (``scales=``) by component index, ``names`` the curve's components
+    (checked: traced names, numbers in [1e-150, 1e150])."""
     out: dict[int, float] = {}
     for name, value in (scales or {}).items():
-        k = system.index(name)
-        if k is None:
+        if name not in names:
             raise ProblemDefinitionError(
                 f"scales names {name!r}, which is not traced on this curve; it must be one of "
-                f"{list(system.names)}"
+                f"{list(names)}"
             )
+        k = list(names).index(name)
         try:
             v = float(value)
         except (TypeError, ValueError):
             v = math.nan
-        if isinstance(value, bool) or not (1.0 / MAX_SIZE <= v <= MAX_SIZE):
+        if isinstance(value, bool) or not (1.0 / MAX_SCALE <= v <= MAX_SCALE):
             raise ProblemDefinitionError(
                 f"scales[{name!r}] must be a number in [1e-150, 1e150] (a typical size), "
                 f"got {value!r}"
@@ -71,44 +71,46 @@ def given_scales(system: Any, scales: Mapping[str, float] | None) -> dict[int, f
 GROWTH = 4.0
 """Factor by which a component must exceed its typical size before the size follows it."""
 
-MAX_SIZE = 1e150
-"""The largest typical size (and 1/MAX_SIZE the smallest): its square and the reciprocal of
+MAX_SCALE = 1e150
+"""The largest typical size (and 1/MAX_SCALE the smallest): its square and the reciprocal of
 its square stay normal floats (1e±300), so that the arclength weights ``base/s²`` and the
 weighted products can be formed. A component that grows beyond it diverges: the branch
 stops there (:func:`diverged`)."""
 
 
-_MIN_SIZE = 1.0 / MAX_SIZE
+_MIN_SCALE = 1.0 / MAX_SCALE
 
 
 def out_of_range(scales: np.ndarray) -> int | None:
-    """The index of a typical size outside ``[1/MAX_SIZE, MAX_SIZE]`` (or NaN), else None.
+    """The index of a typical size outside ``[1/MAX_SCALE, MAX_SCALE]`` (or NaN), else None.
     Plain Python on the few components of most problems."""
     if scales.size <= 8:
         for k, v in enumerate(scales.tolist()):
-            if not _MIN_SIZE <= v <= MAX_SIZE:
+            if not _MIN_SCALE <= v <= MAX_SCALE:
                 return k
         return None
-    bad = ~((scales >= _MIN_SIZE) & (scales <= MAX_SIZE))
+    bad = ~((scales >= _MIN_SCALE) & (scales <= MAX_SCALE))
     return int(np.argmax(bad)) if bad.any() else None
 
 
 def diverged(names: Sequence[str], z: np.ndarray, k: int) -> str:
-    """The message of a branch stopped because component ``k`` outgrew :data:`MAX_SIZE`."""
+    """The message of a branch stopped because component ``k`` outgrew :data:`MAX_SCALE`."""
     return (
-        f"the branch diverges: {names[k]} reached {z[k]:.3g}, beyond ±{MAX_SIZE:g}, where the "
+        f"the branch diverges: {names[k]} reached {z[k]:.3g}, beyond ±{MAX_SCALE:g}, where the "
         f"squares in the arclength metric overflow; the branch stops at the last point "
         f"before. Give a bound on {names[k]!r} (bounds=...) to end it earlier"
     )
 
 
-def grown_sizes(scales: np.ndarray, z: np.ndarray, given: Mapping[int, float]) -> np.ndarray | None:
+def grown_scales(
+    scales: np.ndarray, z: np.ndarray, given: Mapping[int, float]
+) -> np.ndarray | None:
     """The sizes after the curve reached ``z`` (see the module docstring), or None if none
     grew. ``given``: the user's sizes by component index (kept).
 
-    >>> grown_sizes(np.array([1.0, 1e-3]), np.array([2.0, 5e-3]), {})
+    >>> grown_scales(np.array([1.0, 1e-3]), np.array([2.0, 5e-3]), {})
     array([1.   , 0.005])
-    >>> grown_sizes(np.array([1.0, 1e-3]), np.array([2.0, 5e-3]), {1: 1e-3}) is None
+    >>> grown_scales(np.array([1.0, 1e-3]), np.array([2.0, 5e-3]), {1: 1e-3}) is None
     True
     """
     if z.size <= 8:  # plain Python on the few components of most problems (a tenth the cost)
@@ -128,19 +130,28 @@ def grown_sizes(scales: np.ndarray, z: np.ndarray, given: Mapping[int, float]) -
     return np.where(grown, mag, scales)
 
 
-def typical_sizes(
+class StartScales(NamedTuple):
+    """The scales of a curve's components at its start (:func:`start_scales`): ``scales``,
+    and whether they are ``settled`` (no component was of scale 0 or suspiciously small, so
+    the tangent and the Jacobian cannot change them)."""
+
+    scales: np.ndarray
+    settled: bool
+
+
+def start_scales(
     z0: np.ndarray,
     given: Mapping[int, float],
-    bounds: Sequence[Any] = (),
+    bounds: Sequence[tuple[int, tuple[float, float]]] = (),
     tangent: np.ndarray | None = None,
     jacobian: Any = None,
     inherited: Mapping[int, float] | None = None,
     guess: bool = False,
-) -> tuple[np.ndarray, bool]:
+) -> StartScales:
     """The typical size of every component (module docstring), and whether they are settled
     (no component was of size 0 or suspiciously small, so the tangent and the Jacobian
-    cannot change them); ``bounds`` are the curve's
-    bound tests (``k`` and ``pair``), ``tangent`` the start tangent (any normalisation) or
+    cannot change them); ``bounds`` are the curve's bounds as ``(component index, (low,
+    high))``, ``tangent`` the start tangent (any normalisation) or
     None before it is known (the sizes still 0 are then provisionally 1), ``jacobian`` a
     function giving ∂G/∂z at ``z0`` (to recognise values at rounding level; called only if
     some component is a millionth of the largest or less), ``inherited`` the sizes on a
@@ -156,7 +167,7 @@ def typical_sizes(
     largest = max(s)
     noise = False
     if guess:
-        around = max([largest, *given.values(), *(_bound_size(t.pair) for t in bounds)])
+        around = max([largest, *given.values(), *(_bound_scale(pair) for _, pair in bounds)])
         for i, x in enumerate(s):
             if 0.0 < x <= 1e-6 * around and i not in given:
                 s[i], noise = 0.0, True
@@ -171,8 +182,8 @@ def typical_sizes(
         for i in _at_rounding_level(jacobian(), mags):
             if i not in given:
                 s[i] = 0.0
-    for t in bounds:
-        s[t.k] = max(s[t.k], _bound_size(t.pair))
+    for k, pair in bounds:
+        s[k] = max(s[k], _bound_scale(pair))
     for k, v in (inherited or {}).items():
         if s[k] < 1e-6 * v:
             s[k] = v
@@ -185,53 +196,16 @@ def typical_sizes(
         _size_by_motion(s, unknown, t, given, jacobian)
     # (a value below the range where the metric can be formed sizes it at the range's end;
     # one above it cannot be measured, and is refused by the caller)
-    sizes = [1.0 if u else max(x, _MIN_SIZE) for x, u in zip(s, unknown)]
-    return np.array(sizes), settled
+    scales = [1.0 if u else max(x, _MIN_SCALE) for x, u in zip(s, unknown)]
+    return StartScales(scales=np.array(scales), settled=settled)
 
 
-def _bound_size(pair: tuple[float, float]) -> float:
+def _bound_scale(pair: tuple[float, float]) -> float:
     """The size a bound interval gives its component: its width if both ends are finite,
     else its largest finite end."""
     lo, hi = pair
     ends = [abs(v) for v in (lo, hi) if math.isfinite(v)]
     return hi - lo if len(ends) == 2 else max(ends)
-
-
-def settled_by_motion(
-    system: Any,
-    z0: np.ndarray,
-    t0: np.ndarray,
-    given: Mapping[int, float],
-    bounds: Sequence[Any],
-    inherited: Mapping[int, float] | None,
-) -> tuple[Any, np.ndarray, bool]:
-    """The system with the sizes of the start ``z0`` (:func:`typical_sizes` with the start
-    tangent ``t0``), the tangent, and whether the tangent was recomputed.
-
-    A component of unknown size is differenced with steps relative to its provisional
-    size 1 until its size is known; for a concentration of 1e-9 that step is a million
-    times its value and the differenced Jacobian, hence the tangent that sizes it, is
-    garbage. With a differenced Jacobian the tangent is therefore recomputed with the steps
-    of the new sizes (``[∂G/∂z; (W t0)ᵀ] t = e``, the same orientation) and the sizes taken
-    again, until none changes by more than a factor 2 (at most three rounds)."""
-    provisional = system.scales
-    for rounds in range(4):
-        sizes, _ = typical_sizes(
-            z0, given, bounds, t0, lambda s=system: s.jacobian(z0), inherited=inherited
-        )
-        close = bool(np.all(np.abs(np.log2(sizes / system.scales)) <= 1.0))
-        if not np.array_equal(sizes, system.scales):
-            system = system.with_scales(sizes)
-        if close or system.exact_jacobian or rounds == 3:
-            break
-        try:
-            t = factor(bordered(system.jacobian(z0), system.weights * t0)).solve(unit_last(z0.size))
-        except SingularMatrixError:
-            break
-        if not np.all(np.isfinite(t)):
-            break
-        t0 = t
-    return system, t0, not np.array_equal(system.scales, provisional) and rounds > 0
 
 
 def _size_by_motion(
@@ -312,4 +286,13 @@ def _at_rounding_level(jacobian: Any, magnitudes: list[float]) -> list[int]:
     return found
 
 
-__all__ = ["given_scales", "settled_by_motion", "typical_sizes"]
+__all__ = [
+    "GROWTH",
+    "MAX_SCALE",
+    "StartScales",
+    "diverged",
+    "given_scales",
+    "grown_scales",
+    "out_of_range",
+    "start_scales",
+]

@@ -21,11 +21,11 @@ _H_COMPLEX = 1e-30
 _FD_WHAT = "the residual (evaluated for finite differences near the point)"
 
 
-def _steps(x: np.ndarray, rel: float, typical: Any = 1.0) -> np.ndarray:
-    """Steps ``rel·max(typical, |x|)``: relative to the component's typical size (1 unless
-    the caller knows better), so that a variable of size 1e-8 or 1e8 is differenced as
-    accurately as one of size 1."""
-    h = rel * np.maximum(typical, np.abs(x))
+def _steps(x: np.ndarray, rel: float, scales: Any = 1.0) -> np.ndarray:
+    """Steps ``rel·max(scales, |x|)``: relative to the component's scale (its typical size, 1
+    unless the caller knows better), so that a variable of size 1e-8 or 1e8 is differenced
+    as accurately as one of size 1."""
+    h = rel * np.maximum(scales, np.abs(x))
     # make x + h exactly representable so the divided difference uses the true step
     return (x + h) - x
 
@@ -59,20 +59,40 @@ def fd_jacobian(
     *,
     method: str = "central",
     f0: np.ndarray | None = None,
-    sparsity=None,
+    sparsity: Any = None,
     groups: list[np.ndarray] | None = None,
-    typical: Any = 1.0,
+    scales: Any = 1.0,
     where: Where = None,
-    scale: float = 1.0,
-):
+    step_factor: float = 1.0,
+) -> Any:
     """Jacobian of ``f`` at ``x`` by finite differences or complex step.
 
-    With ``sparsity`` (a matrix whose nonzeros mark possible nonzeros of the Jacobian) the
-    columns are grouped so the cost is one (forward, complex) or two (central) evaluations
-    per group, and a CSR matrix is returned. ``typical``: the typical sizes of the components
-    of ``x`` (a scalar or an array): the steps are ``h_j = rel·max(typical_j, |x_j|)``.
-    Complex values of ``f`` are refused under the real methods, naming the point ``where``
-    (:func:`~._realvalues.real_array`).
+    Parameters
+    ----------
+    f : callable, ``f(x) -> array of m``
+        The function, of the float array ``x`` (complex under ``method="complex"``).
+    x : ndarray, shape (n,)
+        Where to differentiate.
+    method : {"central", "forward", "complex"}
+        The difference (steps ε^{1/3}, ε^{1/2} of the magnitudes) or the complex step.
+    f0 : ndarray, shape (m,), optional
+        ``f(x)``, if known (forward differences use it).
+    sparsity : sparse or dense matrix, shape (m, n), optional
+        Marks the possible nonzeros: columns are then grouped (:func:`column_groups`, or
+        ``groups`` if given) so that one (forward, complex) or two (central) evaluations
+        serve a group, and a CSR matrix is returned.
+    scales : float or ndarray, shape (n,)
+        The components' scales (typical sizes): the steps are
+        ``h_j = step_factor·rel·max(scales_j, |x_j|)``.
+    where : mapping, callable or str, optional
+        The point, for the message refusing complex values of ``f`` under the real methods
+        (:func:`~._realvalues.real_array`).
+    step_factor : float
+        Multiplies the steps (the extrapolation of :func:`extrapolated` takes 1 and 1/2).
+
+    Returns
+    -------
+    ndarray, shape (m, n), or CSR matrix
     """
     x = np.asarray(x, dtype=float)
     n = x.size
@@ -83,9 +103,9 @@ def fd_jacobian(
     if method == "forward":
         if f0 is None:
             f0 = real(f(x))
-        h = _steps(x, scale * _H_FORWARD, typical)
+        h = _steps(x, step_factor * _H_FORWARD, scales)
     elif method == "central":
-        h = _steps(x, scale * _H_CENTRAL, typical)
+        h = _steps(x, step_factor * _H_CENTRAL, scales)
     elif method == "complex":
         h = np.full(n, _H_COMPLEX)
     else:
@@ -105,8 +125,18 @@ def fd_jacobian(
             d[j] = h[j]
             cols.append(directional(d) / h[j])
         return np.column_stack(cols) if cols else np.zeros((0, 0))
+    return _grouped_jacobian(directional, h, sp.csc_matrix(sparsity), groups)
 
-    pat = sp.csc_matrix(sparsity)
+
+def _grouped_jacobian(
+    directional: Callable[[np.ndarray], np.ndarray],
+    h: np.ndarray,
+    pat: Any,
+    groups: list[np.ndarray] | None,
+) -> Any:
+    """The sparse Jacobian of pattern ``pat`` (CSC) from one directional difference a group
+    of structurally orthogonal columns (steps ``h``), as CSR."""
+    n = h.size
     if groups is None:
         groups = column_groups(pat)
     rows_list, cols_list, vals_list = [], [], []
@@ -133,27 +163,27 @@ def fd_derivative(
     x: float,
     *,
     method: str = "central",
-    typical: float = 1.0,
-    where: Where = None,
     scale: float = 1.0,
+    where: Where = None,
+    step_factor: float = 1.0,
 ) -> np.ndarray:
     """Derivative of a vector function of one real variable (steps relative to
-    ``max(typical, |x|)``, times ``scale``; complex values refused as in
+    ``max(scale, |x|)``, times ``step_factor``; complex values refused as in
     :func:`fd_jacobian`)."""
     if method == "complex":
         value = np.asarray(f(x + 1j * _H_COMPLEX), dtype=complex)
         return np.imag(value) / _H_COMPLEX
     if method == "forward":
-        h = (x + scale * _H_FORWARD * max(typical, abs(x))) - x
+        h = (x + step_factor * _H_FORWARD * max(scale, abs(x))) - x
         return (real_array(f(x + h), _FD_WHAT, where) - real_array(f(x), _FD_WHAT, where)) / h
-    h = (x + scale * _H_CENTRAL * max(typical, abs(x))) - x
+    h = (x + step_factor * _H_CENTRAL * max(scale, abs(x))) - x
     up, down = real_array(f(x + h), _FD_WHAT, where), real_array(f(x - h), _FD_WHAT, where)
     return (up - down) / (2 * h)
 
 
 def extrapolated(differenced: Callable[[float], Any]) -> Any:
-    """Richardson's extrapolation of central difference quotients: ``differenced(scale)``
-    is the quotient with the plain central step times ``scale``; the steps 1 and 1/2 are
+    """Richardson's extrapolation of central difference quotients: ``differenced(factor)``
+    is the quotient with the plain central step times ``factor``; the steps 1 and 1/2 are
     combined as (4 D(h/2) − D(h))/3, which cancels the h² term of their truncation error
     and leaves h⁴ (and about twice the rounding of one quotient). Where the third derivative
     is large next to the step (a variable far from where it varies, x ≈ 1000 in

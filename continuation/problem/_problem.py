@@ -77,34 +77,8 @@ class Problem:
     ) -> None:
         if not callable(residual):
             raise ProblemDefinitionError(f"residual must be callable, got {residual!r}")
-        if isinstance(unknowns, str):
-            unknowns = [unknowns]
-        unknowns = tuple(unknowns)
-        if not unknowns or not all(isinstance(x, str) and x for x in unknowns):
-            raise ProblemDefinitionError(
-                f"unknowns must be a non-empty sequence of names, got {unknowns!r}"
-            )
-        if len(set(unknowns)) != len(unknowns):
-            raise ProblemDefinitionError(f"unknowns has repeated names: {unknowns!r}")
-        if not isinstance(params, Mapping):
-            raise ProblemDefinitionError(
-                f"params must be a mapping name -> value, got {type(params).__name__}"
-            )
-        clean = {}
-        for key, value in params.items():
-            if not isinstance(key, str) or not key:
-                raise ProblemDefinitionError(f"parameter names must be strings, got {key!r}")
-            if key in unknowns:
-                raise ProblemDefinitionError(f"{key!r} is both an unknown and a parameter")
-            try:
-                value = float(value)
-            except (TypeError, ValueError):
-                raise ProblemDefinitionError(
-                    f"parameter {key!r} must be a real number, got {value!r}"
-                ) from None
-            if not math.isfinite(value):
-                raise ProblemDefinitionError(f"parameter {key!r} must be finite, got {value!r}")
-            clean[key] = value
+        unknowns = _checked_unknowns(unknowns)
+        clean = _checked_params(params, unknowns)
         if derivatives not in STRATEGIES:
             raise ProblemDefinitionError(
                 f"derivatives must be one of {STRATEGIES}, got {derivatives!r}"
@@ -125,9 +99,9 @@ class Problem:
                 f"sparsity must be {len(unknowns)}×{len(unknowns)}, got {self.sparsity.shape}"
             )
         self._groups = None if self.sparsity is None else column_groups(self.sparsity)
-        # typical sizes for the finite-difference steps (see with_typical_sizes)
-        self._typical_u: Any = 1.0
-        self._typical_p: dict[str, float] = {}
+        # the scales (typical sizes) of the finite-difference steps (see with_scales)
+        self._scales_u: Any = 1.0
+        self._scales_p: dict[str, float] = {}
 
     @property
     def n(self) -> int:
@@ -171,17 +145,17 @@ class Problem:
         new.params = {**self.params, **{k: float(v) for k, v in values.items()}}
         return new
 
-    def with_typical_sizes(
+    def with_scales(
         self, unknowns: np.ndarray | None, params: Mapping[str, float] | None = None
     ) -> Problem:
-        """A copy whose finite differences step relative to these typical sizes of the
-        unknowns (an array) and parameters (by name) — ``h = rel·max(typical, |x|)`` instead
+        """A copy whose finite differences step relative to these scales (typical sizes) of
+        the unknowns (an array) and parameters (by name) — ``h = rel·max(scale, |x|)`` instead
         of ``rel·max(1, |x|)`` — so that badly scaled variables are differenced accurately.
-        The tracer sets them from the branch's own typical sizes."""
+        The tracer sets them from the branch's own scales."""
         new = object.__new__(Problem)
         new.__dict__.update(self.__dict__)
-        new._typical_u = 1.0 if unknowns is None else np.asarray(unknowns, dtype=float)
-        new._typical_p = dict(params or {})
+        new._scales_u = 1.0 if unknowns is None else np.asarray(unknowns, dtype=float)
+        new._scales_p = dict(params or {})
         return new
 
     def callbacks(self) -> tuple[Callable, Callable, Callable]:
@@ -207,7 +181,7 @@ class Problem:
             method=self.derivatives,
             sparsity=self.sparsity,
             groups=self._groups,
-            typical=self._typical_u,
+            scales=self._scales_u,
             where=lambda: _point(self, u, p),
         )
 
@@ -224,14 +198,53 @@ class Problem:
             q[name] = value
             return self._residual(u, q)
 
-        typical = self._typical_p.get(name, 1.0)
         return fd_derivative(
             f,
             float(p[name]),
             method=self.derivatives,
-            typical=typical,
+            scale=self._scales_p.get(name, 1.0),
             where=lambda: _point(self, u, p),
         )
+
+
+def _checked_unknowns(unknowns: Sequence[str] | str) -> tuple[str, ...]:
+    """The names of the unknowns as a tuple (one name may be given alone), checked:
+    non-empty strings, none repeated."""
+    if isinstance(unknowns, str):
+        unknowns = [unknowns]
+    names = tuple(unknowns)
+    if not names or not all(isinstance(x, str) and x for x in names):
+        raise ProblemDefinitionError(
+            f"unknowns must be a non-empty sequence of names, got {names!r}"
+        )
+    if len(set(names)) != len(names):
+        raise ProblemDefinitionError(f"unknowns has repeated names: {names!r}")
+    return names
+
+
+def _checked_params(params: Mapping[str, float], unknowns: tuple[str, ...]) -> dict[str, float]:
+    """The parameters as ``{name: float}``, checked: string names that are not unknowns,
+    finite real values."""
+    if not isinstance(params, Mapping):
+        raise ProblemDefinitionError(
+            f"params must be a mapping name -> value, got {type(params).__name__}"
+        )
+    clean = {}
+    for key, value in params.items():
+        if not isinstance(key, str) or not key:
+            raise ProblemDefinitionError(f"parameter names must be strings, got {key!r}")
+        if key in unknowns:
+            raise ProblemDefinitionError(f"{key!r} is both an unknown and a parameter")
+        try:
+            value = float(value)
+        except (TypeError, ValueError):
+            raise ProblemDefinitionError(
+                f"parameter {key!r} must be a real number, got {value!r}"
+            ) from None
+        if not math.isfinite(value):
+            raise ProblemDefinitionError(f"parameter {key!r} must be finite, got {value!r}")
+        clean[key] = value
+    return clean
 
 
 def extrapolated_derivatives(problem: Any, u: np.ndarray, p: Mapping[str, float], name: str):
@@ -248,15 +261,15 @@ def extrapolated_derivatives(problem: Any, u: np.ndarray, p: Mapping[str, float]
         jac = problem.jacobian(u, p)
     else:
         jac = extrapolated(
-            lambda scale: fd_jacobian(
+            lambda factor: fd_jacobian(
                 lambda v: problem._residual(v, p),
                 u,
                 method=method,
                 sparsity=problem.sparsity,
                 groups=problem._groups,
-                typical=problem._typical_u,
+                scales=problem._scales_u,
                 where=lambda: _point(problem, u, p),
-                scale=scale,
+                step_factor=factor,
             ),
         )
     if problem.has_param_jacobian:
@@ -268,13 +281,13 @@ def extrapolated_derivatives(problem: Any, u: np.ndarray, p: Mapping[str, float]
         return problem._residual(u, q)
 
     dp = extrapolated(
-        lambda scale: fd_derivative(
+        lambda factor: fd_derivative(
             f,
             float(p[name]),
             method=method,
-            typical=problem._typical_p.get(name, 1.0),
+            scale=problem._scales_p.get(name, 1.0),
             where=lambda: _point(problem, u, p),
-            scale=scale,
+            step_factor=factor,
         ),
     )
     return jac, dp

@@ -54,6 +54,21 @@ def from_sympy(
 
     xs = [sym(s) for s in unknowns]
     ps = {sym(k): float(v) for k, v in params.items()}
+    exprs = _expressions(residuals, xs, ps)
+    residual, jacobian, param_jacobian = _lambdified(exprs, xs, ps, sparse)
+    return Problem(
+        residual,
+        [str(x) for x in xs],
+        {str(k): v for k, v in ps.items()},
+        jacobian=jacobian,
+        param_jacobian=param_jacobian,
+        name=name,
+    )
+
+
+def _expressions(residuals: Sequence, xs: list, ps: dict) -> list:
+    """The residuals as sympy expressions (strings parsed by :func:`parse_expression`),
+    one per unknown, in the declared symbols only."""
     declared = {str(s): s for s in [*xs, *ps]}
     exprs = [
         parse_expression(e, declared) if isinstance(e, str) else _sympify(e) for e in residuals
@@ -70,6 +85,14 @@ def from_sympy(
                 f"residual {e} has symbols {sorted(map(str, extra))} that are neither unknowns "
                 f"nor parameters"
             )
+    return exprs
+
+
+def _lambdified(exprs: list, xs: list, ps: dict, sparse: bool) -> tuple[Any, Any, Any]:
+    """The residual, Jacobian and parameter derivative of ``exprs`` as numpy functions of
+    ``(u, p)``, the derivatives differentiated symbolically."""
+    import sympy
+
     pnames = [str(p) for p in ps]
     args = xs + list(ps)
     n = len(xs)
@@ -97,14 +120,7 @@ def from_sympy(
     def param_jacobian(u, p, pname):
         return np.broadcast_to(np.asarray(call(f_dp[pname], u, p), dtype=float), (n,)).copy()
 
-    return Problem(
-        residual,
-        [str(x) for x in xs],
-        {str(k): v for k, v in ps.items()},
-        jacobian=jacobian,
-        param_jacobian=param_jacobian,
-        name=name,
-    )
+    return residual, jacobian, param_jacobian
 
 
 def _sympify(e: Any) -> Any:

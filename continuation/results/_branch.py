@@ -7,29 +7,29 @@ from typing import Any
 
 import numpy as np
 
-#: statuses that count as a normal end of a branch (``"max_steps"`` does not: the branch
-#: stopped short of its bounds)
-SUCCESS_STATUSES = frozenset({"bound", "terminal_event"})
+from .._outcomes import Kind, PointStatus, Status
 
 
 @dataclass(frozen=True)
 class SpecialPoint:
     """A located point of interest on a branch.
 
-    ``kind``: ``"fold"`` (a turning point with respect to ``with_respect_to``),
-    ``"branch_point"``, ``"cusp"``, ``"event"``, ``"target"`` or ``"endpoint"``.
-    ``index``: its row in the branch arrays. ``values``: every unknown and parameter.
-    ``status``: ``"converged"`` (located to tolerance) or ``"guess"`` (only bracketed: the
-    ``interval`` of arclength holds it). ``details``: kind-specific data (test-function values,
-    null vectors, Newton iterations, ...). ``scales``: the typical sizes of the components of
-    the branch it lies on (a branch or fold curve started from it uses them).
+    ``kind`` (a :class:`~.._outcomes.Kind`, equal to its string, or a test function's own
+    kind): ``"fold"`` (a turning point with respect to ``with_respect_to``),
+    ``"branch_point"``, ``"cusp"``, ``"codim2"``, ``"event"``, ``"target"`` or
+    ``"endpoint"``. ``index``: its row in the branch arrays. ``values``: every unknown and
+    parameter. ``status`` (a :class:`~.._outcomes.PointStatus`): ``"converged"`` (located
+    to tolerance) or ``"guess"`` (only bracketed: the ``interval`` of arclength holds it).
+    ``details``: kind-specific data (test-function values, null vectors, Newton iterations,
+    ...). ``scales``: the typical sizes of the components of the branch it lies on (a
+    branch or fold curve started from it uses them).
     """
 
     kind: str
     index: int
     values: dict[str, float]
     tangent: np.ndarray
-    status: str = "converged"
+    status: PointStatus = PointStatus.CONVERGED
     label: str = ""
     with_respect_to: str | None = None
     s: float = float("nan")
@@ -48,12 +48,15 @@ class Branch:
     """A traced curve: ``branch[name]`` is the array of an unknown or parameter along it.
 
     Attributes: ``s`` (arclength), ``tangents`` (rows, in the order of ``variables``),
-    ``special_points``, ``status`` (``"bound"``, ``"max_steps"``, ``"terminal_event"``,
-    ``"convergence_failure"``, ``"nonfinite_residual"``, ...), ``success``,
+    ``special_points``, ``status`` (a :class:`~.._outcomes.Status`, equal to its string:
+    ``"bound"``, ``"max_steps"``, ``"terminal_event"``, ``"convergence_failure"``,
+    ``"nonfinite_residual"``, ...), ``success``,
     ``message`` (a sentence), ``stats`` (per-point arrays ``newton_iterations``,
     ``rejected_steps``, ``residual_norm``, ``ds``; a point inserted inside a step, such as a
     located fold, has ``ds = 0`` and the locating method's iterations), ``variables`` (the
-    names of the traced components, i.e. the unknowns and the free parameter(s)).
+    names of the traced components, i.e. the unknowns and the free parameter(s)),
+    ``kinds`` (the kinds of special point the curve's test functions report: with every
+    :class:`~.._outcomes.Kind` and the kinds on the branch, what :meth:`special` accepts).
     """
 
     def __init__(
@@ -64,24 +67,28 @@ class Branch:
         s: np.ndarray,
         tangents: np.ndarray,
         special_points: list[SpecialPoint],
-        status: str,
+        status: Status | str,
         message: str,
         stats: dict[str, np.ndarray],
         info: dict[str, Any] | None = None,
+        kinds: frozenset[str] = frozenset(),
     ) -> None:
         self._columns = columns
         self.variables = variables
         self.s = s
         self.tangents = tangents
         self.special_points = special_points
-        self.status = status
+        self.status = status if type(status) is Status else Status(status)
+        self.kinds = frozenset(kinds) | {sp.kind for sp in special_points}
         self.message = message
         self.stats = stats
         self.info = dict(info or {})
 
     @property
     def success(self) -> bool:
-        return self.status in SUCCESS_STATUSES
+        """Whether the branch ended normally: a bound or a terminal event (``"max_steps"``
+        is no success: the branch stopped short of its bounds)."""
+        return self.status.success
 
     def __getitem__(self, name: str) -> np.ndarray:
         try:
@@ -104,18 +111,49 @@ class Branch:
         """All values at row ``i``."""
         return {k: float(v[i]) for k, v in self._columns.items()}
 
-    def special(self, kind: str | None = None, **match) -> list[SpecialPoint]:
-        """Special points of a kind (``with_respect_to=...``, ``label=...`` filter further)."""
+    def special(
+        self,
+        kind: str | None = None,
+        *,
+        with_respect_to: str | None = None,
+        label: str | None = None,
+        status: str | None = None,
+    ) -> list[SpecialPoint]:
+        """The special points of ``kind`` (None: all), in branch order; ``with_respect_to``,
+        ``label`` and ``status`` filter further.
+
+        A ``kind`` that is no :class:`~.._outcomes.Kind` and that no test function of this
+        branch reports (a typo: ``"folds"``) raises ``ValueError`` naming the kinds.
+
+        >>> from cusp.continuation import Problem, trace
+        >>> prob = Problem(lambda u, p: [u[0]**2 - p["p"]], ["x"], {"p": 1.0})
+        >>> br = trace(prob, [1.0], free="p", bounds={"p": (-1.0, 2.0)}, direction=-1)
+        >>> [abs(sp.values["x"]) < 1e-12 for sp in br.special("fold")]
+        [True]
+        >>> br.special("folds")
+        Traceback (most recent call last):
+        ...
+        ValueError: unknown kind of special point 'folds'; the kinds are 'fold', ...
+        """
+        if kind is not None:
+            kind = Kind.parse(kind, self.kinds)
         out = [sp for sp in self.special_points if kind is None or sp.kind == kind]
-        for key, value in match.items():
-            out = [sp for sp in out if getattr(sp, key) == value]
+        for key, value in (
+            ("with_respect_to", with_respect_to),
+            ("label", label),
+            ("status", status),
+        ):
+            if value is not None:
+                out = [sp for sp in out if getattr(sp, key) == value]
         return out
 
     def __repr__(self) -> str:
         kinds: dict[str, int] = {}
         for sp in self.special_points:
-            kinds[sp.kind] = kinds.get(sp.kind, 0) + 1
-        return f"<Branch {len(self)} points, status={self.status!r}, special points {kinds}>"
+            kind = str(sp.kind)
+            kinds[kind] = kinds.get(kind, 0) + 1
+        status = str(self.status)
+        return f"<Branch {len(self)} points, status={status!r}, special points {kinds}>"
 
     def interpolate(self, s) -> dict[str, np.ndarray]:
         """Dense output: the branch at pseudo-arclengths ``s`` (within ``self.s``), by the
@@ -167,15 +205,15 @@ def join_halves(
     tangents = np.vstack([-backward.tangents[::-1], forward.tangents[1:]])
     specials = []
     for sp_ in backward.special_points:
-        if not (sp_.kind == "endpoint" and sp_.index == 0):
+        if not (sp_.kind == Kind.ENDPOINT and sp_.index == 0):
             specials.append(_reindex(sp_, nb - 1 - sp_.index, -sp_.s, -sp_.tangent))
     for sp_ in forward.special_points:
         moved = _reindex(sp_, nb - 1 + sp_.index, sp_.s, sp_.tangent)
-        if sp_.kind == "endpoint" and sp_.index == 0:  # the start, mid-curve now
+        if sp_.kind == Kind.ENDPOINT and sp_.index == 0:  # the start, mid-curve now
             if start_kind is None:
                 continue
             moved = replace(
-                moved, kind=start_kind, status="converged", label=start_label, s=0.0,
+                moved, kind=start_kind, status=PointStatus.CONVERGED, label=start_label, s=0.0,
                 details={"start": True}, scales=None,
             )  # fmt: skip
         specials.append(moved)
@@ -207,6 +245,7 @@ def join_halves(
         message=message,
         stats=stats,
         info=info,
+        kinds=backward.kinds | forward.kinds | ({start_kind} if start_kind else set()),
     )
 
 

@@ -8,7 +8,7 @@ between the tangents, both in the branch's weighted norm: exact on a circle):
     z(θ) = h00(θ)·z0 + h10(θ)·L·t0 + h01(θ)·z1 + h11(θ)·L·t1.
 
 The tracer measures, at every step, how far this arc's midpoint lies from the curve (one
-Newton update from it, :func:`~..numerics._arc.interpolation_error`) and rejects a step whose
+Newton update from it, :meth:`~..numerics._arc.HermiteArc.error`) and rejects a step whose
 arc is more than ``rtol/2`` off (:func:`~..stepping._control.interpolation_factor`), so that
 evaluating the arcs costs no Newton at all and is within ``rtol`` of the curve (weighted
 norm, relative to the typical sizes). A segment whose arc could not be brought within
@@ -24,7 +24,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from .._errors import AccuracyError, ProblemDefinitionError
-from ..numerics._arc import arc_length, hermite
+from ..numerics._arc import HermiteArc, arc_length
 
 
 def _arrays(branch: Any) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, float]:
@@ -69,8 +69,7 @@ def interpolate(branch: Any, s: ArrayLike) -> dict[str, np.ndarray]:
             continue
         _check_segment(branch, i, errors[i + 1], rtol)
         theta = (sv[pick] - S[i]) / (S[i + 1] - S[i])
-        length = arc_length(Z[i + 1] - Z[i], T[i], T[i + 1], w)
-        out[pick] = hermite(Z[i], T[i], Z[i + 1], T[i + 1], length, theta)
+        out[pick] = _segment(Z, T, w, i).sample(theta)
     return _columns(branch, out)
 
 
@@ -93,9 +92,8 @@ def interpolate_at(branch: Any, name: str, values: ArrayLike) -> dict[str, np.nd
     for j, v in enumerate(vals.tolist()):
         i = crossing_segment(x, name, v)
         _check_segment(branch, i, errors[i + 1], rtol)
-        length = arc_length(Z[i + 1] - Z[i], T[i], T[i + 1], w)
-        theta = _root_theta(Z[i, k], length * T[i, k], Z[i + 1, k], length * T[i + 1, k], v)
-        out[j] = hermite(Z[i], T[i], Z[i + 1], T[i + 1], length, np.array([theta]))[0]
+        arc = _segment(Z, T, w, i)
+        out[j] = arc.sample(np.array([arc.root(k, v)]))[0]
         out[j, k] = v
     return _columns(branch, out)
 
@@ -113,20 +111,10 @@ def crossing_segment(x: np.ndarray, name: str, v: float) -> int:
     return int(hits[0])
 
 
-def _root_theta(x0: float, m0: float, x1: float, m1: float, v: float) -> float:
-    """The θ in [0, 1] where the cubic Hermite of one component (values ``x0``, ``x1``,
-    scaled slopes ``m0``, ``m1``) equals ``v``: the real root in [0, 1] nearest to the
-    linear interpolation's (the values bracket ``v``)."""
-    # p(θ) = a θ³ + b θ² + m0 θ + x0
-    a = 2 * x0 + m0 - 2 * x1 + m1
-    b = -3 * x0 - 2 * m0 + 3 * x1 - m1
-    roots = np.roots([a, b, m0, x0 - v])
-    real = roots[np.abs(roots.imag) <= 1e-9 * (1.0 + np.abs(roots.real))].real
-    inside = real[(real >= -1e-12) & (real <= 1.0 + 1e-12)]
-    lin = (x0 - v) / (x0 - x1) if x0 != x1 else 0.5
-    if inside.size == 0:
-        return min(1.0, max(0.0, lin))
-    return float(min(1.0, max(0.0, inside[np.argmin(np.abs(inside - lin))])))
+def _segment(Z: np.ndarray, T: np.ndarray, w: np.ndarray, i: int) -> HermiteArc:
+    """The arc between rows ``i`` and ``i + 1`` (unit tangents, the circular arc's length)."""
+    length = arc_length(Z[i + 1] - Z[i], T[i], T[i + 1], w)
+    return HermiteArc(Z[i], T[i], Z[i + 1], T[i + 1], length)
 
 
 def _check_segment(branch: Any, i: int, error: float, rtol: float) -> None:

@@ -14,14 +14,17 @@ from __future__ import annotations
 import logging
 import math
 from collections.abc import Sequence
-from typing import TYPE_CHECKING, Any
+from dataclasses import replace
+from typing import TYPE_CHECKING
 
 import numpy as np
 
-from ..detection._bracket import Bracket
-from ..systems._newton import newton
-from ._step import StepRules, Trial, _predictor, _try, advance, wnorm
-from ._work import HALF, OutOfWork, StepWork
+from .._outcomes import PointStatus
+from ..detection._bracket import Bracket, Located
+from ..systems._newton import NewtonSettings, newton
+from ._advance import advance
+from ._step import StepRules, Trial, predictor, try_step, wnorm
+from ._work import OutOfWork, Solve, StepWork
 
 if TYPE_CHECKING:
     from ._state import TracerState
@@ -57,7 +60,8 @@ def confirm_step(
     W = system.weights
     last = state.last
     z, t = last.z, last.t
-    secant, direction, row = _predictor(o, system, z, t, None if last.prev is None else last.prev.z)
+    pred = predictor(o, system, z, t, None if last.prev is None else last.prev.z)
+    direction, row = pred.direction, pred.row
     ds = trial.ds
     if not 0.5 * ds >= o.ds_min:
         raise OutOfWork(work, f"a sign change at ds={ds:.3g} cannot be confirmed by a half step")
@@ -72,18 +76,23 @@ def confirm_step(
     loose = 1e-3 * delta / wnorm(mags, W)
     if loose > math.sqrt(o.step_tol):
         z_half = z + 0.5 * ds * direction
-        work.charge(HALF, 0.5 * ds)
-        res = newton(
-            system, z_half, row, row.dot(z_half), tol=math.inf, step_tol=loose * loose,
-            max_iter=o.max_newton_iterations, contract=True, max_first=ds,
-        )  # fmt: skip
+        work.charge(Solve.HALF, 0.5 * ds)
+        settings = NewtonSettings(
+            tol=math.inf,
+            step_tol=loose * loose,
+            max_iterations=o.max_newton_iterations,
+            contract=True,
+        )
+        res = newton(system, z_half, row, row.dot(z_half), settings, max_first=ds)
         if res.converged and off_arc(br, W, res.z) <= limit:
             return None
     # else the half step as a step of its own: the step to take instead if it is off the arc
-    half = _try(rules, system, z, t, 0.5 * ds, direction, row, secant, work, HALF)
+    half = try_step(rules, system, z, t, 0.5 * ds, direction, row, pred.secant, work, Solve.HALF)
     if not isinstance(half, Trial):  # the half step fails where the whole one passed
         shorter = advance(rules, state._replace(ds=max(0.25 * ds, o.ds_min)), work)
-        return shorter._replace(rejected=trial.rejected + 1) if isinstance(shorter, Trial) else None
+        if isinstance(shorter, Trial):
+            return replace(shorter, rejected=trial.rejected + 1)
+        return None
     off = off_arc(br, W, half.res.z)
     if off <= limit:
         return None
@@ -92,10 +101,12 @@ def confirm_step(
         "to another branch, retaken as the half step",
         ds, off, delta,
     )  # fmt: skip
-    return half._replace(rejected=trial.rejected + 1)
+    return replace(half, rejected=trial.rejected + 1)
 
 
-def arc_limit(W: np.ndarray, z: np.ndarray, direction: np.ndarray, trial: Trial) -> tuple:
+def arc_limit(
+    W: np.ndarray, z: np.ndarray, direction: np.ndarray, trial: Trial
+) -> tuple[float, float]:
     """The step's predictor distance δ (from ``z`` along ``direction``) and how far a point
     of the curve inside the step may lie from the step's arc: ``δ/10`` (see
     :func:`confirm_step`)."""
@@ -105,11 +116,11 @@ def arc_limit(W: np.ndarray, z: np.ndarray, direction: np.ndarray, trial: Trial)
 
 def off_arc(br: Bracket, W: np.ndarray, zh: np.ndarray) -> float:
     """The distance of ``zh`` from the step's cubic Hermite arc, at its pseudo-arclength."""
-    return wnorm(zh - br.guess(br.sigma(zh) / br.h), W)
+    return wnorm(zh - br.arc.at(br.sigma(zh) / br.h), W)
 
 
 def located_on_arc(
-    rules: StepRules, state: TracerState, trial: Trial, br: Bracket, points: Sequence[Any]
+    rules: StepRules, state: TracerState, trial: Trial, br: Bracket, points: Sequence[Located]
 ) -> bool:
     """Whether each of ``points`` (the folds located inside the step) converged and lies on
     the step's arc within the limit of :func:`confirm_step`: the step is then confirmed
@@ -121,11 +132,13 @@ def located_on_arc(
     last = state.last
     system = state.system
     W = system.weights
-    _, direction, _ = _predictor(
+    pred = predictor(
         rules.options, system, last.z, last.t, None if last.prev is None else last.prev.z
     )
-    limit = arc_limit(W, last.z, direction, trial)[1]
-    return all(loc.status == "converged" and off_arc(br, W, loc.z) <= limit for loc in points)
+    limit = arc_limit(W, last.z, pred.direction, trial)[1]
+    return all(
+        loc.status is PointStatus.CONVERGED and off_arc(br, W, loc.z) <= limit for loc in points
+    )
 
 
 __all__ = ["arc_limit", "confirm_step", "located_on_arc", "off_arc"]

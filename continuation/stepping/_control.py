@@ -12,10 +12,27 @@ curve, held within ``rtol`` (:func:`interpolation_factor`).
 from __future__ import annotations
 
 import math
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, NamedTuple
+
+from .._outcomes import Guard
 
 if TYPE_CHECKING:
     from .._options import ContinuationOptions
+
+
+class Rejection(NamedTuple):
+    """Why a guard rejects a step (built by keyword): the ``guard`` and what it measured
+    (``detail``); ``str()`` gives ``"guard: detail"``."""
+
+    guard: Guard
+    detail: str
+
+    def __str__(self) -> str:
+        return f"{self.guard}: {self.detail}"
+
+
+#: a guard that asks for less than this fraction of ds rejects the step
+REJECT_BELOW = 0.5
 
 
 def guard_factor(
@@ -25,9 +42,9 @@ def guard_factor(
     ds: float,
     angle: float,
     iterations: int,
-) -> tuple[float, str]:
+) -> tuple[float, Rejection | None]:
     """The factor by which the step's guards would scale ``ds``, and why the step is
-    rejected (``""`` when it is accepted).
+    rejected (None when it is accepted).
 
     Each guard compares what the step measured with its nominal value and gives the factor
     that would bring it there, from how the measure grows with ds (Allgower & Georg §6.1):
@@ -50,13 +67,16 @@ def guard_factor(
         f_delta = math.inf
     f_angle = o.target_angle / angle if angle > 0.0 else math.inf
     worst = min(f_kappa, f_delta, f_angle)
-    if worst < 0.5 or angle > o.max_angle:
+    if worst < REJECT_BELOW or angle > o.max_angle:
         if angle > o.max_angle or worst == f_angle:
-            return worst, f"angle: the tangent turned {angle:.3g} degrees"
+            detail = f"the tangent turned {angle:.3g} degrees"
+            return worst, Rejection(guard=Guard.ANGLE, detail=detail)
         if worst == f_kappa:
-            return worst, f"contraction: Newton's first contraction was {contraction:.3g}"
-        return worst, f"distance: the corrector moved {distance:.3g} from the predictor"
-    return min(worst, o.target_newton_iterations / max(iterations, 1)), ""
+            detail = f"Newton's first contraction was {contraction:.3g}"
+            return worst, Rejection(guard=Guard.CONTRACTION, detail=detail)
+        detail = f"the corrector moved {distance:.3g} from the predictor"
+        return worst, Rejection(guard=Guard.DISTANCE, detail=detail)
+    return min(worst, o.target_newton_iterations / max(iterations, 1)), None
 
 
 #: a step's interpolant is accepted within this fraction of rtol, and the next step aims at
@@ -65,18 +85,17 @@ _INTERP_ACCEPT = 0.5
 _INTERP_AIM = 0.25
 
 
-def interpolation_factor(o: ContinuationOptions, interp: float) -> tuple[float, str]:
-    """The factor by which the step's interpolation error ``interp`` would scale ``ds``
-    (``(rtol/4 / interp)^(1/4)``), and why the step is rejected (``""`` when ``interp`` is
-    within ``rtol/2``)."""
-    if interp <= 0.0:
-        return math.inf, ""
-    factor = (_INTERP_AIM * o.rtol / interp) ** 0.25
-    if interp > _INTERP_ACCEPT * o.rtol:
-        return factor, (
-            f"interpolation: the step's cubic arc is {interp:.3g} off the curve (rtol {o.rtol:g})"
-        )
-    return factor, ""
+def interpolation_factor(o: ContinuationOptions, error: float) -> tuple[float, Rejection | None]:
+    """The factor by which the step's interpolation error (its arc's distance from the
+    curve) would scale ``ds`` (``(rtol/4 / error)^(1/4)``), and why the step is rejected
+    (None when the error is within ``rtol/2``)."""
+    if error <= 0.0:
+        return math.inf, None
+    factor = (_INTERP_AIM * o.rtol / error) ** 0.25
+    if error > _INTERP_ACCEPT * o.rtol:
+        detail = f"the step's cubic arc is {error:.3g} off the curve (rtol {o.rtol:g})"
+        return factor, Rejection(guard=Guard.INTERPOLATION, detail=detail)
+    return factor, None
 
 
 def next_step_size(options: ContinuationOptions, factor: float, rejected: int, ds: float) -> float:
@@ -90,4 +109,4 @@ def next_step_size(options: ContinuationOptions, factor: float, rejected: int, d
     return min(o.ds_max, max(o.ds_min, ds * factor))
 
 
-__all__ = ["guard_factor", "interpolation_factor", "next_step_size"]
+__all__ = ["Rejection", "guard_factor", "interpolation_factor", "next_step_size"]

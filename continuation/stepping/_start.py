@@ -16,7 +16,7 @@ guess orthogonal to that tangent. At a singular point (a branch point: the null 
 from __future__ import annotations
 
 import math
-from typing import Any, NamedTuple
+from typing import TYPE_CHECKING, Any, NamedTuple
 
 import numpy as np
 
@@ -27,7 +27,12 @@ from .._errors import (
     SingularPointError,
     format_values,
 )
+from .._outcomes import Convergence
 from ..detection._spectrum import Factored
+from ..systems._curve import CurveSystem
+
+if TYPE_CHECKING:
+    from .._options import ContinuationOptions
 from ..numerics._linalg import bordered, factor, max_abs
 from ..systems._newton import correct, factor_at
 
@@ -51,13 +56,18 @@ class Start(NamedTuple):
     z: np.ndarray
     t: np.ndarray
     sdet: float | None
-    residual: float
+    residual_norm: float
     iterations: int
     fold_oriented_by: str | None
 
 
 def correct_start(
-    system: Any, z0: np.ndarray, g0: np.ndarray, options: Any, e_last: np.ndarray, direction: int
+    system: CurveSystem,
+    z0: np.ndarray,
+    g0: np.ndarray,
+    options: ContinuationOptions,
+    e_last: np.ndarray,
+    direction: int,
 ) -> Start:
     """The start of a curve from the guess ``z0`` (``g0`` = G(z0)): Newton with the last
     component fixed, or on a fold of that component the null-space start of the module
@@ -78,9 +88,16 @@ def correct_start(
                 t, sdet = -t, -sdet
             if system.dim > 2:  # (kept for the branch-point test's partial spectrum)
                 sdet = Factored(sdet, lu)
-            return Start(z, t, sdet, rn, res.iterations, None)
+            return Start(
+                z=z,
+                t=t,
+                sdet=sdet,
+                residual_norm=rn,
+                iterations=res.iterations,
+                fold_oriented_by=None,
+            )
         iters = res.iterations
-    elif res.reason == "singular":
+    elif res.reason is Convergence.SINGULAR:
         # ∂G/∂u is singular at the guess (or an iterate): a fold of the free parameter,
         # where the curve is still regular, or a singular point
         z, rn, iters = _correct_on_fold(
@@ -99,11 +116,13 @@ def correct_start(
     i = int(np.argmax(np.abs(t) / np.maximum(system.scales, np.abs(z))))
     if t[i] * direction < 0:
         t = -t
-    return Start(z, t, None, rn, iters, system.names[i])
+    return Start(
+        z=z, t=t, sdet=None, residual_norm=rn, iterations=iters, fold_oriented_by=system.names[i]
+    )
 
 
 def snap_zeros(
-    system: Any, z: np.ndarray, guess: np.ndarray, residual: float
+    system: CurveSystem, z: np.ndarray, guess: np.ndarray, residual: float
 ) -> tuple[np.ndarray, float]:
     """The corrected start ``z`` with the components that are zeros up to Newton's
     remainder set to exactly 0, and the residual's max-norm there.
@@ -150,7 +169,12 @@ def _solve(lu: Any, rhs: np.ndarray) -> np.ndarray | None:
 
 
 def _correct_on_fold(
-    system: Any, z: np.ndarray, z0: np.ndarray, options: Any, iterations: int, residual: float
+    system: CurveSystem,
+    z: np.ndarray,
+    z0: np.ndarray,
+    options: ContinuationOptions,
+    iterations: int,
+    residual: float,
 ) -> tuple[np.ndarray, float, int]:
     """Newton from ``z`` in the hyperplane orthogonal to the curve's tangent there (the
     free parameter free), where ``∂G/∂u`` is singular. The free parameter may move by no
@@ -183,7 +207,7 @@ def _correct_on_fold(
     return res.z, res.residual_norm, iterations + res.iterations
 
 
-def kernel_tangent(system: Any, z: np.ndarray) -> np.ndarray:
+def kernel_tangent(system: CurveSystem, z: np.ndarray) -> np.ndarray:
     """The null vector of ``∂G/∂z`` at ``z`` (not normalised, either sign), from the
     bordered matrices ``[∂G/∂z; cᵀ]`` with two fixed pseudo-random borders ``c`` (scaled by
     the typical sizes; one fails only if it is orthogonal to the tangent). Raises
@@ -224,7 +248,7 @@ _ZERO_RATIO = 1e-2
 _CLEARLY_REGULAR = 1e-5
 
 
-def singular_within_accuracy(system: Any, z: np.ndarray) -> bool:
+def singular_within_accuracy(system: CurveSystem, z: np.ndarray) -> bool:
     """Whether ``∂G/∂z`` at the start ``z`` is rank-deficient to within its own accuracy: a
     branch point that a differenced Jacobian hides.
 
@@ -242,7 +266,7 @@ def singular_within_accuracy(system: Any, z: np.ndarray) -> bool:
     relative of a branch point counts as on it.)"""
     if z.size > _MAX_DENSE_CHECK:
         return False
-    if getattr(system, "scalar", False):
+    if system.scalar:
         found = _scalar_singular(system, z)
         if found is not None:
             return found
@@ -283,7 +307,7 @@ def _zero_derivative(derivative: Any, supplied: float) -> bool:
     return abs(extrapolated) <= _ZERO_RATIO * max(abs(first), abs(second))
 
 
-def _scalar_singular(system: Any, z: np.ndarray) -> bool | None:
+def _scalar_singular(system: CurveSystem, z: np.ndarray) -> bool | None:
     """:func:`singular_within_accuracy` for a curve of one equation in plain floats: its
     Jacobian is a row ``(a, b)``, whose direction (scaled by the magnitudes) is ``φ`` and
     its left singular vector 1. None where a value is not a finite float."""
@@ -310,14 +334,14 @@ _MAX_DENSE_CHECK = 201
 """Largest curve dimension checked by :func:`singular_within_accuracy` (a dense SVD)."""
 
 
-def refuse_singular(system: Any, z: np.ndarray) -> None:
+def refuse_singular(system: CurveSystem, z: np.ndarray) -> None:
     """:class:`~.._errors.SingularPointError` if the corrected start ``z`` is a branch point
     to within the accuracy of the Jacobian (:func:`singular_within_accuracy`)."""
     if singular_within_accuracy(system, z):
         raise _singular_point(system, z)
 
 
-def _singular_point(system: Any, z: np.ndarray) -> SingularPointError:
+def _singular_point(system: CurveSystem, z: np.ndarray) -> SingularPointError:
     values = system.values(z)
     return SingularPointError(
         f"the starting point {format_values(values)} is a singular point: the Jacobian of "

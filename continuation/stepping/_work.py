@@ -14,13 +14,26 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping
+from enum import IntEnum
 
 from .._errors import StalledError, format_values
 
-#: what a solve was for (an index into :attr:`StepWork.counts`), and its words in the
-#: message of a stalled step
-TRY, HALF, CORNER, AIMED = 0, 1, 2, 3
-KINDS = (
+
+class Solve(IntEnum):
+    """What a corrector solve of a step was for (an index into :attr:`StepWork.counts`);
+    ``words`` name it in the message of a stalled step."""
+
+    TRY = 0
+    HALF = 1
+    CORNER = 2
+    AIMED = 3
+
+    @property
+    def words(self) -> str:
+        return _WORDS[self]
+
+
+_WORDS = (
     "pseudo-arclength tries",
     "half steps confirming a sign change",
     "natural-parameter (corner) tries",
@@ -39,7 +52,7 @@ class OutOfWork(Exception):
 
 
 class StepWork:
-    """The corrector solves of one step, by kind (:data:`TRY`, …), against ``limit``;
+    """The corrector solves of one step, by kind (:class:`Solve`), against ``limit``;
     ``ds_lo`` and ``ds_hi`` the smallest and largest step size tried; ``nonfinite`` how many
     solves met a residual or Jacobian that was not finite (the step's failure then says
     so). Made once per step, charged once per solve: kept to a few attribute updates."""
@@ -52,7 +65,7 @@ class StepWork:
         self.counts = [0, 0, 0, 0]
         self.ds_lo, self.ds_hi = math.inf, 0.0
 
-    def charge(self, kind: int, ds: float) -> None:
+    def charge(self, kind: Solve, ds: float) -> None:
         """Count one corrector solve of ``kind`` at step size ``ds``; :class:`OutOfWork` past
         the limit (or for a step size that is not a positive number)."""
         self.solves += 1
@@ -66,7 +79,7 @@ class StepWork:
 
     def describe(self) -> str:
         """What was tried, in words."""
-        parts = [f"{n} {KINDS[k]}" for k, n in enumerate(self.counts) if n]
+        parts = [f"{n} {_WORDS[k]}" for k, n in enumerate(self.counts) if n]
         sizes = (
             f"step sizes from {self.ds_hi:.3g} down to {self.ds_lo:.3g}"
             if self.ds_hi > 0.0
@@ -75,9 +88,9 @@ class StepWork:
         return f"{self.solves} corrector solves ({', '.join(parts)}; {sizes})"
 
 
-def stalled(out: OutOfWork, values: Mapping[str, float], ds: float) -> tuple[str, StalledError]:
-    """The message and error of a step from the point ``values`` (next step size ``ds``)
-    that could not make progress."""
+def stalled(out: OutOfWork, values: Mapping[str, float], ds: float) -> StalledError:
+    """The error of a step from the point ``values`` (next step size ``ds``) that could not
+    make progress (its message names the point, the step sizes tried and what was tried)."""
     work = out.work
     why = out.reason or f"the step's work limit (max_step_solves={work.limit}) was reached"
     message = (
@@ -87,7 +100,7 @@ def stalled(out: OutOfWork, values: Mapping[str, float], ds: float) -> tuple[str
         "(scales=...), or end the branch before it with a bound"
     )
     ds = work.ds_lo if math.isfinite(work.ds_lo) else ds
-    return message, StalledError(message, values=values, ds=ds, tried=work.describe())
+    return StalledError(message, values=values, ds=ds, tried=work.describe())
 
 
-__all__ = ["AIMED", "CORNER", "HALF", "TRY", "OutOfWork", "StepWork", "stalled"]
+__all__ = ["OutOfWork", "Solve", "StepWork", "stalled"]

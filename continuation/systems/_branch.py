@@ -70,7 +70,7 @@ class BranchSystem(CurveSystem):
         )
 
     def _scaled_problem(self) -> None:
-        with_typical = getattr(self.problem, "with_typical_sizes", None)
+        with_typical = getattr(self.problem, "with_scales", None)
         if with_typical is not None:
             n = self.n
             self.problem = with_typical(self.scales[:n], {self.free: float(self.scales[n])})
@@ -185,8 +185,7 @@ class BranchSystem(CurveSystem):
     def scalar_residual(self, z) -> float | None:
         """The residual of a problem of one unknown at ``z`` as a float; None where it is not
         a finite float array of one value (or raises an ArithmeticError): the general path
-        (:meth:`residual`) then says what is wrong. A result of another type (a list, another
-        dtype) turns :attr:`scalar` off: the array path converts it, every time."""
+        (:meth:`residual`) then says what is wrong."""
         try:
             r = self._residual_at(z)
         except _OUT_OF_DOMAIN as exc:
@@ -195,7 +194,6 @@ class BranchSystem(CurveSystem):
         if type(r) is _NDARRAY and r.dtype is _FLOAT and r.shape == (1,):
             v = r.item()
             return v if abs(v) < math.inf else None  # (NaN too)
-        self.scalar = False  # (results of other types: the array path from now on)
         return None
 
     def scalar_jacobian(self, z) -> tuple[float, float] | None:
@@ -212,8 +210,28 @@ class BranchSystem(CurveSystem):
         ):  # fmt: skip
             a, b = j.item(), fp.item()
             return (a, b) if abs(a) < math.inf and abs(b) < math.inf else None
-        self.scalar = False  # (as in scalar_residual)
         return None
+
+    def checked(self, z) -> BranchSystem:
+        """This system, or a copy with :attr:`scalar` off when the user's functions return
+        anything but float arrays of one value at ``z`` (lists, other dtypes): the float
+        path would give way to the array path at every call, each time after a call made
+        for nothing. (Values that are not finite, or an ArithmeticError, say nothing of the
+        types: the system is kept.)"""
+        if not self.scalar:
+            return self
+        try:
+            r = self._residual_at(z)
+            j, fp = self._derivatives_at(z)
+        except _OUT_OF_DOMAIN as exc:
+            _reraise_unless_domain(exc)
+            return self
+        if _floats(r, (1,)) and _floats(j, (1, 1)) and _floats(fp, (1,)):
+            return self
+        new = object.__new__(BranchSystem)
+        new.__dict__.update(self.__dict__)
+        new.scalar = False
+        return new
 
     def jacobian(self, z):
         return self.bordered_jacobian(z, None)
@@ -229,6 +247,11 @@ class BranchSystem(CurveSystem):
 
 
 _OUT_OF_DOMAIN = (ArithmeticError, ValueError)
+
+
+def _floats(x: Any, shape: tuple[int, ...]) -> bool:
+    """Whether ``x`` is a float64 array of ``shape`` (what the float path takes)."""
+    return type(x) is _NDARRAY and x.dtype is _FLOAT and x.shape == shape
 
 
 def _reraise_unless_domain(exc: Exception) -> None:

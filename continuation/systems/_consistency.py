@@ -21,11 +21,12 @@ and before it blames the Jacobian for a Newton that contracts weakly whatever th
 
 from __future__ import annotations
 
-from typing import Any, NamedTuple
+from typing import NamedTuple
 
 import numpy as np
 
 from .._errors import JacobianError, SingularMatrixError, format_values
+from ._curve import CurveSystem
 
 STEP = 1e-4
 """The difference step, relative to the components' magnitudes ``max(scale_i, |z_i|)``."""
@@ -52,18 +53,18 @@ class Defect(NamedTuple):
     relative: float
 
 
-def supplied_jacobian(system: Any) -> bool:
+def supplied_jacobian(system: CurveSystem) -> bool:
     """Whether ``system``'s derivatives come from the user's functions (not differences or
     the complex step, which are consistent with the residual by construction)."""
-    return bool(getattr(system, "supplied_derivatives", False))
+    return system.supplied_derivatives
 
 
-def jacobian_defect(system: Any, z: np.ndarray) -> Defect | None:
+def jacobian_defect(system: CurveSystem, z: np.ndarray) -> Defect | None:
     """The defect of ``system``'s Jacobian at ``z`` (module docstring), or None where it
     agrees with the residual's differences (or they cannot be taken: a non-finite value).
     A central difference decides most points at once (two residuals); only a point in doubt
     (a kink, strong curvature, a defect) takes the one-sided extrapolated differences."""
-    if getattr(system, "scalar", False):
+    if system.scalar:
         agree = _scalar_agrees(system, z)
         if agree is not None and agree:
             return None
@@ -107,11 +108,16 @@ def jacobian_defect(system: Any, z: np.ndarray) -> Defect | None:
             return None  # shrinking like h²: the differences' truncation, not a defect
         previous = float(err[worst])
         near = rf if abs(jv[worst] - rf[worst]) <= abs(jv[worst] - rb[worst]) else rb
-        found = Defect(worst, float(jv[worst]), float(near[worst]), float(relative[worst]))
+        found = Defect(
+            row=worst,
+            supplied=float(jv[worst]),
+            differenced=float(near[worst]),
+            relative=float(relative[worst]),
+        )
     return found
 
 
-def _scalar_agrees(system: Any, z: np.ndarray) -> bool | None:
+def _scalar_agrees(system: CurveSystem, z: np.ndarray) -> bool | None:
     """The central-difference test of :func:`jacobian_defect` for a curve of one equation in
     plain floats (``system.scalar``): True if it passes, False if the general path must
     decide, None where a value is not a finite float (the general path decides too)."""
@@ -144,7 +150,7 @@ def _direction(n: int) -> np.ndarray:
 
 
 def _one_sided(
-    system: Any, z: np.ndarray, v: np.ndarray, g0: np.ndarray, h: float
+    system: CurveSystem, z: np.ndarray, v: np.ndarray, g0: np.ndarray, h: float
 ) -> tuple[np.ndarray, np.ndarray] | None:
     """Forward and backward differences of the residual along ``v`` at step ``h``, each
     extrapolated to O(h²) from the steps ``h`` and ``h/2``; None if a value is not finite."""
@@ -164,7 +170,7 @@ def _one_sided(
     return out[0], out[1]
 
 
-def check_consistent(system: Any, z: np.ndarray, where: str) -> None:
+def check_consistent(system: CurveSystem, z: np.ndarray, where: str) -> None:
     """:class:`~.._errors.JacobianError` if ``system``'s supplied Jacobian disagrees with its
     residual at ``z`` (``where``: what the point is, for the message); nothing for
     differenced derivatives."""
@@ -174,35 +180,34 @@ def check_consistent(system: Any, z: np.ndarray, where: str) -> None:
     if defect is None:
         return
     values = system.values(z)
-    names = getattr(system, "names", ())
-    row, supplied, differenced, relative = defect
+    names = system.names
     entries = _entries(system, z)
     raise JacobianError(
         f"the supplied derivatives disagree with the residual at {where} "
         f"{format_values(values)}: along a test direction (every one of "
-        f"{list(names)} moved) equation {row} changes at {differenced:.10g} per unit, the "
-        f"jacobian and param_jacobian give {supplied:.10g} (relative defect {relative:.2g}, "
+        f"{list(names)} moved) equation {defect.row} changes at {defect.differenced:.10g} per "
+        f"unit, the jacobian and param_jacobian give {defect.supplied:.10g} (relative defect "
+        f"{defect.relative:.2g}, "
         f"far above the differences' own error, and it does not shrink with the step). "
         "Continuation with them would report the folds and branch points of another "
         "problem. Correct them, or leave them out to use finite differences" + entries,
         values=values,
-        row=row,
-        supplied=supplied,
-        differenced=differenced,
+        row=defect.row,
+        supplied=defect.supplied,
+        differenced=defect.differenced,
     )
 
 
-def _entries(system: Any, z: np.ndarray) -> str:
+def _entries(system: CurveSystem, z: np.ndarray) -> str:
     """The entries of the supplied derivatives that disagree most with central differences
     (:func:`~..problem._derivatives.check_jacobian` at ``z``), as a sentence; empty for a
     curve that is not a problem's branch or too large to difference column by column."""
-    problem = getattr(system, "problem", None)
-    split = getattr(system, "split", None)
-    if problem is None or split is None or z.size > 201:
+    problem = system.problem
+    if problem is None or z.size > 201:
         return ""
     from ..problem._derivatives import check_jacobian
 
-    u, p = split(z)
+    u, p = system.split(z)
     try:
         found = check_jacobian(problem, u, {k: p[k] for k in problem.params})
     except Exception:  # (a diagnosis only: the defect is reported anyway)

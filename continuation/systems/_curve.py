@@ -24,14 +24,35 @@ from ..numerics._scaling import out_of_range
 
 
 class CurveSystem:
-    """Interface of what the tracer follows.
+    """The contract of what the tracer follows: ``G(z) = 0``, ``m`` equations in the ``m + 1``
+    components of ``z``; stated here once, for every kind of curve (a problem's branch,
+    :class:`~._branch.BranchSystem`; a fold curve, :class:`~._fold.FoldSystem`; a system of
+    one's own).
 
-    Attributes: ``names`` (one per component of z), ``dim`` (= m + 1), ``scales`` (the
-    typical size of each component: updates, tolerances and finite-difference steps are
-    relative to ``max(scale, |z_i|)``), ``weights`` (of the arclength inner product:
-    ``base_weights / scales²``, so arclength is measured in relative terms), ``problem``
-    (or None), ``fold_components`` (the components whose turning points are detected by
-    default: the free parameter of a branch).
+    A subclass sets these attributes (in ``__init__``)
+        ``names`` (one per component of ``z``), ``dim`` (= m + 1), ``scales`` (each
+        component's typical size: updates, tolerances and finite-difference steps are
+        relative to ``max(scale, |z_i|)``), ``base_weights`` and ``weights`` (of the
+        arclength inner product, ``base_weights / scales²``: arclength in relative terms),
+        ``unit_weights``, ``problem`` (the problem it comes from, or None),
+        ``fold_components`` (the components whose turning points are detected by default:
+        a branch's free parameter);
+    and implements
+        :meth:`residual` ``G(z)``, :meth:`jacobian` ``∂G/∂z`` (dense or sparse, m × (m+1)),
+        :meth:`values` (every unknown and parameter at ``z``, by name);
+    and may override
+        :meth:`bordered_jacobian`, :meth:`residual_floor`, :meth:`refreshed` (a system whose
+        equations change along the curve: set :attr:`refreshes`), :meth:`with_values`,
+        :meth:`start_vector`, :meth:`fixed_values`, the float path (:attr:`scalar`,
+        :meth:`scalar_residual`, :meth:`scalar_jacobian`, :meth:`checked`) and the flags
+        below.
+
+    **Immutable.** A system never changes once made: what differs along a curve (a fold
+    curve's bordering vectors, the typical sizes) comes as a new system
+    (:meth:`refreshed`, :meth:`with_scales`), which the tracer keeps in its state, so that
+    stepping twice from a state gives the same points, bit for bit. (A memo of the last
+    evaluation may be kept inside, which changes no result.) The test functions evaluated
+    on a curve are the tracer's, not the system's (:meth:`~..stepping._tracer.Tracer.for_system`).
     """
 
     names: tuple[str, ...]
@@ -50,25 +71,45 @@ class CurveSystem:
     """True if the derivatives are the user's own functions, which the tracer checks against
     the residual (:mod:`~._consistency`)."""
     derivatives_exact: bool = False
-    """True if the problem's own derivatives are exact (given, or by complex step): the
-    default step tolerance is then tighter (:meth:`ContinuationOptions.for_derivatives`)."""
+    """True if the problem's own derivatives are exact (given, or by complex step): Newton's
+    update tolerance is then not floored at the differences' accuracy
+    (:func:`~._newton.floor_step_tol`)."""
     refreshes: bool = False
     """True if the equations change along the curve, so that :meth:`refreshed` must be
     called after every accepted point (the tracer skips the call otherwise)."""
     scalar: bool = False
     """True if the curve has two components and :meth:`scalar_residual` and
-    :meth:`scalar_jacobian` give its equation in plain floats: the corrector and the fold
-    locator then work in floats (:func:`~._newton.newton`), without numpy's and LAPACK's
-    per-call costs, which dominate on such tiny systems."""
+    :meth:`scalar_jacobian` may give its equation in plain floats: the corrector and the
+    fold locator then try floats first (:func:`~._newton.newton`), without numpy's and
+    LAPACK's per-call costs, which dominate on such tiny systems."""
 
     def residual(self, z: np.ndarray) -> np.ndarray:  # pragma: no cover - interface
+        """``G(z)``, shape (m,)."""
         raise NotImplementedError
 
     def jacobian(self, z: np.ndarray) -> Any:  # pragma: no cover - interface
+        """``∂G/∂z`` at ``z``, shape (m, m + 1), dense or sparse."""
         raise NotImplementedError
 
     def values(self, z: np.ndarray) -> dict[str, float]:  # pragma: no cover - interface
+        """Every unknown and parameter at ``z``, by name."""
         raise NotImplementedError
+
+    def scalar_residual(self, z: np.ndarray) -> float | None:
+        """``G(z)`` of a curve of one equation as a float, or None where the float path
+        cannot give it (the array path then does)."""
+        return None
+
+    def scalar_jacobian(self, z: np.ndarray) -> tuple[float, float] | None:
+        """``∂G/∂z`` of a curve of one equation as two floats, or None as
+        :meth:`scalar_residual`."""
+        return None
+
+    def checked(self, z: np.ndarray) -> CurveSystem:
+        """This system after a look at what its functions return at ``z`` (a curve's start):
+        one whose float path cannot be used there (its functions return other types) comes
+        back with :attr:`scalar` off, so that no call is made twice."""
+        return self
 
     def index(self, name: str) -> int | None:
         try:
@@ -142,6 +183,9 @@ class CurveSystem:
 
 
 def state_weights(n: int, n_params: int, state_weight: float | None) -> np.ndarray:
+    """The base arclength weights of ``n`` unknowns and ``n_params`` free parameters: each
+    unknown ``state_weight`` (None: ``1/n``, so the state enters as a root-mean-square),
+    each parameter 1."""
     w = np.ones(n + n_params)
     w[:n] = (1.0 / n) if state_weight is None else state_weight
     return w

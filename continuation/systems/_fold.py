@@ -36,6 +36,18 @@ from ._curve import CurveSystem, state_weights
 _EPS = np.finfo(float).eps
 
 
+class _Memo:
+    """The last bordered solve of a :class:`FoldSystem` and the point it was made at: a memo
+    (the corrector asks for the residual and the Jacobian at the same point), which changes
+    no result. Each system has its own; copies get a fresh one."""
+
+    __slots__ = ("key", "value")
+
+    def __init__(self) -> None:
+        self.key: bytes | None = None
+        self.value: Any = None
+
+
 class FoldSystem(CurveSystem):
     """``[F; g]`` over ``z = (u, p1, p2)``; ``k`` is the index (in ``(u, p1)``) of the variable
     that turns at the fold; ``b``, ``c`` the bordering vectors (unit vectors of length n).
@@ -70,7 +82,7 @@ class FoldSystem(CurveSystem):
         self._keep = keep  # columns of ∂F/∂(u, p1) forming M
         self.b = b
         self.c = c
-        self._cache: tuple | None = None  # the last bordered solve (a memo, see below)
+        self._memo = _Memo()  # the last bordered solve (see bordered_solve)
         # differences of the Jacobian are reliable only if the Jacobian itself is exact
         self._exact_jacobian = self.derivatives_exact = has_exact_jacobian(problem)
 
@@ -117,10 +129,11 @@ class FoldSystem(CurveSystem):
         The last result is cached: the corrector asks for the residual and the Jacobian at
         the same point, and every test function asks again at each accepted point."""
         key = z.tobytes()
-        if df is None and self._cache is not None and self._cache[0] == key:
-            return self._cache[1]
+        memo = self._memo
+        if df is None and memo.key == key:
+            return memo.value
         out = self._bordered_solve(z, df)
-        self._cache = (key, out)
+        memo.key, memo.value = key, out
         return out
 
     def _bordered_solve(self, z, df=None):
@@ -169,7 +182,7 @@ class FoldSystem(CurveSystem):
         new = object.__new__(FoldSystem)
         new.__dict__.update(self.__dict__)
         new.b, new.c = w / np.linalg.norm(w), v / np.linalg.norm(v)
-        new._cache = None
+        new._memo = _Memo()
         return new
 
     # -- CurveSystem interface
@@ -211,12 +224,12 @@ class FoldSystem(CurveSystem):
         return max(floor, 10.0 * rel * noise)
 
     def _scaled_problem(self) -> None:
-        with_typical = getattr(self.problem, "with_typical_sizes", None)
+        with_typical = getattr(self.problem, "with_scales", None)
         if with_typical is not None:
             n, s = self.n, self.scales
             typical_p = {self.p1: float(s[n]), self.p2: float(s[n + 1])}
             self.problem = with_typical(s[:n], typical_p)
-        self._cache = None
+        self._memo = _Memo()
 
     def fixed_values(self):
         return {k: v for k, v in self.params.items() if k not in (self.p1, self.p2)}

@@ -79,8 +79,12 @@ def test_options_inconsistent_bounds():
 
 
 def test_trace_rejects_unknown_keyword():
-    with pytest.raises(OptionsError, match="unknown option"):
+    # the entry points spell out their keywords (options among them): an unknown one is
+    # Python's TypeError naming it; ContinuationOptions.replace names the allowed ones
+    with pytest.raises(TypeError, match="step_size"):
         trace(cusp_problem(), [X0], free="b", step_size=0.1)
+    with pytest.raises(OptionsError, match=r"unknown option\(s\) \['step_size'\]; allowed"):
+        ContinuationOptions().replace(step_size=0.1)
 
 
 # --- --- problems
@@ -508,7 +512,7 @@ def test_corrector_takes_a_simplified_step_in_the_quadratic_regime():
     4746..., mpmath: findroot(x**3 - x + 1, -1.3)); tol = 1e-14 keeps the residual above tol
     after the update of ~1e-6 that enters the quadratic regime."""
     from cusp.continuation import BranchSystem
-    from cusp.continuation.systems._newton import newton
+    from cusp.continuation.systems._newton import NewtonSettings, newton
 
     calls = {"jacobian": 0}
     example = ex.cusp_normal_form()  # a = 1, b = -1
@@ -526,7 +530,8 @@ def test_corrector_takes_a_simplified_step_in_the_quadratic_regime():
     )
     system = BranchSystem(prob, "b")
     row = np.array([0.0, 1.0])
-    res = newton(system, np.array([-1.3, -1.0]), row, -1.0, tol=1e-14, step_tol=1e-10, max_iter=10)
+    settings = NewtonSettings(tol=1e-14, step_tol=1e-10, max_iterations=10)
+    res = newton(system, np.array([-1.3, -1.0]), row, -1.0, settings)
     assert res.converged
     assert res.z[0] == pytest.approx(X0, rel=2e-16, abs=0)
     assert calls["jacobian"] == res.iterations - 1  # the last iteration was a chord step

@@ -54,7 +54,7 @@ def _points(state):
     out = []
     p = state.last
     while p is not None:
-        out.append((p.z.tobytes(), p.t.tobytes(), p.s, p.newton, p.ds, p.special))
+        out.append((p.z.tobytes(), p.t.tobytes(), p.s, p.iterations, p.ds, p.special))
         p = p.prev
     return out
 
@@ -62,8 +62,8 @@ def _points(state):
 def _same(a, b):
     assert a.ds == b.ds and a.steps == b.steps and a.status == b.status
     assert a.n_points == b.n_points and a.stalled == b.stalled
-    assert [None if v is None else float(v) for v in a.tests] == [
-        None if v is None else float(v) for v in b.tests
+    assert [None if v is None else float(v) for v in a.test_values] == [
+        None if v is None else float(v) for v in b.test_values
     ]
     assert repr(_points(a)) == repr(_points(b))  # bitwise: bytes of every z and t
 
