@@ -269,16 +269,12 @@ def branch_csv(run: SceneRun) -> str:
         for leg in res.legs:
             path = res.path(leg)
             for j in range(len(path["g_T"])):
-                w.writerow(
-                    [
-                        i,
-                        repr(mu),
-                        repr(load),
-                        leg,
-                        labels.get((leg, j), ""),
-                        *(repr(float(path[c][j])) for c in cols[5:]),
-                    ]
-                )
+                key = labels.get((leg, j), "")
+                # a named point's row holds the polished point, as summary.json does (the
+                # traced row is only within the step tolerance of it)
+                point = res.points.get(key) if key else None
+                values = [point[c] if point else path[c][j] for c in cols[5:]]
+                w.writerow([i, repr(mu), repr(load), leg, key, *(repr(float(v)) for v in values)])
     return buf.getvalue()
 
 
