@@ -77,11 +77,11 @@ from typing import Any
 
 import numpy as np
 
-from cusp.continuation import Branch, ContinuationOptions, Problem, points_at, trace
+from cusp.continuation import Branch, ContinuationOptions, Problem, points_at
 
-from ._loci_energy import _invert as invert_level
+from . import _path_guards as guards
 from ._loci_energy import path_energies
-from ._loci_energy import polish_point as _polish
+from ._path_guards import PathError
 from .errors import ModelParameterError, check_positive
 from .protocol import (
     ContactLevels,
@@ -89,12 +89,9 @@ from .protocol import (
     level_lengths,
     require_levels,
     require_path_body,
-    sliding_level,
     slipped_area,
     stick_bounds,
 )
-
-_EPS = float(np.finfo(float).eps)
 
 __all__ = [
     "ContactLoss",
@@ -111,23 +108,12 @@ VARIABLES = ("g", "t", "m", "A_SL", "p", "q")
 LEG_CONTROLS = {"OA": "g", "AB": "m", "BC": "g"}
 AREA_READINGS = ("printed", "consistent")
 
-#: the typical sizes of the legs' unknowns that their start does not give: m (F_N/F_N0's
-#: reduction, 0 on OA) and A_SL, a share of the contact area (0 at O). Sized by itself, a
-#: share that stays at rounding level (a Gaussian surface with σ* ≪ |d|, where no summit lies
-#: between d and d0: σ* = 1e-4 µm, g_A = 5e-6 µm) weighed its noise as motion, and the legs
-#: stalled on sign changes of that noise
-_SIZES = {"m": 1.0, "A_SL": 1.0}
-
 #: default solver settings for the legs (nondimensional arclength; the default ``rtol``)
 DEFAULT_OPTIONS = ContinuationOptions(ds=0.02, ds_max=0.05)
 
 
 # ------------------------------------------------------------------------------------------
 # Results
-
-
-class PathError(RuntimeError):
-    """A leg of the path ended before its end point (its branch's status and message say why)."""
 
 
 @dataclass(frozen=True)
@@ -280,12 +266,13 @@ class ContactLoss:
                 f"{F_A!r} N (its contact integrals leave the float range); allowed: a body and "
                 f"loading whose F_A is a finite number"
             )
-        if self._refused_reduction(F_A, float(np.nextafter(self.F_N0, 0.0))):
-            raise ModelParameterError(self._empty_range(F_A, g_lim))
+        empty = guards.empty_range(self, F_A, g_lim)
+        if empty is not None:
+            raise ModelParameterError(empty)
         floor = self.F_N0 - F_A / self.mu0
         # (a reduction a rounding below the floor, F'_T = 0 located on a locus and evaluated
         # again here, is the floor: F'_T is 0 to rounding there, which the path takes)
-        if self._refused_reduction(F_A, self.F_Np):
+        if guards.refused_reduction(self, F_A, self.F_Np):
             raise ModelParameterError(
                 f"reduced_normal_load = {self.F_Np!r} N is too deep: F'_T = F_A - mu*dF_N = "
                 f"{F_A - self.mu0 * (self.F_N0 - self.F_Np)!r} N would be negative; allowed: "
@@ -297,51 +284,6 @@ class ContactLoss:
             "F_N": self.F_N0,
             "level": self.levels.scale,
         }
-
-    def _refused_reduction(self, F_A: float, F_Np: float) -> bool:
-        """Is F'_N too deep, F'_T = F_A − μΔF_N < 0? (A reduction a rounding below the
-        floor, F'_T = 0 located on a locus and evaluated again here, is the floor: F'_T is 0
-        to rounding there, which the path takes.)"""
-        rounding = 8.0 * _EPS * (F_A + self.mu0 * (self.F_N0 - F_Np))
-        return F_A - self.mu0 * (self.F_N0 - F_Np) < -rounding
-
-    def _empty_range(self, F_A: float, g_lim: float) -> str:
-        """The refusal of a max_slip whose F_A is so small against F_N0 that even the
-        shallowest reduction, the float just below F_N0, is too deep: the allowed range of
-        reduced_normal_load, [F_N0 − F_A/μ, F_N0), is empty in floating point. Names the
-        smallest max_slip that makes it non-empty (found on the body's loading curve), and
-        the roughness it is small against."""
-        prev = float(np.nextafter(self.F_N0, 0.0))
-        lo, hi = math.log(self.g_A), math.log(g_lim) if math.isfinite(g_lim) else 700.0
-        for _ in range(100):  # bisection in log g: the slip at which prev is allowed
-            mid = 0.5 * (lo + hi)
-            try:
-                ok = not self._refused_reduction(
-                    float(self.body.tangential_force(math.exp(mid), self.F_N0)), prev
-                )
-            except (ArithmeticError, ValueError):
-                ok = False  # beyond what the body computes: count it as too small
-            lo, hi = (lo, mid) if ok else (mid, hi)
-            if hi - lo < 1e-6:
-                break
-        sigma = getattr(self.body, "sigma", None)
-        against = (
-            f" (max_slip/sigma = {self.g_A / sigma:.3g} with sigma = {sigma!r} µm)"
-            if isinstance(sigma, float) and sigma > 0.0
-            else ""
-        )
-        found = hi < (math.log(g_lim) if math.isfinite(g_lim) else 700.0)
-        allowed = (
-            f"max_slip >= {math.exp(hi):.3g} µm for this body and normal_load"
-            if found
-            else "a max_slip at which F_A/mu exceeds the rounding of normal_load"
-        )
-        return (
-            f"max_slip = {self.g_A!r} µm is too small for this body{against}: F_A = {F_A:.3g} N, "
-            f"so small against normal_load = {self.F_N0!r} N that F_N0 - F_A/mu rounds to "
-            f"F_N0 and no reduced_normal_load is shallow enough (the allowed range "
-            f"F_N0 - F_A/mu <= reduced_normal_load < F_N0 is empty); allowed: {allowed}"
-        )
 
     # -------------------------------------------------------------- residual and Jacobian
     def _equations(self, x, mu: float, leg: str, consts) -> tuple[np.ndarray, np.ndarray]:
@@ -453,17 +395,18 @@ class ContactLoss:
         prob, oa, A = self._loading_leg(o)
         # A -> B: normal load reduced, Mindlin-Deresiewicz
         prob_ab = self.problem("AB", start=A["m"], constant=A["q"])
-        ab = trace(
+        ab = guards.trace_leg(
+            self,
+            "AB",
             prob_ab,
             [A[v] for v in prob_ab.unknowns],
+            "F_N = reduced_normal_load",
             free="m",
             bounds={"m": (-math.inf, self.m_B)},
-            scales=_SIZES,
             monitor=["g", "t", "A_SL"],
             options=o,
         )
-        _require_end(ab, "AB", "F_N = F'_N")
-        B = _polish(prob_ab, ab, "m", self.m_B, o)
+        B = guards.polish(self, "B", prob_ab, ab, "m", self.m_B, o)
         # B -> C: reloading at F'_N
         c_exists = A["t"] < 1.0 - self.m_B  # F_A < mu F'_N (t = F_T/(mu0 F_N0), mu = mu0)
         d_exists = self.mu0 * L.slip_limit(B["p"]) > self.g_A
@@ -477,21 +420,22 @@ class ContactLoss:
         if math.isfinite(L.slip_limit(B["p"])):
             bounds["q"] = stick_bounds(L)  # e.g. a sphere: the stick zone vanishes at gross slip
         prob_bc = self.problem("BC", start=B["g"], constant=B["m"])
-        bc = trace(
+        bc = guards.trace_leg(
+            self,
+            "BC",
             prob_bc,
             [B[v] for v in prob_bc.unknowns],
+            "F_T = F_A (point C)" if c_exists else "g_T = max_slip (point D)",
             free="g",
             bounds=bounds,
             targets=targets,
-            scales=_SIZES,
             monitor=["t", "A_SL"],
             options=o,
         )
-        _require_end(bc, "BC", "F_T = F_A" if c_exists else "g_T = g_A")
-        C = _polish(prob_bc, bc, "t", A["t"], o) if c_exists else None
-        D = _polish(prob_bc, bc, "g", 1.0, o) if d_exists else None
+        C = guards.polish(self, "C", prob_bc, bc, "t", A["t"], o) if c_exists else None
+        D = guards.polish(self, "D", prob_bc, bc, "g", 1.0, o) if d_exists else None
         messages = self._gross_sliding_messages(A["t"], c_exists, d_exists)
-        messages += self._near_sliding_messages()
+        messages += guards.near_sliding_messages(self)
         legs = {"OA": oa, "AB": ab, "BC": bc}
         energy, error, notes = path_energies(self, A, B, C, D, o.quad_tol)
         messages += notes
@@ -523,78 +467,26 @@ class ContactLoss:
         g_lim a step can cross g = 1 twice, past the fold, and the leg would run on along the
         unphysical side (c < 0) forever. The stick bound ends it at the fold; A is then found
         between the last row below g_A and the fold, where the slip is monotone in q
-        (:func:`_loading_end`)."""
+        (:func:`~cusp.models._path_guards.loading_end`)."""
         L = self.levels
         prob = self.problem("OA", start=0.0)
         bounds = {"g": (-math.inf, 1.0)}
         if math.isfinite(L.slip_limit(L.p0)):
             bounds["q"] = stick_bounds(L)
-        oa = trace(
+        oa = guards.trace_leg(
+            self,
+            "OA",
             prob,
             [0.0, 0.0, 0.0, L.p0, L.p0],
+            "g_T = max_slip (point A)",
             free="g",
             bounds=bounds,
-            scales=_SIZES,
             monitor=["t", "A_SL"],
             options=o,
         )
-        _require_end(oa, "OA", "g = g_A")
-        if _ended_at(oa) != "q":
-            return prob, oa, _polish(prob, oa, "g", 1.0, o)
-        return prob, oa, self._loading_end(oa)
-
-    def _loading_end(self, oa: Branch) -> dict[str, float]:
-        """A on a loading leg that ended at the gross-sliding fold (the stick bound): the
-        stick level q with g(q) = 1 between the last row below g_A and the fold (g rises
-        monotonically there), by safeguarded Newton to rounding (Newton on the leg with g
-        fixed does not converge within a few ulps of the fold, and from a guess past it
-        lands on the other side, c < 0); the other unknowns are explicit at p = p0, m = 0."""
-        L = self.levels
-        g = np.asarray(oa["g"])
-        above = np.flatnonzero(g >= 1.0)
-        if not above.size or above[0] == 0:
-            raise PathError(
-                f"the stick zone vanished (gross sliding) at g_T = {g[-1] * self.g_A!r} µm on the "
-                f"loading leg OA before max_slip = {self.g_A!r} µm"
-            )
-        i = int(above[0])
-        lo, hi = float(oa["q"][i - 1]), float(oa["q"][i])
-        edge = sliding_level(L)
-        hi = min(hi, edge) if lo < edge else max(hi, edge)
-        mu = float(oa["mu"][0])
-        k = mu / self.g_A
-
-        def slip(q: float) -> tuple[float, float]:
-            s, _, ds_q = L.slip(L.p0, q)
-            return k * s, k * ds_q
-
-        q = invert_level(slip, 1.0, lo, hi)
-        t = float(L.tangential_ratio(L.p0, q)[0]) * mu / self.mu0
-        a_sl = float(slipped_area(L, L.p0, q, self.area_reading)[0])
-        row = oa.point(i - 1)
-        return {**{k: float(v) for k, v in row.items()}, "g": 1.0, "t": t, "m": 0.0,
-                "A_SL": a_sl, "p": float(L.p0), "q": float(q)}  # fmt: skip
-
-    def _near_sliding_messages(self) -> list[str]:
-        """A note where g_A is so close to the gross-sliding slip g_lim under F_N0 that the
-        stick zone at A is resolved only roughly: near g_lim the slip is quadratic in the
-        stick level's distance from gross sliding, so rounding ε of the slip leaves that
-        distance (the stick radius c of a sphere) known to about ε·g_lim/(2(g_lim − g_A))."""
-        L = self.levels
-        g_lim = self.mu0 * L.slip_limit(L.p0)
-        if not math.isfinite(g_lim):
-            return []
-        share = (g_lim - self.g_A) / g_lim
-        rel = _EPS / (2.0 * share)
-        if rel <= 1e-8:
-            return []
-        return [
-            f"max_slip = {self.g_A!r} µm is within {share:.2g} (relative) of the slip "
-            f"{g_lim!r} µm at which the body slides under normal_load: the stick zone at A "
-            f"is so small that its level {L.names[1]} is known only to about {rel:.1g} "
-            f"relative (rounding amplified by 1/(2(1 - g_A/g_lim))), and so are the points "
-            f"and energies that depend on it"
-        ]
+        if guards.ended_at(oa) != "q":
+            return prob, oa, guards.polish(self, "A", prob, oa, "g", 1.0, o)
+        return prob, oa, guards.loading_end(self, oa)
 
     def _gross_sliding_messages(self, t_A: float, c_exists: bool, d_exists: bool) -> list[str]:
         """Why C or D does not exist (t_A = F_A/(μ0 F_N0))."""
@@ -637,7 +529,7 @@ class ContactLoss:
         names = {"g": "g_T", "t": "F_T", "m": "F_N", "A_SL": "A_SL"}
         for leg, br in legs.items():
             for sp in br.special("fold"):
-                if _flat(br, sp.with_respect_to):
+                if guards.flat(br, sp.with_respect_to):
                     continue  # sign changes of a tangent component that is rounding noise
                 phys = _point(sp.values, self.scales, self.levels.names, self.levels)
                 wrt = sp.with_respect_to
@@ -658,30 +550,6 @@ class ContactLoss:
 
 # ------------------------------------------------------------------------------------------
 # helpers
-
-
-def _flat(br: Branch, name: str) -> bool:
-    """Does component ``name`` stay within rounding of one value along the whole leg (its
-    typical size :data:`_SIZES` or its largest value)? Its tangent component is then rounding
-    noise, and the turning points located on its sign changes are not the body's (a Gaussian
-    surface with σ* ≪ |d|: A_SL at rounding level on OA and constant on BC gave 25)."""
-    col = np.asarray(br[name], dtype=float)
-    size = max(_SIZES.get(name, 0.0), float(np.max(np.abs(col))))
-    return float(np.ptp(col)) <= 1e3 * _EPS * size
-
-
-def _ended_at(br: Branch) -> str | None:
-    """The component whose bound ended the branch (None: not a bound)."""
-    ends = [sp for sp in br.special("endpoint") if sp.index == len(br) - 1]
-    return ends[-1].with_respect_to if ends and br.status == "bound" else None
-
-
-def _require_end(br: Branch, leg: str, what: str) -> None:
-    if br.status != "bound":
-        raise PathError(
-            f"the contact-loss leg {leg} ended with status {br.status!r} before reaching "
-            f"{what}: {br.message}"
-        )
 
 
 def _point_rows(legs, c_exists: bool, d_exists: bool) -> dict[str, tuple[str, int]]:
