@@ -28,7 +28,16 @@ from ._loci_energy import _invert
 from ._loci_energy import polish_point as _polish
 from .protocol import sliding_level, slipped_area
 
-__all__ = ["PathError", "SIZES", "trace_leg", "polish", "loading_end", "empty_range", "flat"]
+__all__ = [
+    "PathError",
+    "SIZES",
+    "STATUSES",
+    "trace_leg",
+    "polish",
+    "loading_end",
+    "empty_range",
+    "flat",
+]
 
 _EPS = float(np.finfo(float).eps)
 
@@ -46,8 +55,8 @@ LEGS = {
     "BC": "the reloading leg B-C (the tangential force raised again under reduced_normal_load)",
 }
 
-#: statuses of a branch that ended before its bound, in words
-_STATUSES = {
+#: statuses of a branch that ended before its bound, in words (also of the loci)
+STATUSES = {
     "max_steps": "it needed more steps than the solver allows a leg",
     "ds_min": "the step size fell to the solver's smallest step",
     "stalled": "the steps made no progress at the smallest step size",
@@ -99,7 +108,7 @@ def trace_leg(model: Any, leg: str, prob: Any, u0, what: str, **kwargs: Any) -> 
             f"{LEGS[leg]} stopped{_where(model, exc.values)} before reaching {what}: {_cause(exc)}"
         ) from exc
     if br.status != "bound":
-        cause = _STATUSES.get(br.status, f"it ended ({br.status})")
+        cause = STATUSES.get(br.status, f"it ended ({br.status})")
         raise PathError(
             f"{LEGS[leg]} stopped{_where(model, br.point(len(br) - 1))} before reaching "
             f"{what}: {cause}"
