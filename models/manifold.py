@@ -81,13 +81,19 @@ _BOUND_EVENTS = {"B.t": "F'_T = 0", "D.q": "D disappears", "A.q": "A slides"}
 #: the most rows of a locus table whose released energies are integrated: each costs up to
 #: two quadratures of 512 nodes (0.5 s a row on a Gaussian surface, whose μ-locus over
 #: [1e-9, 1e9] has 225 rows); a longer table has them at every k-th row, and says so
-ENERGY_ROWS = 60
+ENERGY_ROWS = 30
+#: the most steps of a locus in each direction (each step at most ``max_step_solves``
+#: corrector solves of the chain): a Gaussian μ-locus over [1e-9, 1e9] with σ* = 0.0117 µm
+#: took over 120 s of steps; a locus that reaches it ends there, and its message says so
+LOCUS_STEPS = 400
 #: default solver settings of the loci (the default ``rtol``). No branch-point tests: the
 #: chain stacks independent conditions on the points of one path, whose loci do not branch,
 #: and the tests' sign changes at rounding level (the chain's determinant where a point's
 #: equations degenerate, μ → 0) cost a fig8 locus over μ in [5e-324, 1e3] 141 s of step
 #: splitting
-DEFAULT_OPTIONS = ContinuationOptions(ds=0.02, ds_max=0.1, detect_branch_points=False)
+DEFAULT_OPTIONS = ContinuationOptions(
+    ds=0.02, ds_max=0.1, detect_branch_points=False, max_steps=LOCUS_STEPS
+)
 
 
 @dataclass(frozen=True)
@@ -387,6 +393,8 @@ def _ending(model: ContactLoss, parameter: str, free: str, name: str, br: Branch
             ends.append(f"to {at}")
         else:
             why = STATUSES.get(str(status), f"it ended ({status})")
+            if status == "max_steps":
+                why = f"the work limit of a locus ({LOCUS_STEPS} steps each way) was reached"
             ends.append(f"to {at}, where it stopped short: {why}")
     return f"locus of {name}: " + "; ".join(
         f"{d} {e}" for d, e in zip(("one way", "the other way"), ends)
