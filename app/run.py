@@ -313,8 +313,7 @@ def _failures(where: str, notes: list[str] | None = None) -> Iterator[None]:
 @contextmanager
 def _typed_failures(where: str) -> Iterator[None]:
     """:func:`_failures` without the notes."""
-    from cusp.continuation import ContinuationError
-    from cusp.continuation.errors import OptionsError, ProblemDefinitionError
+    from cusp.continuation import ContinuationError, OptionsError, ProblemDefinitionError
     from cusp.models.contact_loss import PathError
     from cusp.models.errors import ModelParameterError
 

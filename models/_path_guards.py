@@ -15,13 +15,15 @@ from typing import Any
 
 import numpy as np
 
-from cusp.continuation import Branch, ContinuationError, trace
-from cusp.continuation.errors import (
+from cusp.continuation import (
+    Branch,
+    ContinuationError,
     ConvergenceError,
     NonFiniteResidualError,
     SingularMatrixError,
     StalledError,
     StepGuardError,
+    trace,
 )
 
 from ._loci_energy import _invert

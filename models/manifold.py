@@ -267,7 +267,7 @@ def _sizes(model: ContactLoss, names: str, free: str) -> dict[str, float]:
 def _ends_in_messages():
     """While loci are traced: a locus that stops early (``throw=False``) is reported in
     :attr:`Loci.messages`, so the tracer's log line saying so is not also printed."""
-    log = logging.getLogger("cusp.continuation.tracer")
+    log = logging.getLogger("cusp.continuation.stepping._tracer")
 
     def drop(record: logging.LogRecord) -> bool:
         return not str(record.msg).startswith("continuation stopped")

@@ -214,9 +214,9 @@ def phases(pb, rounds=100, repeat=7):
 
 
 def _phases_once(pb, rounds):
-    import cusp.continuation.start as sr
-    import cusp.continuation.stepping as st
-    import cusp.continuation.tracer as tr
+    import cusp.continuation.stepping._start as sr
+    import cusp.continuation.stepping._step as st
+    import cusp.continuation.stepping._tracer as tr
 
     acc = {}
     active = set()  # a phase is timed once even if its functions nest

@@ -47,6 +47,19 @@ ALLOWED = {
 MAX_FUNCTION_LINES = 80
 MAX_MODULE_LINES = 600
 
+#: the engine's concept packages, lowest first: each imports only from lower ones (and from
+#: the package's root modules, the vocabulary every concept shares: errors, outcomes, options)
+ENGINE = "cusp.continuation"
+ENGINE_ORDER = (
+    "problem",  # a problem R(u, p) = 0: derivatives, real values, events, sympy
+    "numerics",  # linear algebra, the Hermite arc, typical sizes, second differences
+    "systems",  # the curve system contract G(z) = 0, branch and fold systems, Newton
+    "detection",  # test functions and locating their zeros inside a step
+    "results",  # Branch, SpecialPoint, dense output
+    "stepping",  # the tracer: start, step, confirmation, work budget, state
+    "loci",  # fold curves, loci of located points, chains of points
+)
+
 
 def _package_dirs() -> dict[str, Path]:
     mapping = PYPROJECT["tool"]["setuptools"]["package-dir"]
@@ -170,6 +183,53 @@ def test_no_import_cycle():
         if node not in state:
             visit(node, [])
     assert not cycles, cycles
+
+
+def _engine_rank(module: str) -> int | None:
+    """The rank of an engine module in :data:`ENGINE_ORDER` (0: a root module of the engine;
+    ``len(ENGINE_ORDER) + 1``: the package itself, which re-exports everything); None
+    outside the engine."""
+    if module == ENGINE:
+        return len(ENGINE_ORDER) + 1
+    if not module.startswith(ENGINE + "."):
+        return None
+    part = module[len(ENGINE) + 1 :].split(".")[0]
+    return ENGINE_ORDER.index(part) + 1 if part in ENGINE_ORDER else 0
+
+
+def test_engine_packages_import_only_lower_ones():
+    """Each concept package of the engine imports only from packages below it in
+    :data:`ENGINE_ORDER` (and from the engine's root modules), at import time, inside
+    functions or for type checking alike; every engine module lies in one of them."""
+    modules = _modules()
+    bad = []
+    for name, path in modules.items():
+        own = _engine_rank(name)
+        if own is None or name == ENGINE:
+            continue
+        part = name[len(ENGINE) + 1 :].split(".")[0]
+        assert part in ENGINE_ORDER or part.startswith("_"), f"{name} is in no concept package"
+        for target in _imports(name, path):
+            while target and target not in modules:
+                target = target.rpartition(".")[0]
+            rank = _engine_rank(target) if target else None
+            if rank is None or target == name:
+                continue
+            same = target.split(".")[:3] == name.split(".")[:3]
+            if not same and rank >= own and not (own == 0 and rank == 0):
+                bad.append(f"{name} imports {target}")
+    assert not bad, bad
+
+
+def test_engine_packages_are_small_and_their_modules_private():
+    """No engine folder holds more than 12 modules; implementation modules are private
+    (``_name.py``): the public API is what ``cusp.continuation`` re-exports."""
+    folders = [p for p in (ROOT / "continuation").iterdir() if (p / "__init__.py").is_file()]
+    for folder in [ROOT / "continuation", *folders]:
+        modules = [p for p in folder.glob("*.py") if p.name != "__init__.py"]
+        assert len(modules) <= 12, (folder.name, len(modules))
+        public = [p.name for p in modules if not p.name.startswith("_")]
+        assert not public, (folder.name, public)
 
 
 def test_first_party_imports_go_through_cusp():

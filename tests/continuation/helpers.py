@@ -57,9 +57,9 @@ def first_fold_step(problem, u0, free: str = "b", bounds=(-1.0, 1.0), monitor=()
     crosses a fold: the tracer, the state before that step, the step (a Trial), its bracket
     and the fold's crossing ``(test, value before, value after, None)``."""
     from cusp.continuation import Tracer
-    from cusp.continuation.crossings import evaluate, step_bracket
-    from cusp.continuation.stepping import advance
-    from cusp.continuation.work import StepWork
+    from cusp.continuation.stepping._crossings import evaluate, step_bracket
+    from cusp.continuation.stepping._step import advance
+    from cusp.continuation.stepping._work import StepWork
 
     tracer = Tracer(problem, free=free, bounds={free: bounds}, monitor=monitor)
     state = tracer.init(u0)

@@ -9,10 +9,10 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-import cusp.continuation.tracer as tracer_module
+import cusp.continuation.stepping._tracer as tracer_module
 import cusp.examples as ex
 from cusp.continuation import trace
-from cusp.continuation.confirm import arc_limit, located_on_arc
+from cusp.continuation.stepping._confirm import arc_limit, located_on_arc
 from tests.continuation.helpers import first_fold_step
 
 FOLD_B = 2.0 / (3.0 * np.sqrt(3.0))

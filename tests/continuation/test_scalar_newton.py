@@ -17,11 +17,10 @@ import numpy as np
 import pytest
 
 import cusp.examples as ex
-from cusp.continuation import Problem
-from cusp.continuation.corrector import _newton_arrays, newton, scalar_newton
-from cusp.continuation.foldlocate import locate_fold
-from cusp.continuation.linalg import DenseLU, PairLU
-from cusp.continuation.system import BranchSystem
+from cusp.continuation import BranchSystem, Problem
+from cusp.continuation.detection._folds import locate_fold
+from cusp.continuation.numerics._linalg import DenseLU, PairLU
+from cusp.continuation.systems._newton import _newton_arrays, newton, scalar_newton
 from tests.continuation.helpers import first_fold_step
 
 

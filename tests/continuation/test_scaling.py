@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 from cusp.continuation import Problem, trace
-from cusp.continuation.scaling import GROWTH, grown_sizes
+from cusp.continuation.numerics._scaling import GROWTH, grown_sizes
 
 
 def _exponential():
