@@ -475,7 +475,12 @@ class RoughLevels:
         self.lam = surf.lam * c
         d0 = float(surf.separation(F_N0))  # raises MissingLoadScaleError without the scale
         self.p0 = d0 / s
-        self.j0 = math.log(F_N0 / surf.load_scale)
+        # log J at the start level itself (not log(F_N0/K), which the inverted separation
+        # meets only to rounding): ℓ(p0) = 0 exactly, so the path starts on its equations;
+        # off by two ulps, Newton at O wandered in p (dℓ/dp small where σ* ≪ |d|) and never
+        # settled t = A_SL = 0 (σ* = 1e-4 µm, g_A = 5e-6 µm: "the starting point did not
+        # converge")
+        self.j0 = float(surf.log_load_integral(self.scale * self.p0))
         self.A0 = float(surf.area_integral(d0))
 
     @functools.lru_cache(maxsize=16)  # noqa: B019 - levels live as long as their model
