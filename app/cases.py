@@ -3,11 +3,12 @@ options of its paths, and the cases (one per listed μ or F'_N)."""
 
 from __future__ import annotations
 
+import math
 from typing import Any, NamedTuple
 
 from .scene import Scene, SceneError
 
-__all__ = ["Case", "build_body", "make_model", "solver_options", "loci_options"]
+__all__ = ["Case", "build_body", "make_model", "solver_options", "loci_options", "length_notes"]
 
 
 class Case(NamedTuple):
@@ -83,3 +84,44 @@ def loci_options(scene: Scene) -> Any:
 
     rtol = scene.solver.get("rtol")
     return DEFAULT_OPTIONS if rtol is None else DEFAULT_OPTIONS.replace(rtol=rtol)
+
+
+#: lengths this far apart (a factor) look like one of them in another unit
+UNIT_GAP = 1e4
+#: the units a length in µm may have been given in by mistake: name -> µm per unit
+_UNITS = {"metres": 1e6, "millimetres": 1e3, "nanometres": 1e-3}
+
+
+def length_notes(scene: Scene) -> list[str]:
+    """Notes on lengths that look like the wrong unit: σ* ([surface] sigma) or max_slip more
+    than :data:`UNIT_GAP` times below or above every other length of the scene (σ*,
+    max_slip, radius; all in µm). Each note names the field, how far it is from the others
+    and the unit that would bring it among them (2e-06 "µm" is 2 µm given in metres)."""
+    lengths = {
+        ("surface", "sigma"): scene.surface.get("sigma"),
+        ("loading", "max_slip"): scene.loading.get("max_slip"),
+        ("surface", "radius"): scene.surface.get("radius"),
+    }
+    given = {k: float(v) for k, v in lengths.items() if isinstance(v, float) and v > 0.0}
+    notes = []
+    for key in (("loading", "max_slip"), ("surface", "sigma")):
+        if key not in given or len(given) < 2 or (notes and len(given) == 2):
+            continue  # (of two lengths far apart, the note names max_slip)
+        value = given[key]
+        others = {k: v for k, v in given.items() if k != key}
+        below = all(value * UNIT_GAP < v for v in others.values())
+        above = all(value > UNIT_GAP * v for v in others.values())
+        if not (below or above):
+            continue
+        centre = math.exp(sum(math.log(v) for v in others.values()) / len(others))
+        unit, per = min(_UNITS.items(), key=lambda u: abs(math.log10(value * u[1] / centre)))
+        listed = ", ".join(f"{k[1]} = {v!r} µm" for k, v in others.items())
+        hint = ""
+        if abs(math.log10(value * per / centre)) < abs(math.log10(value / centre)) - 2.0:
+            hint = f"; if it was given in {unit}, {value!r} {unit} is {value * per:.6g} µm"
+        notes.append(
+            f"[{key[0]}] {key[1]} = {value!r} µm is more than {UNIT_GAP:g} times "
+            f"{'below' if below else 'above'} the scene's other lengths ({listed}): lengths "
+            f"are in µm{hint}"
+        )
+    return notes

@@ -33,7 +33,7 @@ from typing import Any
 
 import numpy as np
 
-from .cases import Case, build_body, make_model, solver_options
+from .cases import Case, build_body, length_notes, make_model, solver_options
 from .output import OutDirError, check_out_dir, write_outputs
 from .scene import MANIFOLD_FIGURES, Scene, SceneError, check_title, load_scene, with_rtol
 
@@ -133,6 +133,9 @@ class SceneRun:
     #: the warnings raised while computing (kept off stderr; listed in summary.json)
     warnings: list[str] = field(default_factory=list)
     options: Any = None
+    #: notes on the scene itself (lengths that look like the wrong unit), in every case's
+    #: messages (:func:`~cusp.app.cases.length_notes`)
+    notes: list[str] = field(default_factory=list)
 
 
 def run_scene(scene: Scene, *, plots: bool = True) -> tuple[SceneRun, dict]:
@@ -140,23 +143,24 @@ def run_scene(scene: Scene, *, plots: bool = True) -> tuple[SceneRun, dict]:
     the rendered figures (bytes)."""
     t0 = time.perf_counter()
     options = solver_options(scene)
+    notes = length_notes(scene)
     cases = []
     if plots and scene.title and scene.figures:
         check_title(scene)
     several = len(scene.cases) > 1
     for mu, load in scene.cases:
         where = f"case mu = {mu!r}, F'_N = {load!r} N: " if several else ""
-        with _failures(where):
+        with _failures(where, notes):
             model = make_model(scene, build_body(scene, mu), load)
             cases.append(Case(model.mu0, load, model.run(options)))
     loci = None
     if scene.manifold is not None:
         from .loci import trace_loci
 
-        with _failures(f"the loci in {scene.manifold['parameter']}: "):
+        with _failures(f"the loci in {scene.manifold['parameter']}: ", notes):
             loci = trace_loci(scene)
     t1 = time.perf_counter()
-    run = SceneRun(scene, cases, {}, loci, options=options)
+    run = SceneRun(scene, cases, {}, loci, options=options, notes=notes)
     figures = {}
     path_figures = [f for f in scene.figures if f not in MANIFOLD_FIGURES]
     loci_figures = [f for f in scene.figures if f in MANIFOLD_FIGURES]
@@ -174,7 +178,7 @@ def run_scene(scene: Scene, *, plots: bool = True) -> tuple[SceneRun, dict]:
     return run, figures
 
 
-def _case_summary(mu: float, load: float, res) -> dict[str, Any]:
+def _case_summary(mu: float, load: float, res, notes: list[str]) -> dict[str, Any]:
     energy = dict(res.energy)
     return {
         "mu": {"value": mu, "unit": ""},
@@ -183,7 +187,7 @@ def _case_summary(mu: float, load: float, res) -> dict[str, Any]:
         "energy": {**energy, "unit": _UNITS["energy"], "error_estimate": dict(res.energy_error)},
         "folds": res.folds,
         "gross_sliding": res.gross_sliding,
-        "messages": res.messages,
+        "messages": [*notes, *res.messages],
         "solver": res.stats,
     }
 
@@ -193,7 +197,7 @@ def summary(run: SceneRun) -> dict[str, Any]:
     import numpy
     import scipy
 
-    cases = [_case_summary(*case) for case in run.cases]
+    cases = [_case_summary(*case, run.notes) for case in run.cases]
     first = cases[0]
     level_names = run.cases[0].result.level_names
     out = {
@@ -269,16 +273,12 @@ def branch_csv(run: SceneRun) -> str:
         for leg in res.legs:
             path = res.path(leg)
             for j in range(len(path["g_T"])):
-                w.writerow(
-                    [
-                        i,
-                        repr(mu),
-                        repr(load),
-                        leg,
-                        labels.get((leg, j), ""),
-                        *(repr(float(path[c][j])) for c in cols[5:]),
-                    ]
-                )
+                key = labels.get((leg, j), "")
+                # a named point's row holds the polished point, as summary.json does (the
+                # traced row is only within the step tolerance of it)
+                point = res.points.get(key) if key else None
+                values = [point[c] if point else path[c][j] for c in cols[5:]]
+                w.writerow([i, repr(mu), repr(load), leg, key, *(repr(float(v)) for v in values)])
     return buf.getvalue()
 
 
@@ -297,11 +297,23 @@ class NumericalFailure(RuntimeError):
 
 
 @contextmanager
-def _failures(where: str) -> Iterator[None]:
+def _failures(where: str, notes: list[str] | None = None) -> Iterator[None]:
     """Turn what the library raises while computing ``where`` into NumericalFailure (a
-    SceneError passes through)."""
-    from cusp.continuation import ContinuationError
-    from cusp.continuation.errors import OptionsError, ProblemDefinitionError
+    SceneError passes through), with the scene's ``notes`` (a length in the wrong unit is
+    the likelier cause) after the cause."""
+    try:
+        with _typed_failures(where):
+            yield
+    except NumericalFailure as exc:
+        if not notes:
+            raise
+        raise NumericalFailure(f"{exc}; note: {' '.join(notes)}", exc.internal) from exc
+
+
+@contextmanager
+def _typed_failures(where: str) -> Iterator[None]:
+    """:func:`_failures` without the notes."""
+    from cusp.continuation import ContinuationError, OptionsError, ProblemDefinitionError
     from cusp.models.contact_loss import PathError
     from cusp.models.errors import ModelParameterError
 
@@ -391,7 +403,7 @@ def _report(run: SceneRun, out: Path, files: list[str], total: float) -> None:
             val = res.energy[kind]
             text = "none (gross sliding)" if val is None else f"{val:.10g} N·µm"
             print(f"    energy {kind}: {text}")
-        for msg in res.messages:
+        for msg in [*run.notes, *res.messages]:
             print(f"    note: {msg}")
     if run.loci is not None:
         from .loci import report

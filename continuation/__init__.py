@@ -12,18 +12,16 @@ used).
 
 The pieces: a problem (:class:`Problem`, or any object following
 :class:`ContinuationProblem`) defines ``R(u, p) = 0``; a curve system
-(:class:`~cusp.continuation.system.CurveSystem`: an ordinary branch, a fold curve) turns it
+(:class:`~cusp.continuation.systems._curve.CurveSystem`: an ordinary branch, a fold curve) turns it
 into an underdetermined ``G(z) = 0`` and owns the test functions
-(:class:`~cusp.continuation.testfunctions.TestFunction`) whose sign changes mark its special
+(:class:`~cusp.continuation.detection._tests.TestFunction`) whose sign changes mark its special
 points; the :class:`Tracer` steps along the curve through immutable
-:class:`~cusp.continuation.state.TracerState` records; :func:`trace` and :func:`fold_curve`
-and :func:`locus` (loci of located points, or of a chain of
-corners across the legs of a loading program) are the entry points, returning a :class:`Branch`.
+:class:`TracerState` records; :func:`trace` and :func:`fold_curve` and :func:`locus` (loci
+of located points, or of a chain of corners across the legs of a loading program) are the
+entry points, returning a :class:`Branch`.
 """
 
-from .branch import Branch, SpecialPoint
-from .derivatives import JacobianCheck, check_jacobian
-from .errors import (
+from ._errors import (
     AccuracyError,
     ContinuationError,
     ConvergenceError,
@@ -37,16 +35,28 @@ from .errors import (
     StalledError,
     StepGuardError,
 )
-from .events import Event
-from .foldcurve import fold_curve
-from .locus import ChainPoint, PointChain, locus, point_locus
-from .options import ContinuationOptions
-from .problem import ContinuationProblem, Problem
-from .resample import points_at
-from .state import TracerState
-from .system import BranchSystem, CurveSystem
-from .testfunctions import TestFunction
-from .tracer import Tracer, trace
+from ._options import (
+    RTOL_DEFAULT,
+    RTOL_MAX,
+    RTOL_MIN,
+    ContinuationOptions,
+    point_tol,
+    quadrature_tol,
+)
+from .detection._tests import TestFunction
+from .loci._chain import ChainPoint, PointChain
+from .loci._foldcurve import fold_curve
+from .loci._locus import locus, point_locus
+from .problem._derivatives import JacobianCheck, check_jacobian
+from .problem._events import Event
+from .problem._problem import ContinuationProblem, Problem
+from .results._branch import Branch, SpecialPoint
+from .results._resample import points_at
+from .stepping._state import TracerState
+from .stepping._trace import trace
+from .stepping._tracer import Tracer
+from .systems._branch import BranchSystem
+from .systems._curve import CurveSystem
 
 __all__ = [
     "AccuracyError",
@@ -79,7 +89,12 @@ __all__ = [
     "fold_curve",
     "locus",
     "point_locus",
+    "point_tol",
     "points_at",
+    "quadrature_tol",
+    "RTOL_DEFAULT",
+    "RTOL_MAX",
+    "RTOL_MIN",
     "from_sympy",
     "trace",
 ]
@@ -87,7 +102,7 @@ __all__ = [
 
 def __getattr__(name):  # lazy: sympy is imported only when the helper is used
     if name == "from_sympy":
-        from .symbolic import from_sympy
+        from .problem._symbolic import from_sympy
 
         return from_sympy
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

@@ -31,8 +31,14 @@ from typing import Any
 
 import numpy as np
 
-from cusp.continuation import ChainPoint, ConvergenceError, PointChain, points_at
-from cusp.continuation.options import RTOL_DEFAULT, quadrature_tol
+from cusp.continuation import (
+    RTOL_DEFAULT,
+    ChainPoint,
+    ConvergenceError,
+    PointChain,
+    points_at,
+    quadrature_tol,
+)
 
 from ._point_errors import chain_errors, polish
 
@@ -365,7 +371,7 @@ def polish_row(chain: PointChain, row: dict[str, Any]) -> dict[str, Any]:
     at B) are sensitive to the frozen stick level to ~1e3 times that.
 
     To rounding whatever the ``rtol`` of the trace: from a row within the update tolerance
-    (:func:`~cusp.continuation.options.point_tol`, 1e-10 at the loosest rtol) Newton reaches
+    (:func:`~cusp.continuation.point_tol`, 1e-10 at the loosest rtol) Newton reaches
     rounding in one or two updates (on Fig 9's locus in μ most rows need one at the default
     rtol), so a looser stop would save at most one iteration per row, while the energies'
     error bounds (``state_tol`` of :func:`energies`) would grow by the sensitivity above."""

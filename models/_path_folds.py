@@ -4,9 +4,10 @@ tracer located inside a leg (g_T, F_T and Â_SL are monitored).
 
 A turning point of Â_SL on a leg along which Â_SL varies by less than the solver resolves
 (``resolution``, absolute: Â_SL is a fraction of order one) is rounding noise, not a fold,
-and is left out: at F_N0 = 1e9 N on the Gaussian scene the slipped area is e^{−1.6e6} on OA
-(every summit sticks; d is 1800 σ* below the mean plane) and its noise was reported as
-dozens of turning points.
+and is left out, as is one of any component flat to rounding along its leg
+(:func:`~cusp.models._path_guards.flat`): at F_N0 = 1e9 N on the Gaussian scene the slipped
+area is e^{−1.6e6} on OA (every summit sticks; d is 1800 σ* below the mean plane) and its
+noise was reported as dozens of turning points.
 """
 
 from __future__ import annotations
@@ -15,6 +16,8 @@ from collections.abc import Callable
 from typing import Any
 
 import numpy as np
+
+from ._path_guards import flat
 
 __all__ = ["path_folds"]
 
@@ -56,11 +59,11 @@ def path_folds(
     out = _corners(legs, points)
     for leg, br in legs.items():
         a_sl = np.asarray(br["A_SL"], dtype=float)
-        flat = float(np.ptp(a_sl)) <= resolution * max(1.0, float(np.max(np.abs(a_sl))))
+        flat_a_sl = float(np.ptp(a_sl)) <= resolution * max(1.0, float(np.max(np.abs(a_sl))))
         for sp in br.special("fold"):
             wrt = sp.with_respect_to
-            if wrt == "A_SL" and flat:
-                continue
+            if (wrt == "A_SL" and flat_a_sl) or flat(br, wrt):
+                continue  # sign changes of a tangent component that is rounding noise
             label = _KINDS.get(wrt, ("turning point", _NAMES.get(wrt, wrt)))
             out.append(
                 {

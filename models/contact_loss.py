@@ -77,12 +77,12 @@ from typing import Any
 
 import numpy as np
 
-from cusp.continuation import Branch, ContinuationOptions, Problem, points_at, trace
-from cusp.continuation.options import point_tol
+from cusp.continuation import Branch, ContinuationOptions, Problem, point_tol, points_at
 
+from . import _path_guards as guards
 from ._loci_energy import path_energies, path_points
-from ._loci_energy import polish_point as _polish
 from ._path_folds import path_folds
+from ._path_guards import PathError
 from ._point_errors import point_bounds, point_messages
 from .errors import ModelParameterError, check_positive
 from .protocol import (
@@ -94,8 +94,6 @@ from .protocol import (
     slipped_area,
     stick_bounds,
 )
-
-_EPS = float(np.finfo(float).eps)
 
 __all__ = [
     "ContactLoss",
@@ -118,10 +116,6 @@ DEFAULT_OPTIONS = ContinuationOptions(ds=0.02, ds_max=0.05)
 
 # ------------------------------------------------------------------------------------------
 # Results
-
-
-class PathError(RuntimeError):
-    """A leg of the path ended before its end point (its branch's status and message say why)."""
 
 
 @dataclass(frozen=True)
@@ -270,11 +264,20 @@ class ContactLoss:
             )
         # F_A from the loading curve, only to validate the reduction (the path is traced)
         F_A = float(body.tangential_force(self.g_A, self.F_N0))
+        if not 0.0 <= F_A < math.inf:
+            raise ModelParameterError(
+                f"max_slip = {self.g_A!r} µm and normal_load = {self.F_N0!r} N are beyond what "
+                f"this body represents in floating point: its tangential force at A is F_A = "
+                f"{F_A!r} N (its contact integrals leave the float range); allowed: a body and "
+                f"loading whose F_A is a finite number"
+            )
+        empty = guards.empty_range(self, F_A, g_lim)
+        if empty is not None:
+            raise ModelParameterError(empty)
         floor = self.F_N0 - F_A / self.mu0
         # (a reduction a rounding below the floor, F'_T = 0 located on a locus and evaluated
         # again here, is the floor: F'_T is 0 to rounding there, which the path takes)
-        rounding = 8.0 * _EPS * (F_A + self.mu0 * (self.F_N0 - self.F_Np))
-        if F_A - self.mu0 * (self.F_N0 - self.F_Np) < -rounding:
+        if guards.refused_reduction(self, F_A, self.F_Np):
             raise ModelParameterError(
                 f"reduced_normal_load = {self.F_Np!r} N is too deep: F'_T = F_A - mu*dF_N = "
                 f"{F_A - self.mu0 * (self.F_N0 - self.F_Np)!r} N would be negative; allowed: "
@@ -398,36 +401,21 @@ class ContactLoss:
         polish of the points and the quadrature of the energies)."""
         o = options or DEFAULT_OPTIONS
         L = self.levels
-        # O -> A: slip raised at F_N0
-        prob = self.problem("OA", start=0.0)
-        oa = trace(
-            prob,
-            [0.0, 0.0, 0.0, L.p0, L.p0],
-            free="g",
-            bounds={"g": (-math.inf, 1.0)},
-            # F_N/F_N0's size (m, its reduction, is 0 on OA); p stays at p0 and Â_SL moves
-            # like the slip squared at O: sizes from the start's tangent would be its noise
-            scales={"m": 1.0, "p": 1.0, "A_SL": 1.0},
-            monitor=["t", "A_SL"],
-            options=o,
-        )
-        _require_end(oa, "OA", "g = g_A")
-        A = _polish(prob, oa, "g", 1.0, o)
+        prob, oa, A = self._loading_leg(o)
         # A -> B: normal load reduced, Mindlin-Deresiewicz
         prob_ab = self.problem("AB", start=A["m"], constant=A["q"])
-        ab = trace(
+        ab = guards.trace_leg(
+            self,
+            "AB",
             prob_ab,
             [A[v] for v in prob_ab.unknowns],
+            "F_N = reduced_normal_load",
             free="m",
             bounds={"m": (-math.inf, self.m_B)},
-            # Â_SL grows by ~ΔA_r/A_r ~ m_B on AB, from its value at A (~x_A² at a small slip
-            # x_A, where a size taken at A made the leg take hundreds of steps)
-            scales={"m": 1.0, "A_SL": max(abs(A["A_SL"]), self.m_B, 1e-150)},
             monitor=["g", "t", "A_SL"],
             options=o,
         )
-        _require_end(ab, "AB", "F_N = F'_N")
-        B = _polish(prob_ab, ab, "m", self.m_B, o)
+        B = guards.polish(self, "B", prob_ab, ab, "m", self.m_B, o)
         # B -> C: reloading at F'_N
         c_exists = A["t"] < 1.0 - self.m_B  # F_A < mu F'_N (t = F_T/(mu0 F_N0), mu = mu0)
         d_exists = self.mu0 * L.slip_limit(B["p"]) > self.g_A
@@ -441,19 +429,20 @@ class ContactLoss:
         if math.isfinite(L.slip_limit(B["p"])):
             bounds["q"] = stick_bounds(L)  # e.g. a sphere: the stick zone vanishes at gross slip
         prob_bc = self.problem("BC", start=B["g"], constant=B["m"])
-        bc = trace(
+        bc = guards.trace_leg(
+            self,
+            "BC",
             prob_bc,
             [B[v] for v in prob_bc.unknowns],
+            "F_T = F_A (point C)" if c_exists else "g_T = max_slip (point D)",
             free="g",
             bounds=bounds,
             targets=targets,
-            scales={"m": 1.0},
             monitor=["t", "A_SL"],
             options=o,
         )
-        _require_end(bc, "BC", "F_T = F_A" if c_exists else "g_T = g_A")
-        C = _polish(prob_bc, bc, "t", A["t"], o) if c_exists else None
-        D = _polish(prob_bc, bc, "g", 1.0, o) if d_exists else None
+        C = guards.polish(self, "C", prob_bc, bc, "t", A["t"], o) if c_exists else None
+        D = guards.polish(self, "D", prob_bc, bc, "g", 1.0, o) if d_exists else None
         legs = {"OA": oa, "AB": ab, "BC": bc}
         problems = {"OA": prob, "AB": prob_ab, "BC": prob_bc}
         return self._result(legs, problems, {"A": A, "B": B, "C": C, "D": D}, o)
@@ -465,6 +454,7 @@ class ContactLoss:
         L = self.levels
         c_exists, d_exists = named["C"] is not None, named["D"] is not None
         messages = self._gross_sliding_messages(named["A"]["t"], c_exists, d_exists)
+        messages += guards.near_sliding_messages(self)
         _, row, errors = path_points(self, *(named[x] for x in "ABCD"))
         energy, error, notes = path_energies(self, row, errors, o.quad_tol)
         raw = {"O": legs["OA"].point(0)} | {
@@ -502,6 +492,37 @@ class ContactLoss:
     def _physical_point(self, values: dict[str, float]) -> dict[str, float]:
         return _point(values, self.scales, self.levels.names, self.levels)
 
+    def _loading_leg(self, o: ContinuationOptions) -> tuple[Problem, Branch, dict[str, float]]:
+        """O -> A: the slip raised at F_N0; the leg's problem, branch and the point A.
+
+        A body whose stick zone vanishes at a finite slip (a sphere: q = 1 at g_lim) has its
+        loading curve turn there (g_T is largest at gross sliding): with g_A within a step of
+        g_lim a step can cross g = 1 twice, past the fold, and the leg would run on along the
+        unphysical side (c < 0) forever. The stick bound ends it at the fold; A is then found
+        between the last row below g_A and the fold, where the slip is monotone in q
+        (:func:`~cusp.models._path_guards.loading_end`)."""
+        L = self.levels
+        prob = self.problem("OA", start=0.0)
+        bounds = {"g": (-math.inf, 1.0)}
+        if math.isfinite(L.slip_limit(L.p0)):
+            bounds["q"] = stick_bounds(L)
+        oa = guards.trace_leg(
+            self,
+            "OA",
+            prob,
+            [0.0, 0.0, 0.0, L.p0, L.p0],
+            "g_T = max_slip (point A)",
+            free="g",
+            bounds=bounds,
+            # p stays at p0 (its first equation on OA is p = p0): sized 1, not by its start
+            scales={"p": 1.0},
+            monitor=["t", "A_SL"],
+            options=o,
+        )
+        if guards.ended_at(oa) != "q":
+            return prob, oa, guards.polish(self, "A", prob, oa, "g", 1.0, o)
+        return prob, oa, guards.loading_end(self, oa)
+
     def _gross_sliding_messages(self, t_A: float, c_exists: bool, d_exists: bool) -> list[str]:
         """Why C or D does not exist (t_A = F_A/(μ0 F_N0))."""
         messages: list[str] = []
@@ -522,14 +543,6 @@ class ContactLoss:
 
 # ------------------------------------------------------------------------------------------
 # helpers
-
-
-def _require_end(br: Branch, leg: str, what: str) -> None:
-    if br.status != "bound":
-        raise PathError(
-            f"the contact-loss leg {leg} ended with status {br.status!r} before reaching "
-            f"{what}: {br.message}"
-        )
 
 
 def _point_rows(legs, c_exists: bool, d_exists: bool) -> dict[str, tuple[str, int]]:

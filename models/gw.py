@@ -72,13 +72,18 @@ def _finite(t) -> np.ndarray:
     return t
 
 
-def _exp_minus_half_square(t: np.ndarray) -> np.ndarray:
-    """exp(−t²/2) with t² = hi + lo split exactly (Veltkamp/Dekker)."""
+def _square(t: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """t² = hi + lo exactly (Veltkamp/Dekker): hi the rounded square, lo its error."""
     hi = t * t
     a = t * 134217729.0  # 2^27 + 1
     th = a - (a - t)
     tl = t - th
-    lo = ((th * th - hi) + 2.0 * th * tl) + tl * tl
+    return hi, ((th * th - hi) + 2.0 * th * tl) + tl * tl
+
+
+def _exp_minus_half_square(t: np.ndarray) -> np.ndarray:
+    """exp(−t²/2) with t² = hi + lo split exactly (Veltkamp/Dekker)."""
+    hi, lo = _square(t)
     return np.exp(-0.5 * hi) * (1.0 - 0.5 * lo)
 
 
@@ -108,7 +113,18 @@ def _trapezoid_sum(t: np.ndarray, p: int) -> np.ndarray:
     x, h = _grid(t)
     x2 = x * x
     tt = t[..., None]
-    e = np.where(tt >= 0.0, -x2 * (tt + 0.5 * x2), -0.5 * (x2 + tt) ** 2)
+    # t < 0: x² + t about the peak at x² ≈ −t, formed from the grid's start x_0 as
+    # (x_0² + t) + y(2x_0 + y), y = x − x_0 = h·k, with x_0² split exactly (x_0² + t then
+    # exact by Sterbenz): x² + t rounded directly errs by ε|t| (1.5e-12 relative in F_n
+    # at t = −3.6e5, 2.5e-8 at t = −1e9)
+    if np.all(t >= 0.0):  # (the usual case of a scalar call: no work for t < 0)
+        e = -x2 * (tt + 0.5 * x2)
+    else:
+        x0 = x[..., :1]
+        sq_hi, sq_lo = _square(x0)
+        y = h * np.arange(_M + 1)
+        w = ((sq_hi + tt) + sq_lo) + y * (2.0 * x0 + y)
+        e = np.where(tt >= 0.0, -x2 * (tt + 0.5 * x2), -0.5 * w * w)
     f = np.exp(e)
     for _ in range(p // 2):
         f *= x2
@@ -138,9 +154,16 @@ def _g1(t: np.ndarray, g0: np.ndarray) -> np.ndarray:
     big = t >= _T_CF
     if np.any(big):
         tb = t[big]
-        r = np.zeros_like(tb)
-        for k in range(_K_CF, 1, -1):
-            r = k / (tb + r)
+        if tb.size <= 4:
+            # a few values (the contact levels ask for one at a time): the recurrence in
+            # Python floats, the same IEEE operations as numpy's on arrays of one element
+            # but 40 times faster (15 µs instead of 600: it was a third of a Gaussian
+            # locus's energies)
+            r = np.array([_cf_tail(x) for x in tb.tolist()])
+        else:
+            r = np.zeros_like(tb)
+            for k in range(_K_CF, 1, -1):
+                r = k / (tb + r)
         g1[big] = g0[big] / (tb + r)
     return g1
 
@@ -157,6 +180,14 @@ def mills_ratios(z) -> tuple[np.ndarray, np.ndarray]:
     z = np.atleast_1d(np.asarray(z, dtype=float))
     g0 = _SQRT_PI_2 * sc.erfcx(z * _INV_SQRT2)
     return g0, _g1(z, g0)
+
+
+def _cf_tail(x: float) -> float:
+    """The tail 2/(x + 3/(x + …)) of the continued fraction of :func:`_g1` at one x."""
+    r = 0.0
+    for k in range(_K_CF, 1, -1):
+        r = k / (x + r)
+    return r
 
 
 def log_gw_integral(n: float, t) -> np.ndarray:

@@ -40,12 +40,13 @@ from cusp.continuation import (
     ContinuationOptions,
     Event,
     locus,
+    point_tol,
     points_at,
     trace,
 )
-from cusp.continuation.options import point_tol
 
 from ._loci_energy import EnergyError, energies, flag_rtol, path_chain, polish_row
+from ._path_guards import STATUSES
 from ._point_errors import chain_errors, point_bounds, relative
 from .contact_loss import DEFAULT_OPTIONS as PATH_OPTIONS
 from .contact_loss import ContactLoss
@@ -79,8 +80,22 @@ LOCI_UNITS = {
 }
 #: the bounds of a locus that are events of the path
 _BOUND_EVENTS = {"B.t": "F'_T = 0", "D.q": "D disappears", "A.q": "A slides"}
-#: default solver settings of the loci (the default ``rtol``)
-DEFAULT_OPTIONS = ContinuationOptions(ds=0.02, ds_max=0.1)
+#: the most rows of a locus table whose released energies are integrated: each costs up to
+#: two quadratures of 512 nodes (0.5 s a row on a Gaussian surface, whose μ-locus over
+#: [1e-9, 1e9] has 225 rows); a longer table has them at every k-th row, and says so
+ENERGY_ROWS = 30
+#: the most steps of a locus in each direction (each step at most ``max_step_solves``
+#: corrector solves of the chain): a Gaussian μ-locus over [1e-9, 1e9] with σ* = 0.0117 µm
+#: took over 120 s of steps; a locus that reaches it ends there, and its message says so
+LOCUS_STEPS = 400
+#: default solver settings of the loci (the default ``rtol``). No branch-point tests: the
+#: chain stacks independent conditions on the points of one path, whose loci do not branch,
+#: and the tests' sign changes at rounding level (the chain's determinant where a point's
+#: equations degenerate, μ → 0) cost a fig8 locus over μ in [5e-324, 1e3] 141 s of step
+#: splitting
+DEFAULT_OPTIONS = ContinuationOptions(
+    ds=0.02, ds_max=0.1, detect_branch_points=False, max_steps=LOCUS_STEPS
+)
 
 
 @dataclass(frozen=True)
@@ -235,7 +250,8 @@ def trace_loci(
                 chain_c, seed[0], free=free, events=[near], scales=_sizes(model, "ABCD", free), **kw
             )
         chains["A-B-C-D"] = chain_c
-    return _assemble(model, parameter, free, branches, chains, o)
+    keep = {_chain_value(model, free, float(v)) for v in at}
+    return _assemble(model, parameter, free, branches, chains, o, keep)
 
 
 def _sizes(model: ContactLoss, names: str, free: str) -> dict[str, float]:
@@ -243,14 +259,17 @@ def _sizes(model: ContactLoss, names: str, free: str) -> dict[str, float]:
     at A, where A.m and A.p = p0 + O(A.m) carry a rounding that would set their sizes; tiny
     for a tiny reduction)."""
     out = {f"{x}.m": 1.0 for x in names} | {"A.p": max(1.0, abs(model.levels.p0))}
-    return out | ({"m_B": 1.0} if free == "m_B" else {})
+    # μ: its value at the start, not the width of its span (a span up to 1e9 sized μ 1e9:
+    # steps of 1e8 in μ from μ = 0.1, and a derivative check across them that failed the
+    # locus at its start); a size only grows along the locus
+    return out | ({"m_B": 1.0} if free == "m_B" else {"mu": model.mu0})
 
 
 @contextmanager
 def _ends_in_messages():
     """While loci are traced: a locus that stops early (``throw=False``) is reported in
     :attr:`Loci.messages`, so the tracer's log line saying so is not also printed."""
-    log = logging.getLogger("cusp.continuation.tracer")
+    log = logging.getLogger("cusp.continuation.stepping._tracer")
 
     def drop(record: logging.LogRecord) -> bool:
         return not str(record.msg).startswith("continuation stopped")
@@ -289,15 +308,16 @@ def _c_seed(model, start, params, main: Branch, o):
     return pt, params
 
 
-def _assemble(model: ContactLoss, parameter: str, free: str, branches, chains, o):
+def _assemble(model: ContactLoss, parameter: str, free: str, branches, chains, o, keep=()):
     """The rows of the loci (the chain with C where it ran, the other beyond), polished to
-    rounding, their physical columns, error bounds and energies (to the options' ``quad_tol``),
-    the events and how each locus ended."""
+    rounding, their physical columns, error bounds and energies (to the options'
+    ``quad_tol``; at most :data:`ENERGY_ROWS` rows besides those at the values ``keep`` of
+    the chain's parameter), the events and how each locus ended."""
     main = branches[next(iter(branches))]
     with_c = branches.get("A-B-C-D")
     rows: list[tuple[dict[str, float], Any]] = []  # (row, its chain)
     events: list[tuple[dict[str, Any], Any]] = []
-    messages = [f"locus of {name}: {br.message}" for name, br in branches.items()]
+    messages = [_ending(model, parameter, free, name, br) for name, br in branches.items()]
     inside = (math.inf, -math.inf)
     if with_c is not None and len(with_c) > 1:
         # (widened by rounding: both loci end at a common bound, F'_T = 0, located twice)
@@ -326,13 +346,27 @@ def _assemble(model: ContactLoss, parameter: str, free: str, branches, chains, o
         if not inside[0] <= ev[free] <= inside[1]
         and not any(n == ev["event"] and abs(v - ev[free]) <= 1e-9 * abs(v) for n, v in located)
     ]
+    kept = [r[free] in keep for r, _ in rows]  # (before the rows move to the reported F'_N)
     if free == "m_B":  # each row at the F'_N it reports (module docstring)
         rows = [(polish_row(c, _at_reported_load(model, r)), c) for r, c in rows]
         events = [(polish_row(c, _at_reported_load(model, r)), c) for r, c in events]
-    rows.sort(key=lambda r: _user_value(model, free, r[0][free]))
+    order = sorted(range(len(rows)), key=lambda i: _user_value(model, free, rows[i][0][free]))
     events.sort(key=lambda r: _user_value(model, free, r[0][free]))
+    stride = -(-len(rows) // ENERGY_ROWS)  # (ceiling division)
+    if stride > 1:
+        messages.append(
+            f"the released energies are integrated at one row in {stride} of the loci "
+            f"({len(range(0, len(rows), stride))} of {len(rows)} rows, the work limit being "
+            f"{ENERGY_ROWS} rows); the rows between are left empty"
+        )
     worst: dict[tuple[str, str], tuple[float, str]] = {}  # the points' largest error bounds
-    table = [_physical(model, row, chain, o.quad_tol, messages, worst) for row, chain in rows]
+    table = [
+        _physical(
+            model, *rows[i], o.quad_tol, messages, worst, integrate=k % stride == 0 or kept[i]
+        )
+        for k, i in enumerate(order)
+    ]
+    rows = [rows[i] for i in order]
     columns = {key: np.array([r[key] for r in table]) for key in LOCI_UNITS}
     event_rows = [
         {"event": ev.pop("event"), **_physical(model, ev, chain, o.quad_tol, messages, worst)}
@@ -364,6 +398,41 @@ def _bound_messages(worst, threshold: float) -> list[str]:
     return out
 
 
+def _ending(model: ContactLoss, parameter: str, free: str, name: str, br: Branch) -> str:
+    """How a locus ended at each of its two ends, in the scene's terms (the events of the
+    path, the end of the span, or why it stopped short; never the chain's variables)."""
+    ends = []
+    for row, status in (
+        (0, br.info.get("status_minus")),
+        (len(br) - 1, br.info.get("status_plus")),
+    ):
+        at = f"{parameter} = {_user_value(model, free, float(br[free][row])):.10g}"
+        wrt = next(
+            (
+                sp.with_respect_to
+                for sp in br.special_points
+                if sp.index == row and sp.kind in ("endpoint", "event")
+            ),
+            None,
+        )
+        if status == "bound" and wrt == free:
+            ends.append(f"to the end of the range, {at}")
+        elif status == "bound" and wrt in _BOUND_EVENTS:
+            ends.append(f"to {at}, where {_BOUND_EVENTS[wrt]}")
+        elif status == "terminal_event":
+            ends.append(f"to {at}, where C is no longer resolved (near the C boundary)")
+        elif status == "bound":
+            ends.append(f"to {at}")
+        else:
+            why = STATUSES.get(str(status), f"it ended ({status})")
+            if status == "max_steps":
+                why = f"the work limit of a locus ({LOCUS_STEPS} steps each way) was reached"
+            ends.append(f"to {at}, where it stopped short: {why}")
+    return f"locus of {name}: " + "; ".join(
+        f"{d} {e}" for d, e in zip(("one way", "the other way"), ends)
+    )
+
+
 def _events(br: Branch) -> list[dict[str, Any]]:
     """The located events of a locus and its ends at bounds that are events of the path."""
     out = []
@@ -382,11 +451,13 @@ def _physical(
     quad_tol: float,
     messages: list[str],
     worst: dict[tuple[str, str], tuple[float, str]],
+    integrate: bool = True,
 ) -> dict[str, float]:
     """One row of a locus in physical units (NaN for a point the row does not carry), with
     the released energies at it (to ``quad_tol``; NaN where not resolved to
-    :func:`~._loci_energy.flag_rtol`, or not integrated, with a message saying so); the
-    largest relative error bounds of the points' quantities are kept in ``worst``."""
+    :func:`~._loci_energy.flag_rtol`, or not integrated, with a message saying so, or not
+    ``integrate``: beyond the work limit :data:`ENERGY_ROWS`); the largest relative error
+    bounds of the points' quantities are kept in ``worst``."""
     sg, st = model.scales["g"], model.scales["t"]
     out = {"mu": row["mu"], "reduced_normal_load": _user_value(model, "m_B", row["m_B"])}
     for x in "ABCD":
@@ -396,6 +467,11 @@ def _physical(
     errors = chain_errors(model, chain, row)
     where = f"mu = {row['mu']!r}, F'_N = {out['reduced_normal_load']!r} N"
     _track_bounds(model, row, errors, out, worst, where)
+    if not integrate:
+        nan = math.nan
+        return out | dict.fromkeys(
+            [f"{k}_{v}" for k in ("snap_back", "snap_through") for v in ("energy", "error")], nan
+        )
     try:
         e = energies(model.levels, row, row["mu"], model.mu0, model.g_A, _ROW_TOL, quad_tol, errors)
     except EnergyError as exc:

@@ -311,10 +311,17 @@ register_body(
     optional_name="the load scale",
     description="exponential summit heights (Eqs 1, 9, 12, 15), closed form",
 )
+#: the Gaussian surface's σ*: its load integral J = σ*^{3/2} F_{3/2} needs σ*^{3/2} within the
+#: float range (3.18e205^{3/2} overflows); far below that bound every scene's reduction range
+#: is empty anyway (refused by the path, naming max_slip)
+GAUSSIAN_SIGMA = Parameter(
+    "sigma", "µm", upper=3e205, description="composite rms roughness σ* (σ*^{3/2} a float)"
+)
+
 register_body(
     "rough-gaussian",
     "cusp.models.gaussian:GaussianRoughSurface",
-    required=_ROUGH + LOAD_SCALE,
+    required=(GAUSSIAN_SIGMA, NU, MU, *LOAD_SCALE),
     description="Gaussian summit heights (Greenwood-Williamson)",
 )
 register_body(

@@ -222,7 +222,9 @@ class SphereLevels:
         w = 1.0 - p
         r = (q - p) / w
         dF = 3.0 * (1.0 - r) ** 2  # dF̂/dr
-        return r * (3.0 - 3.0 * r + r * r), -dF * (1.0 - q) / (w * w), dF / w
+        # near gross sliding (r -> 1) from c/a, so that F̂_T <= 1 (F_T <= μF_N) to the last bit
+        F = r * (3.0 - 3.0 * r + r * r) if r < 0.5 else 1.0 - ((1.0 - q) / w) ** 3
+        return F, -dF * (1.0 - q) / (w * w), dF / w
 
     def slip(self, p: float, q: float) -> tuple[float, float, float]:
         """g_T/μ = κ(q − p)(2 − p − q) [µm] and its derivatives (Eq 2)."""

@@ -35,8 +35,7 @@ import scipy
 import scipy.sparse.linalg as spla
 
 import cusp.examples as ex
-from cusp.continuation import trace
-from cusp.continuation.system import BranchSystem
+from cusp.continuation import BranchSystem, trace
 
 from _report import write_report
 

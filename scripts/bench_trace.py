@@ -214,9 +214,12 @@ def phases(pb, rounds=100, repeat=7):
 
 
 def _phases_once(pb, rounds):
-    import cusp.continuation.start as sr
-    import cusp.continuation.stepping as st
-    import cusp.continuation.tracer as tr
+    import cusp.continuation.stepping._advance as ad
+    import cusp.continuation.stepping._crossings as cr
+    import cusp.continuation.stepping._insert as ins
+    import cusp.continuation.stepping._start as sr
+    import cusp.continuation.stepping._step as st
+    import cusp.continuation.stepping._tracer as tr
 
     acc = {}
     active = set()  # a phase is timed once even if its functions nest
@@ -241,12 +244,13 @@ def _phases_once(pb, rounds):
 
     wrap(st, "newton", "corrector (steps and start)")
     wrap(st, "damped_newton", "corrector (steps and start)")
-    wrap(st, "correct", "corrector (steps and start)")
+    wrap(ad, "correct", "corrector (steps and start)")  # steps aimed at a bound or target
     wrap(sr, "correct", "corrector (steps and start)")  # the start's corrector
     wrap(tr, "locate_crossings", "special-point location")
     wrap(tr, "corner_folds", "special-point location")
-    wrap(tr.Tracer, "_located_point", "special-point location")
-    wrap(tr, "tangent_at", "special-point location")
+    wrap(tr, "located_point", "special-point location")
+    wrap(cr, "tangent_at", "special-point location")
+    wrap(ins, "tangent_at", "special-point location")
     wrap(tr.Tracer, "__init__", "setup and result")
     wrap(tr.Tracer, "result", "setup and result")
     try:

@@ -18,6 +18,10 @@ failed run holds the same files afterwards. A numerical failure whose cause is a
 exception (``unexpected ZeroDivisionError in the models``) passes but is counted and listed
 as a models bug. Exit status 1 if any scene fails; the failing scenes are written to
 ``--keep DIR``.
+
+The time limit (120 s) is set from measurement (docs/limits.md, "Fuzzing"): the slowest
+generated scenes are Gaussian μ-loci over [1e-9, 1e9], 28 s of CPU (39 s wall) alone on
+the shared 2-core machine, up to three times that in two processes beside other work.
 """
 
 from __future__ import annotations

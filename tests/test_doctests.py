@@ -24,6 +24,6 @@ def test_the_examples_are_counted():
     """The package does have examples (a collection error would otherwise pass silently)."""
     finder = doctest.DocTestFinder()
     total = 0
-    for name in ("cusp.continuation", "cusp.continuation.tracer"):
+    for name in ("cusp.continuation", "cusp.continuation.stepping._tracer"):
         total += sum(len(t.examples) for t in finder.find(importlib.import_module(name)))
     assert total >= 8

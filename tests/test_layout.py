@@ -46,6 +46,21 @@ ALLOWED = {
 }
 MAX_FUNCTION_LINES = 80
 MAX_MODULE_LINES = 600
+#: the engine's functions are shorter still (issue 28): one function, one decision
+MAX_ENGINE_FUNCTION_LINES = 60
+
+#: the engine's concept packages, lowest first: each imports only from lower ones (and from
+#: the package's root modules, the vocabulary every concept shares: errors, outcomes, options)
+ENGINE = "cusp.continuation"
+ENGINE_ORDER = (
+    "problem",  # a problem R(u, p) = 0: derivatives, real values, events, sympy
+    "numerics",  # linear algebra, the Hermite arc, typical sizes, second differences
+    "systems",  # the curve system contract G(z) = 0, branch and fold systems, Newton
+    "detection",  # test functions and locating their zeros inside a step
+    "results",  # Branch, SpecialPoint, dense output
+    "stepping",  # the tracer: start, step, confirmation, work budget, state
+    "loci",  # fold curves, loci of located points, chains of points
+)
 
 
 def _package_dirs() -> dict[str, Path]:
@@ -172,6 +187,53 @@ def test_no_import_cycle():
     assert not cycles, cycles
 
 
+def _engine_rank(module: str) -> int | None:
+    """The rank of an engine module in :data:`ENGINE_ORDER` (0: a root module of the engine;
+    ``len(ENGINE_ORDER) + 1``: the package itself, which re-exports everything); None
+    outside the engine."""
+    if module == ENGINE:
+        return len(ENGINE_ORDER) + 1
+    if not module.startswith(ENGINE + "."):
+        return None
+    part = module[len(ENGINE) + 1 :].split(".")[0]
+    return ENGINE_ORDER.index(part) + 1 if part in ENGINE_ORDER else 0
+
+
+def test_engine_packages_import_only_lower_ones():
+    """Each concept package of the engine imports only from packages below it in
+    :data:`ENGINE_ORDER` (and from the engine's root modules), at import time, inside
+    functions or for type checking alike; every engine module lies in one of them."""
+    modules = _modules()
+    bad = []
+    for name, path in modules.items():
+        own = _engine_rank(name)
+        if own is None or name == ENGINE:
+            continue
+        part = name[len(ENGINE) + 1 :].split(".")[0]
+        assert part in ENGINE_ORDER or part.startswith("_"), f"{name} is in no concept package"
+        for target in _imports(name, path):
+            while target and target not in modules:
+                target = target.rpartition(".")[0]
+            rank = _engine_rank(target) if target else None
+            if rank is None or target == name:
+                continue
+            same = target.split(".")[:3] == name.split(".")[:3]
+            if not same and rank >= own and not (own == 0 and rank == 0):
+                bad.append(f"{name} imports {target}")
+    assert not bad, bad
+
+
+def test_engine_packages_are_small_and_their_modules_private():
+    """No engine folder holds more than 12 modules; implementation modules are private
+    (``_name.py``): the public API is what ``cusp.continuation`` re-exports."""
+    folders = [p for p in (ROOT / "continuation").iterdir() if (p / "__init__.py").is_file()]
+    for folder in [ROOT / "continuation", *folders]:
+        modules = [p for p in folder.glob("*.py") if p.name != "__init__.py"]
+        assert len(modules) <= 12, (folder.name, len(modules))
+        public = [p.name for p in modules if not p.name.startswith("_")]
+        assert not public, (folder.name, public)
+
+
 def test_first_party_imports_go_through_cusp():
     """Tests, scripts and the package never import the repository folders by their bare
     names (they would shadow or duplicate the installed package); scripts never import
@@ -209,15 +271,18 @@ def _body_lines(node) -> int:
 
 
 def test_small_modules_and_functions():
+    """Modules of at most 600 lines, functions of at most 80 (60 in the engine), the
+    docstring excluded, the signature included."""
     long_modules, long_functions = [], []
     for name, path in _modules().items():
         text = path.read_text(encoding="utf-8")
         if text.count("\n") > MAX_MODULE_LINES:
             long_modules.append(f"{name}: {text.count(chr(10))} lines")
+        limit = MAX_ENGINE_FUNCTION_LINES if _engine_rank(name) is not None else MAX_FUNCTION_LINES
         for node in ast.walk(ast.parse(text)):
             if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef)):
                 n = _body_lines(node)
-                if n > MAX_FUNCTION_LINES:
+                if n > limit:
                     long_functions.append(f"{name}.{node.name}: {n} lines")
     assert not long_modules, long_modules
     assert not long_functions, long_functions

@@ -89,7 +89,7 @@ def test_a_bad_scene_rtol_is_refused_naming_the_field_value_and_range(line, expe
 
 @pytest.mark.parametrize("value", [1e-13, 0.01])
 def test_the_bounds_of_rtol_are_allowed(value):
-    from cusp.continuation.options import RTOL_MIN
+    from cusp.continuation import RTOL_MIN
 
     assert RTOL_MIN == 1e-13  # the scene's range is the options' (not imported by scene.py)
     assert solver_options(parse_scene(_solver(f"rtol = {value!r}"))).rtol == value
@@ -212,6 +212,6 @@ def test_the_loci_follow_the_scenes_rtol(tmp_path, capsys, monkeypatch):
 
 def test_the_scene_range_of_rtol_is_the_solvers():
     from cusp.app.scene import RTOL_RANGE
-    from cusp.continuation.options import RTOL_MAX, RTOL_MIN
+    from cusp.continuation import RTOL_MAX, RTOL_MIN
 
     assert RTOL_RANGE == (RTOL_MIN, RTOL_MAX)

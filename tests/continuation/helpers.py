@@ -55,18 +55,18 @@ def assert_special_points_consistent(case, br):
 def first_fold_step(problem, u0, free: str = "b", bounds=(-1.0, 1.0), monitor=()):
     """Step ``problem`` (free parameter ``free`` within ``bounds``, from ``u0``) until a step
     crosses a fold: the tracer, the state before that step, the step (a Trial), its bracket
-    and the fold's crossing ``(test, value before, value after, None)``."""
+    and the fold's crossing (a ``Crossing``: the test, its values before and after)."""
     from cusp.continuation import Tracer
-    from cusp.continuation.crossings import evaluate, step_bracket
-    from cusp.continuation.stepping import advance
-    from cusp.continuation.work import StepWork
+    from cusp.continuation.stepping._advance import advance
+    from cusp.continuation.stepping._crossings import evaluate, step_bracket
+    from cusp.continuation.stepping._work import StepWork
 
     tracer = Tracer(problem, free=free, bounds={free: bounds}, monitor=monitor)
     state = tracer.init(u0)
     while True:
         trial = advance(tracer._rules, state, StepWork(tracer.options.max_step_solves))
-        _, _, crossings = evaluate(tracer.tests, tracer._has_bp, state, trial)
-        folds = [c for c in crossings if c[0].kind == "fold"]
+        crossings = evaluate(tracer.tests, tracer._has_bp, state, trial).crossings
+        folds = [c for c in crossings if c.test.kind == "fold"]
         if folds:
             br = step_bracket(tracer.options, state.system, state.last, trial)
             return tracer, state, trial, br, folds[0]

@@ -16,7 +16,8 @@ import numpy as np
 import pytest
 import scipy.sparse as sp
 
-from cusp.continuation import Problem, spectrum, trace
+from cusp.continuation import Problem, trace
+from cusp.continuation.detection import _spectrum as spectrum
 
 pytestmark = pytest.mark.slow
 
@@ -164,7 +165,7 @@ def test_sparsity_matrix_is_not_overwritten():
     assert np.array_equal(lap.toarray(), before)
 
 
-# --- the partial spectrum and the rule that accounts for a step (continuation/spectrum.py)
+# --- the partial spectrum and the rule that accounts for a step (detection/_spectrum.py)
 
 
 def test_arnoldi_finds_the_eigenvalues_nearest_zero():
@@ -224,7 +225,7 @@ def test_steps_the_spectra_do_not_account_for_are_split(monkeypatch, caplog):
     monkeypatch.setattr(spectrum, "KRYLOV", 2)
     monkeypatch.setattr(spectrum, "MAX_KRYLOV", 2)
     n = 60
-    with caplog.at_level("INFO", logger="cusp.continuation.spectrum"):
+    with caplog.at_level("INFO", logger="cusp.continuation.detection._spectrum"):
         branch = trace(
             chafee_infante(n, "analytic"), np.zeros(n), free="lam", bounds={"lam": (-1, 400)}
         )

@@ -9,10 +9,10 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-import cusp.continuation.tracer as tracer_module
+import cusp.continuation.stepping._tracer as tracer_module
 import cusp.examples as ex
 from cusp.continuation import trace
-from cusp.continuation.confirm import arc_limit, located_on_arc
+from cusp.continuation.stepping._confirm import arc_limit, located_on_arc
 from tests.continuation.helpers import first_fold_step
 
 FOLD_B = 2.0 / (3.0 * np.sqrt(3.0))
@@ -21,10 +21,8 @@ FOLD_B = 2.0 / (3.0 * np.sqrt(3.0))
 def _fold_step():
     """A cusp tracer, the state before the first step that crosses the lower fold, that step,
     its bracket and the fold located in it."""
-    tracer, state, trial, br, (tt, old, new, _) = first_fold_step(
-        ex.cusp_normal_form().problem, [-1.3247]
-    )
-    return tracer, state, trial, br, tt.locate(br, old, new)
+    tracer, state, trial, br, crossing = first_fold_step(ex.cusp_normal_form().problem, [-1.3247])
+    return tracer, state, trial, br, crossing.test.locate(br, crossing.old, crossing.new)
 
 
 def test_a_located_fold_confirms_its_step():

@@ -79,8 +79,12 @@ def test_options_inconsistent_bounds():
 
 
 def test_trace_rejects_unknown_keyword():
-    with pytest.raises(OptionsError, match="unknown option"):
+    # the entry points spell out their keywords (options among them): an unknown one is
+    # Python's TypeError naming it; ContinuationOptions.replace names the allowed ones
+    with pytest.raises(TypeError, match="step_size"):
         trace(cusp_problem(), [X0], free="b", step_size=0.1)
+    with pytest.raises(OptionsError, match=r"unknown option\(s\) \['step_size'\]; allowed"):
+        ContinuationOptions().replace(step_size=0.1)
 
 
 # --- --- problems
@@ -507,8 +511,8 @@ def test_corrector_takes_a_simplified_step_in_the_quadratic_regime():
     x³ − x − b at b = −1 from x = −1.3 (the root is minus the plastic number, −1.32471795724
     4746..., mpmath: findroot(x**3 - x + 1, -1.3)); tol = 1e-14 keeps the residual above tol
     after the update of ~1e-6 that enters the quadratic regime."""
-    from cusp.continuation.corrector import newton
-    from cusp.continuation.system import BranchSystem
+    from cusp.continuation import BranchSystem
+    from cusp.continuation.systems._newton import NewtonSettings, newton
 
     calls = {"jacobian": 0}
     example = ex.cusp_normal_form()  # a = 1, b = -1
@@ -526,7 +530,8 @@ def test_corrector_takes_a_simplified_step_in_the_quadratic_regime():
     )
     system = BranchSystem(prob, "b")
     row = np.array([0.0, 1.0])
-    res = newton(system, np.array([-1.3, -1.0]), row, -1.0, tol=1e-14, step_tol=1e-10, max_iter=10)
+    settings = NewtonSettings(tol=1e-14, step_tol=1e-10, max_iterations=10)
+    res = newton(system, np.array([-1.3, -1.0]), row, -1.0, settings)
     assert res.converged
     assert res.z[0] == pytest.approx(X0, rel=2e-16, abs=0)
     assert calls["jacobian"] == res.iterations - 1  # the last iteration was a chord step
@@ -536,7 +541,7 @@ def test_corrector_takes_a_simplified_step_in_the_quadratic_regime():
 def test_max_abs_matches_numpy_and_flags_nonfinite(n):
     """The max-norm's plain-Python paths (one, two, up to 32 entries) agree with numpy's
     ``max(abs(x))`` and return NaN whenever an entry is NaN or ±inf, wherever it sits."""
-    from cusp.continuation.linalg import max_abs
+    from cusp.continuation.numerics._linalg import max_abs
 
     rng = np.random.default_rng(n)
     x = rng.standard_normal(n) * 10.0 ** rng.integers(-300, 300, n)
@@ -560,7 +565,7 @@ def test_fold_newton_stopping_estimate():
     C·size² + δ·size, C = size/previous², is 8.5e-15 (the actual next update was 8.9e-16):
     below 1e-12·|b| = 3.8e-13. Unknown δ: the linear estimate size²/previous = 1.3e-11 is
     not, and neither is a large δ's."""
-    from cusp.continuation.locate import newton_done
+    from cusp.continuation.detection._bracket import newton_done
 
     b = 0.3849001794597505
     assert newton_done(2, 4.68e-8, 1.64e-4, 1e-12, stall=1e-6, perturbation=1e-7, k_ratio=b)

@@ -1,5 +1,5 @@
-"""Loci of located points (cusp.continuation.locus): bound hits, targets and corners of a
-loading program continued in a second parameter, against closed forms."""
+"""Loci of located points (cusp.continuation.locus, point_locus): bound hits, targets and
+corners of a loading program continued in a second parameter, against closed forms."""
 
 from __future__ import annotations
 

@@ -4,8 +4,7 @@ from __future__ import annotations
 
 import pytest
 
-from cusp.continuation import ContinuationOptions
-from cusp.continuation.errors import OptionsError
+from cusp.continuation import ContinuationOptions, OptionsError
 
 
 def test_a_ds_max_below_the_default_ds_min_is_named_as_ds_max():

@@ -14,9 +14,10 @@ from cusp.continuation import (
     Problem,
     ProblemDefinitionError,
     fold_curve,
+    point_tol,
+    quadrature_tol,
     trace,
 )
-from cusp.continuation.options import point_tol, quadrature_tol
 
 # the cusp normal form's folds: b = ±2/(3√3) (sympy: solve([x**3 - x - b, 3*x**2 - 1]))
 B_FOLD = 2.0 / (3.0 * math.sqrt(3.0))

@@ -1,5 +1,5 @@
-"""The corrector of scalar problems in plain floats (`corrector.scalar_newton`, with
-`linalg.PairLU`) against the general corrector on arrays (`corrector._newton_arrays`, LAPACK):
+"""The corrector's float path for scalar problems (`systems._newton._on_floats`, with
+`numerics._linalg.PairLU`) against its path on arrays (`_on_arrays`, LAPACK):
 the same decisions (converged, iterations, reason) and the same numbers to rounding, on
 problems with exact and differenced derivatives, from near and far starts, with and without
 the hyperplane's offset, in the chord and rounding-floor regimes; and the fall-back to the
@@ -17,12 +17,40 @@ import numpy as np
 import pytest
 
 import cusp.examples as ex
-from cusp.continuation import Problem
-from cusp.continuation.corrector import _newton_arrays, newton, scalar_newton
-from cusp.continuation.foldlocate import locate_fold
-from cusp.continuation.linalg import DenseLU, PairLU
-from cusp.continuation.system import BranchSystem
+from cusp.continuation import BranchSystem, Problem
+from cusp.continuation.detection._folds import fold_newton
+from cusp.continuation.numerics._linalg import DenseLU, PairLU
+from cusp.continuation.systems._newton import NewtonSettings, _on_arrays, _on_floats, newton
 from tests.continuation.helpers import first_fold_step
+
+
+def _settings(tol, step_tol, max_iter, strict=False, contract=False):
+    return NewtonSettings(
+        tol=tol, step_tol=step_tol, max_iterations=max_iter, strict=strict, contract=contract
+    )
+
+
+def _first_sq(max_first):
+    return math.inf if max_first is None else max_first * max_first
+
+
+def scalar_newton(system, z0, row, c, tol, step_tol, max_iter, g0, strict, contract, max_first):
+    """The float path alone (None where it cannot decide)."""
+    settings = _settings(tol, step_tol, max_iter, strict, contract)
+    return _on_floats(system, z0, row, c, settings, g0, _first_sq(max_first))
+
+
+def array_newton(system, z0, row, c, tol, step_tol, max_iter, g0, strict, contract, max_first):
+    """The array path alone."""
+    settings = _settings(tol, step_tol, max_iter, strict, contract)
+    return _on_arrays(system, z0, row, c, settings, g0, _first_sq(max_first))
+
+
+def run_newton(system, z0, row, c, *, tol, step_tol, max_iter, g0=None, strict=False,
+               contract=False, max_first=None):  # fmt: skip
+    """The corrector (both paths, as it chooses)."""
+    settings = _settings(tol, step_tol, max_iter, strict, contract)
+    return newton(system, z0, row, c, settings, g0=g0, max_first=max_first)
 
 
 def _cusp(scale: float = 1.0, derivatives: str = "analytic") -> BranchSystem:
@@ -64,7 +92,7 @@ def test_float_path_matches_the_array_path(system, z0, row, c, kw, tol, step_tol
     args = dict(tol=tol, step_tol=step_tol, max_iter=10)
     options = dict(g0=None, strict=False, contract=False, max_first=None) | kw
     ours = scalar_newton(system, z0, row, c, *args.values(), *options.values())
-    ref = _newton_arrays(system, z0, row, c, *args.values(), *options.values())
+    ref = array_newton(system, z0, row, c, *args.values(), *options.values())
     assert ours is not None
     assert (ours.converged, ours.iterations, ours.reason) == (
         ref.converged,
@@ -84,7 +112,7 @@ def test_float_path_matches_the_array_path(system, z0, row, c, kw, tol, step_tol
     np.testing.assert_allclose(ours.lu.solve(e), ref.lu.solve(e), rtol=1e-12)
     assert ours.lu.sign_det() == ref.lu.sign_det()
     # the dispatcher takes the float path
-    assert newton(system, z0, row, c, **args, **options).z.tolist() == ours.z.tolist()
+    assert run_newton(system, z0, row, c, **args, **options).z.tolist() == ours.z.tolist()
 
 
 def _problem(residual, jacobian) -> BranchSystem:
@@ -105,20 +133,24 @@ def test_what_the_float_path_cannot_decide_goes_to_the_array_path():
         lambda u, p: np.array([[2.0 * u[0]]]),
     )
     assert scalar_newton(nan_after, z0, row, None, *args) is None
-    res = newton(nan_after, z0, row, None, tol=1e-10, step_tol=1e-12, max_iter=10)
+    res = run_newton(nan_after, z0, row, None, tol=1e-10, step_tol=1e-12, max_iter=10)
     assert (res.converged, res.reason) == (False, "nonfinite")
     # a singular bordered matrix: ∂G/∂x = 0 with the row holding b
     singular = _problem(lambda u, p: np.array([u[0] - 1.0]), lambda u, p: np.array([[0.0]]))
     assert scalar_newton(singular, z0, row, None, *args) is None
-    assert newton(singular, z0, row, None, tol=1e-10, step_tol=1e-12, max_iter=10).reason == (
+    assert run_newton(singular, z0, row, None, tol=1e-10, step_tol=1e-12, max_iter=10).reason == (
         "singular"
     )
     # callbacks returning lists: the general path converts them
     lists = _problem(lambda u, p: [u[0] ** 2 - 0.25], lambda u, p: [[2.0 * u[0]]])
     assert lists.scalar
     assert scalar_newton(lists, np.array([0.6, 0.0]), row, None, *args) is None
-    assert not lists.scalar  # (the array path from now on: no call is made twice)
-    res = newton(lists, np.array([0.6, 0.0]), row, None, tol=1e-10, step_tol=1e-12, max_iter=10)
+    assert lists.scalar  # (a system never changes)
+    # the start of a curve looks at what the functions return: the array path from there on,
+    # so that no call is made twice
+    assert not lists.checked(np.array([0.6, 0.0])).scalar
+    assert nan_after.checked(z0) is nan_after  # (values that are not finite say nothing)
+    res = run_newton(lists, np.array([0.6, 0.0]), row, None, tol=1e-10, step_tol=1e-12, max_iter=10)
     assert res.converged and res.z[0] == pytest.approx(0.5, rel=1e-14)
 
 
@@ -164,13 +196,13 @@ def test_fold_located_in_floats_as_on_arrays(problem, u0, monitor, exact, tol):
     """A fold located by the float path and by the array path (the same bracket on the
     system with its scalar flag off): the same point, iterations and tangent to rounding,
     and at the exact fold."""
-    *_, br, (test, _, _, _) = first_fold_step(problem, u0, monitor=monitor)
-    k = test.k
+    *_, br, crossing = first_fold_step(problem, u0, monitor=monitor)
+    k = crossing.test.k
     assert br.system.scalar
-    floats = locate_fold(br, k)
+    floats = fold_newton(br, k)
     on_arrays = copy.copy(br.system)
     on_arrays.scalar = False
-    arrays = locate_fold(dataclasses.replace(br, system=on_arrays), k)
+    arrays = fold_newton(dataclasses.replace(br, system=on_arrays), k)
     assert floats is not None and arrays is not None
     assert floats.status == arrays.status == "converged"
     assert floats.iterations == arrays.iterations

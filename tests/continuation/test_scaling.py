@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 from cusp.continuation import Problem, trace
-from cusp.continuation.scaling import GROWTH, grown_sizes
+from cusp.continuation.numerics._scaling import GROWTH, grown_scales
 
 
 def _exponential():
@@ -52,8 +52,8 @@ def test_given_sizes_are_kept():
         ([1.0, 1e-3], [1e-9, 1e-9], {}, None),  # sizes never shrink
     ],
 )
-def test_grown_sizes(scales, z, given, expected):
-    out = grown_sizes(np.array(scales), np.array(z), given)
+def test_grown_scales(scales, z, given, expected):
+    out = grown_scales(np.array(scales), np.array(z), given)
     if expected is None:
         assert out is None
     else:

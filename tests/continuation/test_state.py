@@ -13,15 +13,18 @@ import math
 import numpy as np
 import pytest
 
-from cusp.continuation import ContinuationOptions, Event, Problem, Tracer, trace
-from cusp.continuation.foldcurve import Codim2Test, CuspTest, FoldSystem
-from cusp.continuation.system import BranchSystem
-from cusp.continuation.testfunctions import (
-    BranchPointTest,
-    ComponentTest,
-    FoldTest,
+from cusp.continuation import (
+    BranchSystem,
+    ContinuationOptions,
+    Event,
+    Problem,
     TestFunction,
+    Tracer,
+    trace,
 )
+from cusp.continuation.detection._cusp import Codim2Test, CuspTest
+from cusp.continuation.detection._tests import BranchPointTest, ComponentTest, FoldTest
+from cusp.continuation.systems._fold import FoldSystem
 
 
 def _cusp(a=1.0, b=-1.0):
@@ -51,7 +54,7 @@ def _points(state):
     out = []
     p = state.last
     while p is not None:
-        out.append((p.z.tobytes(), p.t.tobytes(), p.s, p.newton, p.ds, p.special))
+        out.append((p.z.tobytes(), p.t.tobytes(), p.s, p.iterations, p.ds, p.special))
         p = p.prev
     return out
 
@@ -59,8 +62,8 @@ def _points(state):
 def _same(a, b):
     assert a.ds == b.ds and a.steps == b.steps and a.status == b.status
     assert a.n_points == b.n_points and a.stalled == b.stalled
-    assert [None if v is None else float(v) for v in a.tests] == [
-        None if v is None else float(v) for v in b.tests
+    assert [None if v is None else float(v) for v in a.test_values] == [
+        None if v is None else float(v) for v in b.test_values
     ]
     assert repr(_points(a)) == repr(_points(b))  # bitwise: bytes of every z and t
 
@@ -97,7 +100,11 @@ def _fold_tracer(problem, u0, direction):
     k = len(problem.unknowns)  # the fold is a turning point of b
     system = FoldSystem.through(problem, "b", "a", k, dict(problem.params), None, z0)
     tracer = Tracer.for_system(
-        system, options=options, bounds={"a": (-1.0, 2.0)}, direction=direction
+        system,
+        options=options,
+        bounds={"a": (-1.0, 2.0)},
+        direction=direction,
+        tests=(CuspTest(), Codim2Test()),
     )
     return tracer, tracer.init_at(z0, start_label="start (fold)")
 
@@ -128,14 +135,14 @@ def test_result_is_a_copy():
     assert "mine" not in tracer.result(state).special("fold")[0].details
 
 
-def test_each_curve_system_brings_its_own_tests():
+def test_a_tracer_evaluates_the_generic_tests_then_those_it_is_given():
     options = ContinuationOptions()
-    branch = BranchSystem(_cusp(), "b")
-    kinds = [type(t) for t in branch.test_functions(options)]
-    assert kinds == [FoldTest, BranchPointTest]
+    branch = Tracer(_cusp(), free="b", options=options)
+    assert [type(t) for t in branch.tests] == [FoldTest, BranchPointTest]
     z0 = np.array([1.0 / math.sqrt(3.0), -2.0 / (3.0 * math.sqrt(3.0)), 1.0])
     fold = FoldSystem.through(_cusp(), "b", "a", 1, {"a": 1.0, "b": -1.0}, None, z0)
-    kinds = [type(t) for t in fold.test_functions(options)]
+    tracer = Tracer.for_system(fold, options=options, tests=(CuspTest(), Codim2Test()))
+    kinds = [type(t) for t in tracer.tests]
     assert kinds == [BranchPointTest, CuspTest, Codim2Test]  # no fold in a free parameter
 
 
@@ -152,15 +159,12 @@ class _Crossing(TestFunction):
         return float(z[0] * (z[0] - 0.5))
 
 
-class _MyBranch(BranchSystem):
-    def own_tests(self, options):
-        return (_Crossing(),)
-
-
-def test_a_new_curve_system_brings_a_new_test_without_touching_the_tracer():
+def test_a_new_test_needs_no_change_of_the_tracer():
     options = ContinuationOptions()
-    system = _MyBranch(_cusp(), "b", None, options.state_weight)
-    tracer = Tracer.for_system(system, options=options, bounds={"b": (-1.0, 1.0)})
+    system = BranchSystem(_cusp(), "b", None, options.state_weight)
+    tracer = Tracer.for_system(
+        system, options=options, bounds={"b": (-1.0, 1.0)}, tests=(_Crossing(),)
+    )
     branch = tracer.result(_run(tracer, tracer.init([X0]))[-1])
     found = sorted(sp.values["x"] for sp in branch.special("crossing"))
     # x = 0 and x = 1/2 lie on the branch (b = x³ − x: 0 and −3/8); located by Illinois on

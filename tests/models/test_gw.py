@@ -94,3 +94,18 @@ def test_non_finite_t_is_an_error(bad):
         gw_integral(1.5, bad)
     with pytest.raises(ModelParameterError, match="t must be finite"):
         log_gw_integral(0.5, bad)
+
+
+@pytest.mark.parametrize("n", [0.5, 1.5])
+def test_far_below_the_mean_plane_to_rounding(n):
+    # t ≪ 0 (σ* far below the separation, every summit in contact): x² + t formed directly
+    # erred by ε|t|, log F_3/2 off by 1.5e-12 at t = -3.6e5 and 2.5e-8 at t = -1e9 (issue
+    # 27: the start of the Gaussian scene with σ* = 1e-6 µm did not converge). Reference:
+    # the parabolic cylinder form ``ref`` at 40 digits (pcfd, independent of the trapezoid).
+    t = np.array([-20.0, -1e3, -1e4, -3.6e5, -1e6, -1e9])
+    got_log, got = log_gw_integral(n, t), gw_integral(n, t)
+    with mp.workdps(40):
+        for ti, lv, v in zip(t, got_log, got, strict=True):
+            r = ref(n, float(ti))
+            assert float(abs(lv - mp.log(r))) <= 8 * np.spacing(abs(float(mp.log(r)))), ti
+            assert float(abs(v - r) / r) <= 1e-14, ti

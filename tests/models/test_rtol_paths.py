@@ -9,7 +9,7 @@ import math
 import numpy as np
 import pytest
 
-from cusp.continuation.options import quadrature_tol
+from cusp.continuation import quadrature_tol
 from cusp.models import ContactLoss, ExponentialRoughSurface
 from cusp.models._loci_energy import ENERGY_RTOL, QUAD_RTOL, flag_rtol, gauss_legendre
 from cusp.models.contact_loss import DEFAULT_OPTIONS

@@ -1,0 +1,234 @@
+"""The tracer's state and its assembly into a :class:`~..results._branch.Branch`.
+
+The state is an immutable record replaced at every step. The branch so far is a linked list
+of immutable points (each holds the one before), so a step costs O(1) whatever the length
+of the branch, and an old state stays valid: stepping from it again gives the same points.
+Both are built by keyword.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Sequence
+from typing import Any, NamedTuple
+
+import numpy as np
+
+from .._outcomes import Kind, PointStatus, Status
+from ..detection._tests import Record
+from ..results._branch import Branch, SpecialPoint
+from ..systems._curve import CurveSystem
+
+
+class Point(NamedTuple):
+    """One row of a branch, linked to the row before it (``prev``)."""
+
+    z: np.ndarray
+    """The curve vector (unknowns and free parameters)."""
+    t: np.ndarray
+    """Unit tangent (weighted norm), oriented along the direction of travel."""
+    s: float
+    """Pseudo-arclength from the start."""
+    iterations: int
+    """Newton iterations of the corrector (or of the locating method)."""
+    rejected: int
+    """Step tries rejected before this point was accepted."""
+    residual_norm: float
+    """Max-norm of the residual at ``z``."""
+    ds: float
+    """The step size that produced the point (0 for a point located inside a step)."""
+    special: tuple[Record, ...] | None
+    """Special-point records of this row."""
+    prev: Point | None
+    """The row before (None at the start)."""
+    interpolation_error: float
+    """The distance from the arc of the step that reached this point to the curve (0 at the
+    start; a point located inside a step carries that step's)."""
+
+    @classmethod
+    def of(
+        cls,
+        *,
+        z: np.ndarray,
+        t: np.ndarray,
+        s: float,
+        iterations: int,
+        rejected: int,
+        residual_norm: float,
+        ds: float,
+        special: tuple[Record, ...] | None,
+        prev: Point | None,
+        interpolation_error: float,
+    ) -> Point:
+        """Built by keyword, fast: a class called with keywords first gathers them in a
+        dict (three times the cost of this call, on every step)."""
+        return cls(
+            z, t, s, iterations, rejected, residual_norm, ds, special, prev, interpolation_error
+        )
+
+
+class TracerState(NamedTuple):
+    """Immutable solver state: the last point (with the branch behind it), the curve system
+    valid beyond it (augmented systems carry their bordering vectors here), the next step
+    size, the test functions' values at the last point, the step count and, once finished,
+    the status and message."""
+
+    last: Point
+    system: CurveSystem
+    ds: float
+    test_values: tuple[Any, ...]
+    """The value of each of the tracer's test functions at ``last`` (None: not yet known)."""
+    steps: int
+    status: Status | None = None
+    message: str = ""
+    n_points: int = 1
+    stalled: int = 0
+    """Consecutive steps taken with ds near ds_min."""
+
+    @classmethod
+    def of(
+        cls,
+        *,
+        last: Point,
+        system: CurveSystem,
+        ds: float,
+        test_values: tuple[Any, ...],
+        steps: int,
+        status: Status | None = None,
+        message: str = "",
+        n_points: int = 1,
+        stalled: int = 0,
+    ) -> TracerState:
+        """Built by keyword, fast: a class called with keywords first gathers them in a
+        dict (three times the cost of this call, on every step)."""
+        return cls(last, system, ds, test_values, steps, status, message, n_points, stalled)
+
+
+def _rows(state: TracerState) -> list[Point]:
+    points = []
+    p: Point | None = state.last
+    while p is not None:
+        points.append(p)
+        p = p.prev
+    points.reverse()
+    return points
+
+
+def assemble_branch(
+    state: TracerState, info: dict[str, Any], kinds: frozenset[str] = frozenset()
+) -> Branch:
+    """The :class:`~..results._branch.Branch` of a state: column arrays (the traced
+    components, the fixed parameters as constant columns), tangents, special points and
+    per-point statistics; ``kinds``: those the tracer's test functions report."""
+    points = _rows(state)
+    system = state.system
+    n_pts = len(points)
+    zs = [p.z for p in points]
+    Z = np.concatenate(zs).reshape(n_pts, -1)
+    T = np.concatenate([p.t for p in points]).reshape(n_pts, -1)
+    ss = [p.s for p in points]
+    names = system.names
+    columns = {name: Z[:, i].copy() for i, name in enumerate(names)}
+    fixed = {
+        name: float(value) for name, value in system.fixed_values().items() if name not in columns
+    }
+    for name, value in fixed.items():
+        columns[name] = np.full(n_pts, value)
+
+    def values_at(i: int) -> dict[str, float]:  # every column at row i
+        values = dict(zip(names, zs[i].tolist()))
+        values.update(fixed)
+        return values
+
+    scales = dict(zip(names, system.scales.tolist()))
+    specials = _special_points(points, T, ss, values_at, scales)
+    status = Status.RUNNING if state.status is None else state.status
+    if state.status is None:
+        message = "the branch is still being traced (result of an unfinished state)"
+    else:
+        message = state.message
+    _add_end(specials, n_pts, T, ss, values_at, scales, status)
+    return Branch(
+        columns,
+        variables=tuple(names),
+        s=np.array(ss),
+        tangents=T,
+        special_points=specials,
+        status=status,
+        message=message,
+        stats=_statistics(points),
+        info={
+            "steps": state.steps,
+            **info,
+            "scales": dict(scales),
+            "base_weights": system.base_weights.tolist(),
+        },
+        kinds=kinds,
+    )
+
+
+def _statistics(points: Sequence[Point]) -> dict[str, np.ndarray]:
+    """The per-point arrays of a branch's ``stats``."""
+    return {
+        "newton_iterations": np.array([p.iterations for p in points]),
+        "rejected_steps": np.array([p.rejected for p in points]),
+        "residual_norm": np.array([p.residual_norm for p in points]),
+        "ds": np.array([p.ds for p in points]),
+        "interpolation_error": np.array([p.interpolation_error for p in points]),
+    }
+
+
+def _add_end(
+    specials: list[SpecialPoint],
+    n_pts: int,
+    T: np.ndarray,
+    ss: Sequence[float],
+    values_at: Callable[[int], dict[str, float]],
+    scales: dict[str, float],
+    status: Status,
+) -> None:
+    """An end point at the last row, unless one is recorded there already."""
+    if any(sp.kind == Kind.ENDPOINT for sp in specials if sp.index == n_pts - 1):
+        return
+    specials.append(
+        SpecialPoint(
+            kind=Kind.ENDPOINT,
+            index=n_pts - 1,
+            values=values_at(n_pts - 1),
+            tangent=T[-1].copy(),
+            status=PointStatus.CONVERGED,
+            label=str(status),
+            s=float(ss[-1]),
+            scales=dict(scales),
+        )
+    )
+
+
+def _special_points(
+    points: Sequence[Point],
+    T: np.ndarray,
+    ss: Sequence[float],
+    values_at: Callable[[int], dict[str, float]],
+    scales: dict[str, float],
+) -> list[SpecialPoint]:
+    specials = []
+    for i, pt in enumerate(points):
+        for record in pt.special or ():
+            specials.append(
+                SpecialPoint(
+                    kind=record.kind,
+                    index=i,
+                    values=values_at(i),
+                    tangent=T[i].copy(),
+                    status=record.status,
+                    label=record.label,
+                    with_respect_to=record.with_respect_to,
+                    s=float(ss[i]),
+                    interval=record.interval,
+                    details=dict(record.details),  # the state's record stays as it was
+                    scales=dict(scales),
+                )
+            )
+    return specials
+
+
+__all__ = ["Point", "TracerState", "assemble_branch"]

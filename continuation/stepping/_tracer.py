@@ -1,0 +1,594 @@
+"""Pseudo-arclength continuation: the step-level API (:class:`Tracer`) and :func:`trace`.
+
+A step has five phases:
+
+1. **predict and correct** (:func:`~._step.advance`): tangent (or secant) predictor,
+   Newton corrector on the bordered system and the three guards (first contraction,
+   predictor-corrector distance, tangent turn; :func:`~._control.guard_factor`), a shorter
+   step on rejection; the corner step and the step aimed at a bound are variants of it
+   (:mod:`._advance`);
+2. **accept and adapt**: the curve system is refreshed at the new point (augmented systems
+   update their borders) and the next step size is set (:func:`~._control.next_step_size`);
+3. **evaluate** the test functions (the generic ones of the curve and those the tracer is
+   given) at the new point (:func:`~._crossings.evaluate`); when a test of the curve's
+   geometry changed sign the step is confirmed by its half step
+   (:func:`~._confirm.confirm_step`), and a sign change that the half step does not
+   reproduce was a jump: the step is redone shorter (a fold is located first, and the step
+   confirmed when the fold lies on the step's arc: :func:`~._confirm.located_on_arc`; the
+   half step decides otherwise);
+4. **locate and insert**: a sign change between the two ends of the step, or several zeros
+   of one test inside it (:func:`~._crossings.splits`), is located inside it
+   (:func:`~._crossings.locate_crossings`) and the located points are linked in, in
+   arclength order;
+5. **terminate**: a bound or a terminal event ends the branch (``max_steps`` too, with a
+   :class:`~.._errors.MaxStepsWarning`: the branch is incomplete, not a success).
+
+The solver state (:class:`~._state.TracerState`) is an immutable record replaced at every
+step; it holds the curve system valid at its last point, so stepping twice from the same
+state gives the same points, bit for bit.
+"""
+
+from __future__ import annotations
+
+import logging
+import math
+import warnings
+from collections.abc import Mapping, Sequence
+from dataclasses import replace
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from .._errors import MaxStepsWarning, NonFiniteResidualError, ProblemDefinitionError, format_values
+from .._options import KEEP, ContinuationOptions, Keep, with_overrides
+from .._outcomes import Kind, PointStatus, Status
+from ..detection._tests import BoundTest, ComponentTest, Record, TestFunction, generic_tests
+from ..numerics._linalg import max_abs
+from ..numerics._scaling import diverged, given_scales, grown_scales, out_of_range
+from ..problem._events import Event
+from ..problem._problem import ContinuationProblem, as_problem
+from ..results._branch import Branch, SpecialPoint
+from ..systems._branch import BranchSystem
+from ..systems._consistency import check_consistent
+from ..systems._curve import CurveSystem
+from ._advance import advance
+from ._begin import Beginning, StartAt, start_state
+from ._confirm import confirm_step, located_on_arc
+from ._control import next_step_size
+from ._crossings import (
+    Evaluation,
+    Found,
+    corner_folds,
+    evaluate,
+    locate_crossings,
+    splits,
+    step_bracket,
+)
+from ._insert import Linked, endpoint_record, located_point
+from ._state import Point, TracerState, assemble_branch
+from ._step import STALL_FACTOR, Failure, StepRules, Trial, wnorm
+from ._work import OutOfWork, StepWork, stalled
+
+logger = logging.getLogger(__name__)
+
+DEFAULT_OPTIONS = ContinuationOptions()  # frozen: shared (validation costs 20 µs a call)
+
+
+class Tracer:
+    """Step-level continuation of one curve.
+
+    >>> from cusp.continuation import Problem, Tracer
+    >>> problem = Problem(lambda u, p: [u[0]**3 - u[0] - p["b"]], ["x"], {"b": -1.0})
+    >>> tracer = Tracer(problem, free="b", bounds={"b": (-1, 1)})
+    >>> state = tracer.init([-1.3247])
+    >>> while not tracer.done(state):
+    ...     state = tracer.step(state)
+    >>> branch = tracer.result(state)
+    >>> branch.status, [round(sp.values["b"], 10) for sp in branch.special("fold")]
+    ('bound', [0.3849001795, -0.3849001795])
+
+    The arguments are those of :func:`trace`. The tracer holds only configuration; all that
+    changes, the curve system included, lives in the :class:`~._state.TracerState` records.
+    """
+
+    def __init__(
+        self,
+        problem: ContinuationProblem,
+        *,
+        free: str,
+        params: Mapping[str, float] | None = None,
+        bounds: Mapping[str, Sequence[float]] | None = None,
+        targets: Mapping[str, Sequence[float]] | None = None,
+        events: Sequence[Event] = (),
+        monitor: Sequence[str] = (),
+        scales: Mapping[str, float] | None = None,
+        direction: int = 1,
+        options: ContinuationOptions | None = None,
+        throw: bool = True,
+        rtol: float | Keep = KEEP,
+        ds: float | Keep = KEEP,
+        ds_min: float | Keep = KEEP,
+        ds_max: float | Keep = KEEP,
+        max_steps: int | Keep = KEEP,
+        tol: float | Keep = KEEP,
+        step_tol: float | Keep = KEEP,
+        max_step_solves: int | Keep = KEEP,
+        max_newton_iterations: int | Keep = KEEP,
+        target_newton_iterations: int | Keep = KEEP,
+        max_angle: float | Keep = KEEP,
+        target_angle: float | Keep = KEEP,
+        target_contraction: float | Keep = KEEP,
+        target_distance: float | Keep = KEEP,
+        curve_tol: float | Keep = KEEP,
+        growth: float | Keep = KEEP,
+        predictor: str | Keep = KEEP,
+        state_weight: float | None | Keep = KEEP,
+        detect_folds: bool | Keep = KEEP,
+        detect_branch_points: bool | Keep = KEEP,
+        locate_tol: float | Keep = KEEP,
+        max_locate_iterations: int | Keep = KEEP,
+    ) -> None:
+        problem = as_problem(problem)
+        if not isinstance(free, str):
+            raise ProblemDefinitionError(f"free must be a parameter name, got {free!r}")
+        options = with_overrides(options, DEFAULT_OPTIONS, locals())
+        system = BranchSystem(problem, free, params, options.state_weight)
+        self._configure(
+            system,
+            options,
+            bounds=bounds,
+            targets=targets,
+            events=events,
+            monitor=monitor,
+            scales=scales,
+            direction=direction,
+            throw=throw,
+            tests=(),
+        )
+
+    @classmethod
+    def for_system(
+        cls,
+        system: CurveSystem,
+        *,
+        options: ContinuationOptions,
+        bounds: Mapping[str, Sequence[float]] | None = None,
+        targets: Mapping[str, Sequence[float]] | None = None,
+        events: Sequence[Event] = (),
+        monitor: Sequence[str] = (),
+        scales: Mapping[str, float] | None = None,
+        direction: int = 1,
+        throw: bool = True,
+        tests: Sequence[TestFunction] = (),
+    ) -> Tracer:
+        """A tracer for any curve system (fold curves and other augmented systems).
+
+        Parameters
+        ----------
+        system : CurveSystem
+            The curve (its start system).
+        options : ContinuationOptions
+        bounds, targets, events, monitor, scales, direction, throw
+            As for :func:`trace`, on the curve's components.
+        tests : sequence of TestFunction
+            Test functions evaluated besides the generic ones of the curve (folds of its
+            ``fold_components`` and of the monitored components, branch points, targets,
+            bounds, events; :func:`~..detection._tests.generic_tests`), after them: the
+            cusp and codimension-2 tests of a fold curve, or tests of one's own.
+        """
+        self = object.__new__(cls)
+        self._configure(
+            system,
+            options,
+            bounds=bounds,
+            targets=targets,
+            events=events,
+            monitor=monitor,
+            scales=scales,
+            direction=direction,
+            throw=throw,
+            tests=tests,
+        )
+        return self
+
+    def _configure(
+        self,
+        system: CurveSystem,
+        options: ContinuationOptions,
+        *,
+        bounds: Mapping[str, Sequence[float]] | None,
+        targets: Mapping[str, Sequence[float]] | None,
+        events: Sequence[Event],
+        monitor: Sequence[str],
+        scales: Mapping[str, float] | None,
+        direction: int,
+        throw: bool,
+        tests: Sequence[TestFunction],
+    ) -> None:
+        if direction not in (1, -1):
+            raise ProblemDefinitionError(f"direction must be +1 or -1, got {direction!r}")
+        self.system = system
+        """The curve system at the start (a state carries the one valid at its point)."""
+        self.problem = system.problem
+        self.options = options
+        self.throw = bool(throw)
+        self.direction = direction
+        generic = generic_tests(
+            system,
+            options,
+            fold_components=system.fold_components,
+            monitor=monitor,
+            targets=targets,
+            bounds=bounds,
+            events=events,
+        )
+        self.tests: tuple[TestFunction, ...] = (*generic, *tests)
+        branch_point = Kind.BRANCH_POINT
+        self._has_bp = any(t.kind == branch_point for t in self.tests)
+        # the tests that can see several zeros inside one step
+        self._split_tests = tuple((i, t) for i, t in enumerate(self.tests) if t.splits_on(system))
+        bound_tests = tuple((i, t) for i, t in enumerate(self.tests) if isinstance(t, BoundTest))
+        self._rules = StepRules(options, system.dim, bound_tests)
+        self._scales = given_scales(system.names, scales)
+
+    # ------------------------------------------------------------------ start
+
+    def init(
+        self, u0: ArrayLike | SpecialPoint, *, tangent: ArrayLike | None = None
+    ) -> TracerState:
+        """Correct the starting point and compute the first tangent.
+
+        ``u0``: initial guess of the unknowns (at the problem's parameter values), or a
+        :class:`~..results._branch.SpecialPoint` (a ``"branch_point"`` starts on the other
+        branch). ``tangent``: the start's tangent, if known (the start is then not
+        corrected).
+        """
+        if isinstance(u0, SpecialPoint):
+            return self._init_at_special(u0, tangent)
+        system = self.system
+        u = np.array(u0, dtype=float, ndmin=1)
+        n = len(self.problem.unknowns) if self.problem is not None else system.dim - 1
+        if u.shape != (n,):
+            raise ProblemDefinitionError(
+                f"u0 must hold {n} values (one per unknown {list(system.names[:n])}), "
+                f"got shape {u.shape}"
+            )
+        if not math.isfinite(max_abs(u)):
+            raise ProblemDefinitionError(f"u0 must be finite, got {u}")
+        z0 = system.start_vector(u)
+        return self._start(StartAt(system=system, z0=z0, tangent=_array(tangent), from_guess=True))
+
+    def _init_at_special(self, sp: SpecialPoint, tangent: ArrayLike | None) -> TracerState:
+        system = self.system.with_values(sp.values)
+        z0 = np.array([sp.values[name] for name in system.names], dtype=float)
+        label = "start"
+        skip_bp = False
+        t0 = _array(tangent)
+        if sp.kind == Kind.BRANCH_POINT and t0 is None:
+            if "other_tangent" not in sp.details:
+                raise ProblemDefinitionError("this branch point carries no switching data")
+            other = np.array(sp.details["other_tangent"], dtype=float)
+            names = sp.details.get("names", system.names)
+            if tuple(names) != tuple(system.names):
+                raise ProblemDefinitionError(
+                    f"branch switching needs the same free parameter as the branch the "
+                    f"branch point came from ({names[-1]!r})"
+                )
+            k = int(np.argmax(np.abs(other)))
+            t0 = other * (np.sign(other[k]) * self.direction)
+            label = "start (branch switch)"
+            skip_bp = True
+        elif sp.kind == Kind.FOLD:
+            skip_bp = True
+        inherited = _by_index(system, sp.scales)
+        at = StartAt(
+            system=system, z0=z0, tangent=t0, label=label, skip_bp=skip_bp, inherited=inherited
+        )
+        return self._start(at)
+
+    def init_at(
+        self,
+        z0: ArrayLike,
+        *,
+        start_label: str = "start",
+        scales: Mapping[str, float] | None = None,
+    ) -> TracerState:
+        """Start from a full curve vector ``z0`` (corrected with its last component fixed).
+        ``scales``: the scales (typical sizes) on a curve the start lies on (a branch whose
+        fold this curve continues), for the components whose value at ``z0`` is far below
+        them."""
+        z = np.asarray(z0, dtype=float)
+        if z.shape != (self.system.dim,):
+            raise ProblemDefinitionError(
+                f"z0 must hold {self.system.dim} values {list(self.system.names)}, "
+                f"got shape {z.shape}"
+            )
+        inherited = _by_index(self.system, scales)
+        return self._start(
+            StartAt(system=self.system, z0=z, label=start_label, inherited=inherited)
+        )
+
+    def _start(self, at: StartAt) -> TracerState:
+        begin = Beginning(
+            options=self.options, tests=self.tests, given=self._scales, direction=self.direction
+        )
+        return start_state(begin, at)
+
+    # ------------------------------------------------------------------ step
+
+    def done(self, state: TracerState) -> bool:
+        """Whether the curve of ``state`` has ended."""
+        return state.status is not None
+
+    def step(self, state: TracerState) -> TracerState:
+        """One accepted continuation step (with its special points), or the end. numpy's
+        floating-point warnings are silenced inside it: a trial point where the user's
+        functions overflow or take the square root of a negative number gives a non-finite
+        value, which the step rejects like any other (and reports if it persists)."""
+        with np.errstate(all="ignore"):
+            return self._step(state)
+
+    def _step(self, state: TracerState) -> TracerState:
+        """:meth:`step` (numpy's warnings silenced by the caller)."""
+        if state.status is not None:
+            return state
+        work = StepWork(self.options.max_step_solves)
+        try:
+            return self._work(state, work)
+        except OutOfWork as out:
+            error = stalled(out, state.system.values(state.last.z), state.ds)
+            return self._fail(
+                state, Failure(status=Status.STALLED, message=str(error), error=error)
+            )
+
+    def _work(self, state: TracerState, work: StepWork) -> TracerState:
+        # 1. predict and correct
+        trial = advance(self._rules, state, work)
+        if isinstance(trial, Failure):
+            return self._fail(state, trial)
+        while True:
+            # 2.-3. accept, evaluate the test functions and confirm a sign change
+            judged = self._evaluate(state, trial, work)
+            trial = judged.trial
+            # 4. locate the crossings inside the step (a corner's folds are only bracketed)
+            special, located = self._locate(state, judged)
+            if not located or self._confirmed(state, judged, located):
+                break
+            # a fold not located on the step's arc: the half step decides
+            shorter = confirm_step(self._rules, state, trial, judged.bracket, work)
+            if shorter is None:
+                break
+            trial = shorter
+        # 5. insert the located points, adapt the step size, terminate
+        return self._finish(state, judged, special, located)
+
+    def _confirmed(self, state: TracerState, judged: Evaluation, located: Sequence[Found]) -> bool:
+        """Whether the step needs no half step: a component's value that Newton with it
+        fixed cannot reach inside the step (a bound located only by regula falsi) says the
+        step jumped (across a pole, say), unless it was confirmed already; a fold is
+        confirmed where it was located on the step's arc."""
+        br = judged.bracket
+        doubtful = br is None and any(
+            isinstance(f.test, ComponentTest) and f.located.status is not PointStatus.CONVERGED
+            for f in located
+        )
+        if doubtful:
+            return False
+        if not judged.deferred:
+            return True
+        assert br is not None
+        points = [f.located for f in located if f.test.confirm]
+        return located_on_arc(self._rules, state, judged.trial, br, points)
+
+    def _evaluate(self, state: TracerState, trial: Trial, work: StepWork) -> Evaluation:
+        """The trial evaluated by the tests (:class:`~._crossings.Evaluation`), confirmed by
+        the half step where a test of the curve's geometry (not a fold) changed sign."""
+        while True:
+            judged = ev = evaluate(self.tests, self._has_bp, state, trial)
+            if not ev.crossings or trial.corner or trial.aimed is not None:
+                return judged
+            confirm = [c.test for c in ev.crossings if c.test.confirm]
+            if not confirm:
+                return judged
+            br = step_bracket(self.options, state.system, state.last, trial)
+            if all(tt.kind == Kind.FOLD for tt in confirm):
+                return replace(judged, bracket=br, deferred=True)
+            shorter = confirm_step(self._rules, state, trial, br, work)
+            if shorter is None:
+                return replace(judged, bracket=br)
+            trial = shorter
+
+    def _locate(
+        self, state: TracerState, judged: Evaluation
+    ) -> tuple[tuple[Record, ...] | None, list[Found]]:
+        """The records of a corner's folds (else None) and the crossings located inside the
+        step (a sign change through a pole dropped; what the user's derivatives locate,
+        checked against the residual there)."""
+        system, trial, crossings = judged.system, judged.trial, judged.crossings
+        br = None if system is not state.system else judged.bracket  # (refreshed: not on it)
+        special = None
+        if trial.corner:
+            special, crossings = corner_folds(crossings, state.last.s, trial.h)
+        elif self._split_tests:
+            replaced, parts = splits(
+                self._split_tests, self.options, state, system, trial, judged.values
+            )
+            if replaced:
+                crossings = [c for c in crossings if c.test not in replaced] + parts
+        located = (
+            locate_crossings(self.options, state, system, trial, crossings, br) if crossings else []
+        )
+        kept = []
+        for f in located:
+            if f.located.status is PointStatus.POLE:  # a sign change through infinity
+                logger.info("%r changed sign through a pole, not a zero: not reported", f.test)
+                continue
+            if (
+                f.test.kind in (Kind.FOLD, Kind.BRANCH_POINT)
+                and f.located.status is PointStatus.CONVERGED
+            ):
+                check_consistent(system, f.located.z, f"the located {f.test.label}")
+            kept.append(f)
+        return special, kept
+
+    def _finish(
+        self,
+        state: TracerState,
+        judged: Evaluation,
+        special: tuple[Record, ...] | None,
+        located: Sequence[Found],
+    ) -> TracerState:
+        """Link the located points between the last point and the step's end, and end the
+        branch on a terminal test, ``max_steps`` or a diverging component."""
+        o, system, trial = self.options, judged.system, judged.trial
+        end, n_points = state.last, state.n_points
+        status: Status | None = None
+        message, end_special, inside = "", special, False
+        if located:  # (most steps locate nothing)
+            linked = self._link(state, system, trial, located, special)
+            end, n_points, status, message = (
+                linked.prev,
+                linked.n_points,
+                linked.status,
+                linked.message,
+            )
+            end_special, inside = linked.end_special, linked.inside
+        steps = state.steps + 1
+        values = judged.values if status is None else state.test_values  # (irrelevant once ended)
+        if not inside:
+            if status is None and steps >= o.max_steps:
+                status, message = Status.MAX_STEPS, self._max_steps(state, system, trial)
+                end_special = (*(end_special or ()), endpoint_record("max_steps"))
+            grown = grown_scales(system.scales, trial.res.z, self._scales)
+            t1 = trial.t
+            if grown is not None:  # the step's end is in the new scales' metric
+                k = out_of_range(grown)
+                if k is not None:  # a component diverges: stop before the metric overflows
+                    return self._diverged(state, system, trial, k)
+                system = system.with_scales(grown)
+                t1 = t1 / wnorm(t1, system.weights)
+            res = trial.res
+            end = Point.of(
+                z=res.z,
+                t=t1,
+                s=state.last.s + trial.h,
+                iterations=res.iterations,
+                rejected=trial.rejected,
+                residual_norm=res.residual_norm,
+                ds=trial.ds,
+                special=end_special,
+                prev=end,
+                interpolation_error=trial.interpolation_error,
+            )
+            n_points += 1
+        return TracerState.of(
+            last=end,
+            system=system,
+            ds=next_step_size(o, trial.factor, trial.rejected, trial.ds),
+            test_values=values,
+            steps=steps,
+            status=status,
+            message=message,
+            n_points=n_points,
+            stalled=state.stalled + 1 if trial.ds < STALL_FACTOR * o.ds_min else 0,
+        )
+
+    def _link(
+        self,
+        state: TracerState,
+        system: CurveSystem,
+        trial: Trial,
+        located: Sequence[Found],
+        special: tuple[Record, ...] | None,
+    ) -> Linked:
+        """The located points linked in after the last point, in order, up to a terminal one
+        (the step's end, for a step aimed at a bound)."""
+        last = state.last
+        prev, n_points = last, state.n_points
+        status: Status | None = None
+        message, end_special, inside = "", special, False
+        for f in located:
+            tt, loc = f.test, f.located
+            records: tuple[Record, ...] = (tt.record(system, loc, (last.s, last.s + trial.h)),)
+            if tt.terminal:
+                ending = tt.ending(loc)
+                status, message = ending.status, ending.message
+                records += ending.records
+            if tt is trial.aimed:  # the step's own end point
+                end_special = records
+                break
+            prev = located_point(system, last, loc, records, f.bracket, prev, trial)
+            n_points += 1
+            if tt.terminal:
+                inside = True  # a terminal point located inside the step, before its end
+                break
+        return Linked.of(
+            prev=prev,
+            n_points=n_points,
+            status=status,
+            message=message,
+            end_special=end_special,
+            inside=inside,
+        )
+
+    def _max_steps(self, state: TracerState, system: CurveSystem, trial: Trial) -> str:
+        """The message (and warning) of a branch ended by ``max_steps``."""
+        o, ds = self.options, trial.ds
+        message = (
+            f"the branch stopped after max_steps={o.max_steps} steps at "
+            f"{format_values(system.values(trial.res.z))}, before reaching a bound or a "
+            f"terminal event: it is incomplete (the last step was ds={ds:.3g}). "
+            + (
+                "The steps were cut far below ds: the step's guards keep rejecting "
+                "longer steps (check the Jacobian against the residual: "
+                "check_jacobian; or give typical sizes, scales=...)"
+                if state.stalled or ds < 1e-3 * o.ds
+                else "Raise max_steps, or ds_max if the steps are at it, or give "
+                "bounds that end the branch"
+            )
+        )
+        warnings.warn(message, MaxStepsWarning, stacklevel=4)
+        return message
+
+    def _diverged(
+        self, state: TracerState, system: CurveSystem, trial: Trial, k: int
+    ) -> TracerState:
+        """The end of a branch whose component ``k`` outgrew the largest scale."""
+        msg = diverged(system.names, trial.res.z, k)
+        error = NonFiniteResidualError(msg, values=system.values(trial.res.z))
+        return self._fail(
+            state, Failure(status=Status.NONFINITE_RESIDUAL, message=msg, error=error)
+        )
+
+    def _fail(self, state: TracerState, failure: Failure) -> TracerState:
+        if self.throw:
+            raise failure.error
+        logger.warning("continuation stopped: %s", failure.message)
+        return state._replace(status=failure.status, message=failure.message)
+
+    # ------------------------------------------------------------------ result
+
+    def result(self, state: TracerState) -> Branch:
+        """Assemble the :class:`~..results._branch.Branch` (column arrays and special points)
+        of a state (finished or not)."""
+        info = {"direction": self.direction, "rtol": self.options.rtol}
+        kinds = frozenset(t.kind for t in self.tests)
+        return assemble_branch(state, info, kinds)
+
+
+def _array(x: ArrayLike | None) -> np.ndarray | None:
+    return None if x is None else np.asarray(x, dtype=float)
+
+
+def _by_index(system: CurveSystem, scales: Mapping[str, float] | None) -> dict[int, float]:
+    """Scales by name (of a curve a start lies on) as ``{component index: scale}``, for the
+    components of ``system`` they name."""
+    out = {}
+    for name, size in (scales or {}).items():
+        k = system.index(name)
+        if k is not None and math.isfinite(size) and size > 0.0:
+            out[k] = float(size)
+    return out
+
+
+__all__ = ["Tracer", "TracerState"]
