@@ -102,10 +102,13 @@ def adaptive_gauss_legendre(
 def rough_leg_areas(levels, p_A, q_A, p_B, q_C, level_rtol, quad_tol, errors=None):
     """``((ABD, error), (ABC − ABD, error))`` [µm] for levels with ``lam`` (λc), ``curvature``
     and ``slope`` (module docstring), the second (NaN, NaN) without C (``q_C`` NaN).
-    ``errors``: absolute errors of (p_A, q_A, p_B, q_C), else ``level_rtol`` times each."""
+    ``errors``: absolute errors of (p_A, q_A, p_B, q_D, q_C), else ``level_rtol`` times each
+    (q_D's is not used: D lies on BC at q_D = q_A + p_B − p_A, at the slip of A)."""
     levels_in = (p_A, q_A, p_B, q_C)
     if errors is None:
         errors = [level_rtol * abs(v) if math.isfinite(v) else 0.0 for v in levels_in]
+    else:
+        errors = [errors[0], errors[1], errors[2], errors[4]]
     e_pA, e_qA, e_pB, e_qC = (e + _EPS * abs(v) for e, v in zip(errors, levels_in))
     lam = levels.lam
     eta = float(getattr(levels, "relative_error", 16.0 * _EPS)) + 16.0 * _EPS

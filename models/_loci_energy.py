@@ -103,6 +103,14 @@ def flag_rtol(quad_tol: float = QUAD_RTOL) -> float:
     return max(ENERGY_RTOL, 100.0 * quad_tol)
 
 
+def note_rtol(quad_tol: float = QUAD_RTOL) -> float:
+    """The relative error bound above which an energy that is given comes with a message
+    naming its bound: the documented accuracy, 1e-12 (as the points'), or ten times the
+    quadrature tolerance asked for when that is looser (1e-10 at ``rtol`` = 1e-2). Above
+    :func:`flag_rtol` a locus leaves the energy empty instead."""
+    return max(1e-12, 10.0 * quad_tol)
+
+
 def gauss_legendre(
     f: Callable[[np.ndarray], np.ndarray],
     a: float,
@@ -215,7 +223,7 @@ def energies(
     if _accepts(closed, "quad_tol"):
         kw["quad_tol"] = quad_tol
     if errors is not None and _accepts(closed, "errors"):
-        kw["errors"] = tuple(errors.get(k, 0.0) for k in ("A.p", "A.q", "B.p", "C.q"))
+        kw["errors"] = tuple(errors.get(k, 0.0) for k in ("A.p", "A.q", "B.p", "D.q", "C.q"))
     abd, dc = closed(row["A.p"], row["A.q"], row["B.p"], row["D.q"], q_C, state_tol, **kw)
     unit = (mu / mu0) * (mu / g_A)  # ∫ T ds [µm] -> ∫ t dg (LegCurves)
     if math.isfinite(abd[0]):
@@ -296,7 +304,7 @@ def path_energies(model, row, errors, quad_tol: float = QUAD_RTOL):
     """Areas ABD and ABC [N·µm] of a path (:class:`~cusp.models.ContactLoss`) from its
     polished points (``row``, ``errors``: :func:`path_points`) and their error bounds
     (:func:`energies`, to ``quad_tol``); with a message where a bound exceeds
-    :func:`flag_rtol` of its energy, or where an energy whose point exists could not be
+    :func:`note_rtol` of its energy, or where an energy whose point exists could not be
     integrated. Returns (energies, errors, messages)."""
     energy: dict[str, float | None] = {"snap_back": None, "snap_through": None}
     error: dict[str, float | None] = {"snap_back": None, "snap_through": None}
@@ -308,14 +316,15 @@ def path_energies(model, row, errors, quad_tol: float = QUAD_RTOL):
         e = energies(
             model.levels, row, model.mu0, model.mu0, model.g_A, 64.0 * _EPS, quad_tol, errors
         )
+        failed = False
     except EnergyError as exc:
-        e = _no_energies()
+        e, failed = _no_energies(), True
         notes.append(f"the released energies are not given: {exc}")
-    flag = flag_rtol(quad_tol)
+    flag = note_rtol(quad_tol)
     exists = {"snap_back": True, "snap_through": "C.q" in row}
     for kind in energy:
         if not math.isfinite(e[kind]):
-            if exists[kind] and not notes:
+            if exists[kind] and not failed:
                 notes.append(
                     f"the {kind.replace('_', '-')} energy is not given: its integral is not "
                     f"finite ({e[kind]!r}) although its landing point exists"

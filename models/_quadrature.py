@@ -28,11 +28,22 @@ _LIMIT = 200
 _FAIL = 1e-8
 
 
-def _quad(f, a, b, *, epsabs: float = 0.0, **kw):
+def _quad(f, a, b, *, epsabs: float = 0.0, scale: float | None = None, **kw):
+    """∫_a^b f by QUADPACK; over a half-infinite interval in units of ``scale`` (z = a +
+    scale·u: QAGI maps u ∈ [0, ∞) to (0, 1] with the unit 1, so a density of width 1e-6 µm
+    lived in 1e-6 of the mapped interval and its tail was missed: the Weibull density of
+    σ* = 1e-6 µm integrated to 0.968, and σ* = 1e6 µm failed)."""
     if not a < b:
         return 0.0
-    res = integrate.quad(f, a, b, epsabs=epsabs, epsrel=_EPSREL, limit=_LIMIT, full_output=1, **kw)
-    val, err = res[0], res[1]
+    g, lo, hi, unit = f, a, b, 1.0
+    if scale is not None and math.isfinite(a) and math.isinf(b):
+        g, lo, hi, unit = (lambda u: f(a + scale * u)), 0.0, math.inf, scale
+    elif scale is not None and math.isinf(a) and math.isfinite(b):
+        g, lo, hi, unit = (lambda u: f(b - scale * u)), 0.0, math.inf, scale
+    res = integrate.quad(
+        g, lo, hi, epsabs=epsabs / unit, epsrel=_EPSREL, limit=_LIMIT, full_output=1, **kw
+    )
+    val, err = unit * res[0], unit * res[1]
     if not math.isfinite(val) or err > _FAIL * abs(val) + max(1e-300, 1e6 * epsabs):
         raise ModelParameterError(
             f"quadrature over [{a!r}, {b!r}] failed: value {val!r}, error estimate {err!r}; "
@@ -58,7 +69,7 @@ def _weighted(surface, k: float, h: float, a: float, b: float) -> float:
         if not math.isinf(hi):
             raise ModelParameterError("internal: infinite upper limit on finite support")
         return _weighted(surface, k, h, a, split) + _quad(
-            lambda z: (z - h) ** k * pdf(z), split, math.inf
+            lambda z: (z - h) ** k * pdf(z), split, math.inf, scale=surface.sigma
         )
     pts = _segments(surface, a, b)
     total = 0.0
@@ -161,7 +172,7 @@ def _stick_scalar(surface, h: float, g: float) -> float:
     if math.isinf(hi):
         split = a + 4.0 * surface.sigma
         pts = _segments(surface, a, split)
-        total = _quad(f, split, math.inf)
+        total = _quad(f, split, math.inf, scale=surface.sigma)
     else:
         pts = _segments(surface, a, hi)
         total = 0.0
@@ -187,9 +198,9 @@ def integrate_pdf(pdf, support, breakpoints, sigma, epsabs: float = 0.0) -> floa
     pts = [finite_lo] + [p for p in breakpoints if finite_lo < p < finite_hi] + [finite_hi]
     total = 0.0
     if not math.isfinite(lo):
-        total += _quad(pdf, -math.inf, finite_lo, epsabs=epsabs)
+        total += _quad(pdf, -math.inf, finite_lo, epsabs=epsabs, scale=sigma)
     if not math.isfinite(hi):
-        total += _quad(pdf, finite_hi, math.inf, epsabs=epsabs)
+        total += _quad(pdf, finite_hi, math.inf, epsabs=epsabs, scale=sigma)
     for u, v in pairwise(pts):
         total += _quad(pdf, u, v, epsabs=epsabs)
     return total

@@ -45,7 +45,7 @@ from cusp.continuation import (
     trace,
 )
 
-from ._loci_energy import EnergyError, energies, flag_rtol, path_chain, polish_row
+from ._loci_energy import EnergyError, energies, flag_rtol, note_rtol, path_chain, polish_row
 from ._path_guards import STATUSES
 from ._point_errors import chain_errors, point_bounds, relative
 from .contact_loss import DEFAULT_OPTIONS as PATH_OPTIONS
@@ -372,7 +372,7 @@ def _assemble(model: ContactLoss, parameter: str, free: str, branches, chains, o
         {"event": ev.pop("event"), **_physical(model, ev, chain, o.quad_tol, messages, worst)}
         for ev, chain in events
     ]
-    messages += _bound_messages(worst, max(point_tol(o.rtol), 1e-12))
+    messages += _bound_messages(worst, max(point_tol(o.rtol), 1e-12), note_rtol(o.quad_tol))
     return Loci(parameter, columns, event_rows, messages, dict(branches), [r for r, _ in rows])
 
 
@@ -384,12 +384,19 @@ def _at_reported_load(model: ContactLoss, row: dict[str, Any]) -> dict[str, Any]
     return {**row, "m_B": (model.F_N0 - load) / model.F_N0}
 
 
-def _bound_messages(worst, threshold: float) -> list[str]:
+def _bound_messages(worst, threshold: float, energy_threshold: float) -> list[str]:
     """A message per quantity of the loci whose error bound exceeds ``threshold`` somewhere
-    (relative), with the largest bound and where it is."""
+    (relative; an energy's: ``energy_threshold``), with the largest bound and where it is."""
     out = []
     for (point, name), (rel, at) in sorted(worst.items()):
-        if rel > threshold:
+        if point == "energy" and rel > energy_threshold:
+            out.append(
+                f"the {name.replace('_', '-')} energies along the loci are resolved only to "
+                f"their error bounds, up to {rel:.1e} relative (at {at}), above "
+                f"{energy_threshold:g}: the points they are integrated between are resolved "
+                "only so far there"
+            )
+        elif point != "energy" and rel > threshold:
             out.append(
                 f"{name} of {point} along the loci is resolved only to its error bound, up to "
                 f"{rel:.1e} relative (at {at}), above {threshold:g}: float64 "
@@ -490,6 +497,10 @@ def _physical(
             if not any(m.startswith(note[:40]) for m in messages):
                 messages.append(note)
             value = math.nan
+        elif error > note_rtol(quad_tol) * abs(value):  # (given, with its bound named)
+            rel = error / abs(value)
+            if rel > worst.get(("energy", kind), (-1.0, ""))[0]:
+                worst["energy", kind] = (rel, where)
         out[f"{kind}_energy"], out[f"{kind}_error"] = value, error
     if ("D.q" in row and math.isnan(e["snap_back"])) or (
         "C.q" in row and math.isnan(e["snap_through"])

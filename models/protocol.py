@@ -71,7 +71,10 @@ explicit enough (the sphere's: polynomials in its levels):
   μF_N0) and s = ``slip``, from the levels of the points A, B, D and C (``q_C`` NaN when
   there is no C), each with an error bound: ``((abd, abd_error), (abc_minus_abd, error))``,
   the second (NaN, NaN) without C. ``level_rtol`` is the points' own error (the tolerance
-  they were converged to), relative to each level's own size. Without it, the energies are
+  they were converged to), relative to each level's own size; a ``leg_areas`` that takes
+  the keyword ``errors`` is given the absolute errors of (p_A, q_A, p_B, q_D, q_C) instead
+  (the bounds of the polished chain, :mod:`cusp.models._point_errors`), and ``quad_tol``
+  where it integrates. Without it, the energies are
   integrated along the legs by Gauss–Legendre (:mod:`cusp.models._loci_energy`), whose
   accuracy is limited to about ε over the relative gap between the legs.
 

@@ -201,7 +201,7 @@ class RoughLevels:
         """The released areas ABD and ABC − ABD as ∫ T ds between the legs [µm], each with an
         error bound, by :func:`cusp.models._leg_areas.rough_leg_areas` (integrals of
         J''·(weights) and −J'·(weights), positive integrands in the differences between
-        the levels). ``errors``: the absolute errors of (p_A, q_A, p_B, q_C), else
+        the levels). ``errors``: the absolute errors of (p_A, q_A, p_B, q_D, q_C), else
         ``level_rtol`` of each level's size."""
         return rough_leg_areas(self, p_A, q_A, p_B, q_C, level_rtol, quad_tol, errors)
 

@@ -257,7 +257,7 @@ class SphereLevels:
         """κ(1 − p)² [µm]: the stick zone vanishes (gross sliding) at g_T = μκ(a/a0)²."""
         return self.kappa * (1.0 - p) ** 2
 
-    def leg_areas(self, p_A, q_A, p_B, q_D, q_C, level_rtol):
+    def leg_areas(self, p_A, q_A, p_B, q_D, q_C, level_rtol, *, errors=None):
         """The released areas in closed form, ∫ T ds between the legs [µm] with T = F_T/(μF_N0)
         and s = g_T/μ: ``((ABD, error), (ABC − ABD, error))``, the second (NaN, NaN) when
         ``q_C`` is NaN (no C). ``level_rtol``: each level's own error relative to itself.
@@ -271,23 +271,32 @@ class SphereLevels:
 
         x_B = 1 − p_B, w = q_A − p_B, δ = p_B − p_A, y_D = 1 − q_D, e_D = q_D − q_A,
         y_C = 1 − q_C, h_D = q_C − q_D. The error: 16ε of the sum of the terms (their
-        rounding), plus each variable's error (its rounding, and ``level_rtol`` times the
-        levels it is formed from) times the polynomial's derivative in it, taken at the
-        variables' upper bounds (a bound, the coefficients being positive)."""
-        tol = level_rtol
+        rounding), plus each variable's error (its rounding, and the errors of the levels it
+        is formed from: ``errors``, the absolute errors of (p_A, q_A, p_B, q_D, q_C), else
+        ``level_rtol`` times each level) times the polynomial's derivative in it, taken at
+        the variables' upper bounds (a bound, the coefficients being positive). Near gross
+        sliding the stick levels are resolved only to the chain's bounds (c known to 1e-11
+        relative at g_A = (1 − 1e-6) g_lim), not to ``level_rtol``: an energy bound of
+        8.1e-14 stood against an error of 2.4e-13 there (1.1e-11 at 1 − 1e-9)."""
+        values = (p_A, q_A, p_B, q_D, q_C)
+        if errors is None:
+            errors = tuple(level_rtol * abs(z) if math.isfinite(z) else 0.0 for z in values)
+        e_A, e_qA, e_B, e_D, e_C = errors
 
-        def base(z):  # 1 − z and its error
-            return 1.0 - z, _EPS * abs(1.0 - z) + tol * abs(z)
+        def base(z, ez):  # 1 − z and its error
+            return 1.0 - z, _EPS * abs(1.0 - z) + ez
 
-        def diff(hi, lo):  # hi − lo and its error
-            return hi - lo, _EPS * abs(hi - lo) + tol * (abs(hi) + abs(lo))
+        def diff(hi, ehi, lo, elo):  # hi − lo and its error
+            return hi - lo, _EPS * abs(hi - lo) + ehi + elo
 
-        ab = _released(_AREA_AB, base(p_B), diff(q_A, p_B), diff(p_B, p_A))
-        bd = _released(_AREA_BD, base(q_D), diff(q_D, q_A))
+        ab = _released(
+            _AREA_AB, base(p_B, e_B), diff(q_A, e_qA, p_B, e_B), diff(p_B, e_B, p_A, e_A)
+        )
+        bd = _released(_AREA_BD, base(q_D, e_D), diff(q_D, e_D, q_A, e_qA))
         abd = (self.kappa * (ab[0] + bd[0]), self.kappa * (ab[1] + bd[1]))
         if not math.isfinite(q_C):
             return abd, (math.nan, math.nan)
-        dc = _released(_AREA_DC, base(q_C), diff(q_C, q_D))
+        dc = _released(_AREA_DC, base(q_C, e_C), diff(q_C, e_C, q_D, e_D))
         return abd, (self.kappa * dc[0], self.kappa * dc[1])
 
 

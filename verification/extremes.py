@@ -33,7 +33,7 @@ import mpmath as mp
 
 from .reference_paths import rough_path, sphere_path
 
-__all__ = ["Case", "Outcome", "grid", "run_case", "FAST"]
+__all__ = ["Case", "Outcome", "grid", "run_case", "FAST", "ISSUE"]
 
 #: a number off by more than this without a message is a failure (the issue's requirement)
 REQUIRED = 1e-8
@@ -52,7 +52,7 @@ class Case:
     body's parameters, F_N0 and how g_A and F'_N are chosen: g_A = ``slip`` times the slip
     scale (μλ, or the sphere's gross-sliding slip), F'_N = F_N0 − ``reduction``·F_A/μ, or
     the float just below F_N0 if ``reduction`` is 0, or the deepest reduction accepted if it
-    is 1."""
+    is 1; or ``g_A`` [µm] and ``F_Np`` [N] given as such (the issue's scenes)."""
 
     body: str
     label: str
@@ -60,6 +60,8 @@ class Case:
     F_N0: float = 1000.0
     slip: float = 0.1
     reduction: float = 0.5
+    g_A: float | None = None
+    F_Np: float | None = None
 
 
 @dataclass
@@ -76,6 +78,10 @@ class Outcome:
     failure: str | None = None
     seconds: float = 0.0
     reference_seconds: float = 0.0
+    #: the run (:class:`cusp.models.ContactLossResult`) and its reference (``points``,
+    #: ``energy``: mpmath numbers), for further checks
+    result: Any = None
+    reference: Any = None
 
 
 def _body(case: Case):
@@ -93,10 +99,14 @@ def _body(case: Case):
 
 def loading(case: Case, body) -> tuple[float, float]:
     """(g_A, F'_N) of a case (:class:`Case`)."""
-    if case.body == "sphere":
+    if case.g_A is not None:
+        g_A = case.g_A
+    elif case.body == "sphere":
         g_A = case.slip * float(body.slip_limit(case.F_N0))
     else:
         g_A = case.slip * body.mu * body.lam
+    if case.F_Np is not None:
+        return g_A, case.F_Np
     F_A = float(body.tangential_force(g_A, case.F_N0))
     if case.reduction == 0.0:
         return g_A, math.nextafter(case.F_N0, 0.0)
@@ -138,6 +148,7 @@ def run_case(case: Case, options: Any = None) -> Outcome:
     out.reference_seconds = time.perf_counter() - t1
     _compare_points(out, res, ref["points"])
     _compare_energies(out, res, ref["energy"])
+    out.result, out.reference = res, ref
     return out
 
 
@@ -223,12 +234,22 @@ def grid(body: str) -> list[Case]:
     return cases
 
 
-#: the fast subset run by the test suite (tests/models/test_extremes.py)
-FAST = [
-    Case("gaussian", "g_A = 1e-12 of the slip scale", dict(BASE), slip=1e-12),
-    Case("gaussian", "sigma = 1e3 µm", BASE | {"sigma": 1e3}),
-    Case("gaussian", "sigma = 1e-4 µm", BASE | {"sigma": 1e-4}),
+#: the scenes the issue names (Gaussian surface, the base scene otherwise): slips of 1e-12 …
+#: 1e-4 µm, σ* = 1e3 and 1e-4 µm at g_A = 0.1 µm, F_N0 = 1e9 N
+ISSUE = [
+    *(Case("gaussian", f"g_A = {g:g} µm", dict(BASE), g_A=g) for g in (1e-12, 1e-9)),
+    *(Case("gaussian", f"g_A = {g:g} µm", dict(BASE), g_A=g) for g in (1e-7, 1e-6, 1e-5, 1e-4)),
+    Case("gaussian", "sigma = 1e3 µm, F'_N = 998 N", BASE | {"sigma": 1e3}, g_A=0.1, F_Np=998.0),
+    Case(
+        "gaussian", "sigma = 1e-4 µm, F'_N = 999.9 N", BASE | {"sigma": 1e-4}, g_A=0.1, F_Np=999.9
+    ),
     Case("gaussian", "F_N0 = 1e9 N", dict(BASE), F_N0=1e9),
+]
+
+#: the fast subset run by the test suite (tests/models/test_extremes.py): the issue's scenes
+#: and a few extremes of each body
+FAST = [
+    *ISSUE,
     Case("gaussian", "reduction 0 of F_A/mu (one ulp)", dict(BASE), reduction=0.0),
     Case("gaussian", "reduction 1 of F_A/mu (the deepest)", dict(BASE), reduction=1.0),
     Case("exponential", "mu = 1e-16", BASE | {"mu": 1e-16}),
