@@ -16,9 +16,10 @@ energies) with the reference. A case passes when
 The grid (:func:`grid`) varies one input at a time around a base scene per body (Fig 6's
 loading on a surface with σ* = 2 µm, ν = 0.3, μ = 0.1, E = 0.2 N/µm², ρ* = 10 µm,
 η = 0.01/µm², A_n = 1e6 µm², F_N0 = 1000 N; the sphere of ``scenes/sphere.toml``): the slip
-at A from 1e-12 of the slip scale (μλ for a rough surface, the gross-sliding slip for a
-sphere) up to it, μ from 1e-16 up, σ* over 1e-6 … 1e6 µm, F_N0 over 1e-9 … 1e9 N, and the
-reduction from one ulp of F_N0 to the deepest allowed. A run that fails (a typed error) is
+at A from 1e-12 of the slip scale (μλ for a rough surface, up to 1e3 of it; the
+gross-sliding slip g_lim for a sphere, up to 1 − 1e-12 of it, and near it with reductions
+shallow enough to keep D), μ from 1e-16 to 1e3, σ* over 1e-6 … 1e6 µm, F_N0 over 1e-9 …
+1e9 N, and the reduction from one ulp of F_N0 to the deepest allowed. A run that fails (a typed error) is
 counted as a failure, not as a pass: the script lists them.
 """
 
@@ -214,16 +215,29 @@ def grid(body: str) -> list[Case]:
     """The full grid of a body (module docstring)."""
     if body == "sphere":
         base = dict(SPHERE)
-        slips = (1e-12, 1e-9, 1e-6, 1e-3, 0.3, 0.9, 0.99)
+        slips: tuple[float, ...] = (1e-12, 1e-9, 1e-6, 1e-3, 0.3, 0.9, 0.99, 1 - 1e-6, 1 - 1e-12)
         scales: list[tuple[str, dict[str, float]]] = []
     else:
         base = dict(BASE) | ({"shape": 2.0} if body == "weibull" else {})
-        slips = (1e-12, 1e-9, 1e-6, 1e-3, 0.1, 1.0, 10.0)
+        slips = (1e-12, 1e-9, 1e-6, 1e-3, 0.1, 1.0, 10.0, 1e3)
         scales = [
             (f"sigma = {s:g} µm", base | {"sigma": s}) for s in (1e-6, 1e-4, 1e-2, 1e2, 1e4, 1e6)
         ]
-    cases = [Case(body, f"g_A = {f:g} of the slip scale", base, slip=f) for f in slips]
-    cases += [Case(body, f"mu = {m:g}", base | {"mu": m}) for m in (1e-16, 1e-8, 1e-3, 1.0, 10.0)]
+    cases = [Case(body, f"g_A = {f:.12g} of the slip scale", base, slip=f) for f in slips]
+    if body == "sphere":  # (near gross sliding with D: a reduction that keeps g_A below g_lim)
+        cases += [
+            Case(
+                body,
+                f"g_A = {1 - f:.12g} of the slip scale, reduction {f:g}",
+                base,
+                1000.0,
+                1 - f,
+                f,
+            )
+            for f in (1e-6, 1e-9)
+        ]
+    mus = (1e-16, 1e-8, 1e-3, 1.0, 10.0, 1e3)
+    cases += [Case(body, f"mu = {m:g}", base | {"mu": m}) for m in mus]
     cases += [Case(body, label, p) for label, p in scales]
     loads = (1e-9, 1e-3, 1.0, 1e6, 1e9)
     cases += [Case(body, f"F_N0 = {f:g} N", base, F_N0=f) for f in loads]

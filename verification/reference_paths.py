@@ -122,7 +122,7 @@ def _moments(heights, s):
     cache: dict[tuple, Any] = {}
 
     def cached(n, h):
-        key = (n, h)
+        key = (n, h, mp.mp.prec)
         if key not in cache:
             cache[key] = moment(n, h)
         return cache[key]
@@ -191,15 +191,21 @@ def _root(f, df, lo, hi, guess=None):
     """The root of an increasing f (derivative df) in a bracket grown from [lo, hi], by
     Newton's method from ``guess`` (the root at a lower precision) or from a bisected
     bracket, bisecting whenever a step leaves the bracket."""
-    if guess is None:
-        step = hi - lo
-        while f(lo) > 0:
-            lo, step = lo - step, 2 * step
-        while f(hi) < 0:
-            hi, step = hi + step, 2 * step
-        for _ in range(12):
-            mid = (lo + hi) / 2
-            lo, hi = (mid, hi) if f(mid) < 0 else (lo, mid)
+    if guess is None:  # (the bracket at 20 digits: a Weibull moment by quadrature at the
+        # working precision is 0.4 s, and the bracket needs dozens of them)
+        with mp.workdps(20):
+            step = hi - lo
+            while f(lo) > 0:
+                lo, step = lo - step, 2 * step
+            while f(hi) < 0:
+                hi, step = hi + step, 2 * step
+            for _ in range(40):
+                mid = (lo + hi) / 2
+                lo, hi = (mid, hi) if f(mid) < 0 else (lo, mid)
+        # (widened well beyond the 20-digit root's error, which may leave the root just
+        # outside the bisected bracket: Newton's steps then fell back to bisection)
+        margin = mp.mpf(10) ** -9 * (1 + abs(lo) + abs(hi))
+        lo, hi = lo - margin, hi + margin
         x = (lo + hi) / 2
     else:
         x, lo, hi = guess, None, None
@@ -209,7 +215,7 @@ def _root(f, df, lo, hi, guess=None):
         if lo is not None:
             lo, hi = (x, hi) if fx < 0 else (lo, x)
         new = x - fx / df(x)
-        if lo is not None and not lo < new < hi:
+        if lo is not None and not lo <= new <= hi:  # (a root hit exactly is its bound)
             new = (lo + hi) / 2
         if abs(new - x) <= tol * (1 + abs(x)):
             return new
