@@ -19,8 +19,8 @@ loading on a surface with σ* = 2 µm, ν = 0.3, μ = 0.1, E = 0.2 N/µm², ρ* 
 at A from 1e-12 of the slip scale (μλ for a rough surface, up to 1e3 of it; the
 gross-sliding slip g_lim for a sphere, up to 1 − 1e-12 of it, and near it with reductions
 shallow enough to keep D), μ from 1e-16 to 1e3, σ* over 1e-6 … 1e6 µm, F_N0 over 1e-9 …
-1e9 N, and the reduction from one ulp of F_N0 to the deepest allowed. A run that fails (a typed error) is
-counted as a failure, not as a pass: the script lists them.
+1e9 N, and the reduction from one ulp of F_N0 to the deepest allowed. A run that fails (a
+typed error) is counted as a failure, not as a pass: the script lists them.
 """
 
 from __future__ import annotations
