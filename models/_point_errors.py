@@ -25,7 +25,14 @@ import numpy as np
 
 from .protocol import level_lengths, slipped_area
 
-__all__ = ["chain_errors", "point_bounds", "point_messages", "polish", "relative"]
+__all__ = [
+    "chain_errors",
+    "point_bounds",
+    "point_messages",
+    "polish",
+    "relative",
+    "underflow_messages",
+]
 
 _EPS = float(np.finfo(float).eps)
 _LEGS = {"A": "OA", "B": "AB", "C": "BC", "D": "BC"}
@@ -199,5 +206,25 @@ def point_messages(
             out.append(
                 f"point {key} is resolved only to its error bounds: {', '.join(worse)}, above "
                 f"{threshold:g}: float64 does not resolve the path better at these inputs"
+            )
+    return out
+
+
+def underflow_messages(physical: Mapping) -> list[str]:
+    """A message per point that has slipped (g_T > 0) but whose Â_SL is 0.0: the slipping
+    summits' share of the area is then below the smallest float (on a Gaussian surface
+    under 1e9 N, where d lies 1800 σ* below the mean plane, Â_SL at A is e^{−1.6e6}), or
+    exactly 0 (a density with no summits between the two levels); 0.0 is its nearest
+    float, not a missing value."""
+    out = []
+    for key, point in physical.items():
+        if key == "O" or point is None:
+            continue
+        if point.get("A_SL") == 0.0 and point.get("g_T", 0.0) > 0.0:
+            out.append(
+                f"point {key}: A_SL is written as 0.0: the slipping summits' share of the "
+                "contact area is below the smallest positive float (2.2e-308) at these "
+                "inputs, or exactly 0 where the height density has no summits between the "
+                "contact level and the stick level"
             )
     return out

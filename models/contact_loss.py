@@ -83,7 +83,7 @@ from . import _path_guards as guards
 from ._loci_energy import path_energies, path_points
 from ._path_folds import path_folds
 from ._path_guards import PathError
-from ._point_errors import point_bounds, point_messages
+from ._point_errors import point_bounds, point_messages, underflow_messages
 from .errors import ModelParameterError, check_positive
 from .protocol import (
     ContactLevels,
@@ -471,6 +471,7 @@ class ContactLoss:
         }
         floors = dict.fromkeys(L.names, float(L.scale))  # the levels: against their unit
         messages += point_messages(points, point_err, max(point_tol(o.rtol), 1e-12), floors)
+        messages += underflow_messages(points)
         messages += notes
         return ContactLossResult(
             points=points,

@@ -123,7 +123,11 @@ def test_gaussian_under_1e9_N():
     for x in "ABCD":
         for key in ("g_T", "F_T", "F_N"):
             assert _rel(res.points[x][key], ref["points"][x][key]) <= 1e-13, (x, key)
-    assert res.points["A"]["A_SL"] == 0.0  # (its exact value underflows)
+    assert res.points["A"]["A_SL"] == 0.0  # (its exact value underflows) ...
+    assert ref["points"]["A"]["A_SL"] < 1e-308  # (mpmath: e^-1.6e6)
+    # ... and the run says so (issue 27 point 3: no 0.0 in place of a value without a word)
+    assert [m for m in res.messages if "A_SL is written as 0.0" in m] == [res.messages[0]]
+    assert res.messages[0].startswith("point A:") and len(res.messages) == 1
     for kind in ("snap_back", "snap_through"):
         assert _rel(res.energy[kind], ref["energy"][kind]) <= 1e-13
     assert all(f["corner"] for f in res.folds)
