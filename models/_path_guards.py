@@ -148,36 +148,40 @@ def flat(br: Branch, name: str) -> bool:
     return float(np.ptp(col)) <= 1e3 * _EPS * size
 
 
-def loading_end(model: Any, oa: Branch) -> dict[str, float]:
+def loading_end(model: Any, br: Branch, p: float | None = None, m: float = 0.0) -> dict:
     """A on a loading leg that ended at the gross-sliding fold (the stick bound): the
     stick level q with g(q) = 1 between the last row below g_A and the fold (g rises
     monotonically there), by safeguarded Newton to rounding (Newton on the leg with g
     fixed does not converge within a few ulps of the fold, and from a guess past it
-    lands on the other side, c < 0); the other unknowns are explicit at p = p0, m = 0."""
+    lands on the other side, c < 0); the other unknowns are explicit at p = p0, m = 0.
+    Likewise D on a reloading leg that ended there (``p``, ``m``: B's; a sphere at g_A =
+    (1 − 1e-12)·g_lim with F'_N 1e-12 of F_A/μ below F_N0: D was 'not placed')."""
     L = model.levels
-    g = np.asarray(oa["g"])
+    p = float(L.p0) if p is None else float(p)
+    leg = "OA" if m == 0.0 else "BC"
+    g = np.asarray(br["g"])
     above = np.flatnonzero(g >= 1.0)
     if not above.size or above[0] == 0:
         raise PathError(
-            f"{LEGS['OA']} reached gross sliding (the stick zone vanished) at g_T = "
+            f"{LEGS[leg]} reached gross sliding (the stick zone vanished) at g_T = "
             f"{g[-1] * model.g_A:.6g} µm, before max_slip = {model.g_A!r} µm"
         )
     i = int(above[0])
-    lo, hi = float(oa["q"][i - 1]), float(oa["q"][i])
+    lo, hi = float(br["q"][i - 1]), float(br["q"][i])
     edge = sliding_level(L)
     hi = min(hi, edge) if lo < edge else max(hi, edge)
-    mu = float(oa["mu"][0])
+    mu = float(br["mu"][0])
     k = mu / model.g_A
 
     def slip(q: float) -> tuple[float, float]:
-        s, _, ds_q = L.slip(L.p0, q)
+        s, _, ds_q = L.slip(p, q)
         return k * s, k * ds_q
 
     q = _invert(slip, 1.0, lo, hi)
-    t = float(L.tangential_ratio(L.p0, q)[0]) * mu / model.mu0
-    a_sl = float(slipped_area(L, L.p0, q, model.area_reading)[0])
-    row = {key: float(v) for key, v in oa.point(i - 1).items()}
-    return {**row, "g": 1.0, "t": t, "m": 0.0, "A_SL": a_sl, "p": float(L.p0), "q": float(q)}
+    t = (1.0 - m) * float(L.tangential_ratio(p, q)[0]) * mu / model.mu0
+    a_sl = float(slipped_area(L, p, q, model.area_reading)[0])
+    row = {key: float(v) for key, v in br.point(i - 1).items()}
+    return {**row, "g": 1.0, "t": t, "m": m, "A_SL": a_sl, "p": p, "q": float(q)}
 
 
 def refused_reduction(model: Any, F_A: float, F_Np: float) -> bool:

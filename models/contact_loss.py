@@ -442,7 +442,11 @@ class ContactLoss:
             options=o,
         )
         C = guards.polish(self, "C", prob_bc, bc, "t", A["t"], o) if c_exists else None
-        D = guards.polish(self, "D", prob_bc, bc, "g", 1.0, o) if d_exists else None
+        D = None
+        if d_exists and guards.ended_at(bc) == "q":  # (at gross sliding, just past D)
+            D = guards.loading_end(self, bc, B["p"], B["m"])
+        elif d_exists:
+            D = guards.polish(self, "D", prob_bc, bc, "g", 1.0, o)
         legs = {"OA": oa, "AB": ab, "BC": bc}
         problems = {"OA": prob, "AB": prob_ab, "BC": prob_bc}
         return self._result(legs, problems, {"A": A, "B": B, "C": C, "D": D}, o)

@@ -234,7 +234,7 @@ def grid(body: str) -> list[Case]:
                 1 - f,
                 f,
             )
-            for f in (1e-6, 1e-9)
+            for f in (1e-6, 1e-9, 1e-12)
         ]
     mus = (1e-16, 1e-8, 1e-3, 1.0, 10.0, 1e3)
     cases += [Case(body, f"mu = {m:g}", base | {"mu": m}) for m in mus]
@@ -271,4 +271,14 @@ FAST = [
     Case("exponential", "F_N0 = 1e-9 N", dict(BASE), F_N0=1e-9),
     Case("sphere", "g_A = 1e-12 of the slip scale", dict(SPHERE), slip=1e-12),
     Case("sphere", "reduction 1e-06 of F_A/mu", dict(SPHERE), reduction=1e-6),
+    # (D at g_A = (1 − 1e-12) g_lim, within 3.3e-13 of gross sliding under F'_N: not placed
+    # before, exit 1)
+    Case(
+        "sphere",
+        "g_A = 1 - 1e-12 of g_lim, reduction 1e-12",
+        dict(SPHERE),
+        1000.0,
+        1 - 1e-12,
+        1e-12,
+    ),
 ]
