@@ -78,6 +78,9 @@ class HeightDensity:
             raise ModelParameterError(f"loc must be finite [µm], got {loc!r}")
 
         def pdf(z):
+            if type(z) is float:  # (QUADPACK's calls, one value each: 3 µs, not 28)
+                v = (z - loc) / lam
+                return (k / lam) * v ** (k - 1.0) * math.exp(-(v**k)) if v > 0.0 else 0.0
             u = np.maximum((np.asarray(z, dtype=float) - loc) / lam, 0.0)
             with np.errstate(divide="ignore", invalid="ignore"):
                 val = (k / lam) * u ** (k - 1.0) * np.exp(-(u**k))
