@@ -124,7 +124,9 @@ class RoughLevels:
         else:
             value = self._load_difference(self._h(p), self.scale * (q - p)) / Jp
         e = 1.0 - value if value < 0.5 else math.exp(jq - jp)  # J(d0)/J(d)
-        return value, e * djp, -e * djq
+        # (J(d0) below the floats: its term is 0, and d log J/dh there is not computed, NaN,
+        # for a density without log-space integrals: a Weibull surface at g_A = 1e3 μλ)
+        return value, e * djp, -e * djq if e > 0.0 else 0.0
 
     def slip(self, p: float, q: float) -> tuple[float, float, float]:
         """g_T/μ = λc (q − p) [µm] and its derivatives (Eqs 4–5)."""
@@ -193,6 +195,10 @@ class RoughLevels:
         log_j = np.asarray(surf.log_load_integral(h), dtype=float)
         if hasattr(surf, "log_load_integral_derivative"):
             dlog = np.asarray(surf.log_load_integral_derivative(h), dtype=float)
+        elif self.J_A >= _TINY:  # (J' directly: J'/J is 0/0 where J underflows)
+            return (
+                -self.scale * np.asarray(surf.load_integral_derivative(h), dtype=float) / self.J_A
+            )
         else:
             dlog = np.asarray(surf.load_integral_derivative(h), dtype=float) / np.exp(log_j)
         return -self.scale * dlog * np.exp(log_j - self.log_jA)
