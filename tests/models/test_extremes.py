@@ -197,3 +197,23 @@ def test_leg_areas_of_the_exponential_surface_against_its_closed_form():
         for kind in ("snap_back", "snap_through"):
             want = exponential_closed_form(kind, 0.1, F_Np)
             assert abs(res.energy[kind] - want) <= res.energy_error[kind] <= 1e-13 * want
+
+
+def test_adaptive_rule_keeps_intervals_it_cannot_halve():
+    # the leg areas' adaptive Gauss-Legendre halved an interval of a few ulps into two equal
+    # ones and compared its heap entries' value arrays: 'The truth value of an array ... is
+    # ambiguous' (ValueError, untyped) on a Weibull path at F'_N = F_N0 - 1 ulp. A step at
+    # the ulp scale over [1, 1 + 8 eps], asked for rtol 0, must end with finite values
+    from cusp.models._leg_areas import adaptive_gauss_legendre
+
+    eps = float(np.finfo(float).eps)
+    step = 1.0 + 2.0 * eps
+
+    def f(x):
+        x = np.asarray(x, dtype=float)
+        return np.array([np.where(x > step, 1.0, 0.0), x])
+
+    total, err = adaptive_gauss_legendre(f, 1.0, 8.0 * eps, 0.0)
+    assert np.all(np.isfinite(total)) and math.isfinite(err)
+    # ∫ x dx over [1, 1 + 8ε] = 8ε + 32ε² (elementary), to the rounding of the nodes
+    assert total[1] == pytest.approx(8.0 * eps, rel=1e-6)
