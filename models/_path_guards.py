@@ -10,7 +10,10 @@ variables or its advice (``max_steps``, ``ds_min``, ``throw=False``), which no s
 
 from __future__ import annotations
 
+import logging
 import math
+from collections.abc import Iterator
+from contextlib import contextmanager
 from typing import Any
 
 import numpy as np
@@ -37,6 +40,10 @@ __all__ = [
     "trace_leg",
     "polish",
     "loading_end",
+    "leg_end",
+    "explicit_point",
+    "stopped",
+    "quiet_stops",
     "empty_range",
     "flat",
 ]
@@ -100,24 +107,49 @@ def _where(model: Any, values: Any) -> str:
     return f" at {', '.join(parts)}" if parts else ""
 
 
-def trace_leg(model: Any, leg: str, prob: Any, u0, what: str, **kwargs: Any) -> Branch:
+def trace_leg(
+    model: Any, leg: str, prob: Any, u0, what: str, partial: bool = False, **kwargs: Any
+) -> Branch:
     """The branch of one leg, traced to its bound (``what``: the end point in words; the
     typical sizes :data:`SIZES` and any ``scales`` given); a failure of the solver, or a
-    branch that ended otherwise, raises :class:`PathError`."""
+    branch that ended otherwise, raises :class:`PathError` (with ``partial``, a branch that
+    ended otherwise is returned as far as it went: :func:`leg_end`)."""
     scales = SIZES | kwargs.pop("scales", {})
     try:
-        br = trace(prob, u0, scales=scales, **kwargs)
+        with quiet_stops():
+            br = trace(prob, u0, scales=scales, throw=not partial, **kwargs)
     except ContinuationError as exc:
         raise PathError(
             f"{LEGS[leg]} stopped{_where(model, exc.values)} before reaching {what}: {_cause(exc)}"
         ) from exc
-    if br.status != "bound":
-        cause = STATUSES.get(br.status, f"it ended ({br.status})")
-        raise PathError(
-            f"{LEGS[leg]} stopped{_where(model, br.point(len(br) - 1))} before reaching "
-            f"{what}: {cause}"
-        )
+    if br.status != "bound" and not partial:
+        raise stopped(model, leg, br, what)
     return br
+
+
+@contextmanager
+def quiet_stops() -> Iterator[None]:
+    """While a leg or a locus is traced: one that stops early (``throw=False``) is reported
+    in the result's messages or its failure, so the tracer's log line saying so is not also
+    printed."""
+    log = logging.getLogger("cusp.continuation.stepping._tracer")
+
+    def drop(record: logging.LogRecord) -> bool:
+        return not str(record.msg).startswith("continuation stopped")
+
+    log.addFilter(drop)
+    try:
+        yield
+    finally:
+        log.removeFilter(drop)
+
+
+def stopped(model: Any, leg: str, br: Branch, what: str) -> PathError:
+    """The failure of a leg that ended before its bound, in the scene's terms."""
+    cause = STATUSES.get(br.status, f"it ended ({br.status})")
+    return PathError(
+        f"{LEGS[leg]} stopped{_where(model, br.point(len(br) - 1))} before reaching {what}: {cause}"
+    )
 
 
 def polish(model: Any, name: str, prob: Any, br: Branch, var: str, value: float, o) -> dict:
@@ -156,8 +188,7 @@ def loading_end(model: Any, br: Branch, p: float | None = None, m: float = 0.0) 
     lands on the other side, c < 0); the other unknowns are explicit at p = p0, m = 0.
     Likewise D on a reloading leg that ended there (``p``, ``m``: B's; a sphere at g_A =
     (1 − 1e-12)·g_lim with F'_N 1e-12 of F_A/μ below F_N0: D was 'not placed')."""
-    L = model.levels
-    p = float(L.p0) if p is None else float(p)
+    p = float(model.levels.p0) if p is None else float(p)
     leg = "OA" if m == 0.0 else "BC"
     g = np.asarray(br["g"])
     above = np.flatnonzero(g >= 1.0)
@@ -167,21 +198,68 @@ def loading_end(model: Any, br: Branch, p: float | None = None, m: float = 0.0) 
             f"{g[-1] * model.g_A:.6g} µm, before max_slip = {model.g_A!r} µm"
         )
     i = int(above[0])
-    lo, hi = float(br["q"][i - 1]), float(br["q"][i])
-    edge = sliding_level(L)
-    hi = min(hi, edge) if lo < edge else max(hi, edge)
+    return explicit_point(model, br, p, m, "g", 1.0, (float(br["q"][i - 1]), float(br["q"][i])))
+
+
+def leg_end(model: Any, br: Branch, p: float, m: float, var: str, value: float) -> dict:
+    """The point of a reloading leg at ``var`` (``"g"`` or ``"t"``) = ``value`` where the
+    trace stopped short of it (``partial``): on B→C the contact level p is B's and g, F_T
+    and Â_SL are explicit in the stick level q, monotone, so the point is the root in q
+    beyond the last row (bracketed by doubling the distance from B, up to gross sliding).
+    A sphere at F'_N = F_N0 − 1 ulp: C lies a few ulps of q beyond D, and the leg's steps
+    between them failed ('Newton's method did not converge'). Raises ArithmeticError where
+    no bracket is found."""
+    q = np.asarray(br["q"], dtype=float)
+    lo, start = float(q[-1]), float(q[0])
+    edge = sliding_level(model.levels)
+    fun = _explicit(model, br, p, m, var)
+    span = max(abs(lo - start), 4.0 * _EPS * max(1.0, abs(lo)))  # (the leg may be B alone)
+    for _ in range(200):
+        hi = lo + span
+        if math.isfinite(edge):
+            hi = min(hi, edge) if lo < edge else max(hi, edge)
+        if fun(hi)[0] >= value:
+            return explicit_point(model, br, p, m, var, value, (lo, hi))
+        if hi == edge:
+            break
+        span *= 2.0
+    raise ArithmeticError(f"no stick level beyond the last row reaches {var} = {value!r}")
+
+
+def _explicit(model: Any, br: Branch, p: float, m: float, var: str):
+    """``var`` (g or t) of a leg at contact level p and reduction m as a function of q."""
+    L = model.levels
     mu = float(br["mu"][0])
     k = mu / model.g_A
 
-    def slip(q: float) -> tuple[float, float]:
-        s, _, ds_q = L.slip(p, q)
-        return k * s, k * ds_q
+    def fun(q: float) -> tuple[float, float]:
+        if var == "g":
+            s, _, ds_q = L.slip(p, q)
+            return k * s, k * ds_q
+        f, _, df_q = L.tangential_ratio(p, q)
+        c = (1.0 - m) * mu / model.mu0
+        return c * f, c * df_q
 
-    q = _invert(slip, 1.0, lo, hi)
+    return fun
+
+
+def explicit_point(model: Any, br: Branch, p: float, m: float, var: str, value: float, bracket):
+    """The point of a leg of contact level p and reduction m where ``var`` = ``value``, its
+    stick level q inside ``bracket`` (clamped at gross sliding) by safeguarded Newton, the
+    other unknowns explicit (module docstring of :mod:`cusp.models.contact_loss`)."""
+    L = model.levels
+    lo, hi = bracket
+    edge = sliding_level(L)
+    if math.isfinite(edge):
+        hi = min(hi, edge) if lo < edge else max(hi, edge)
+    q = _invert(_explicit(model, br, p, m, var), value, lo, hi)
+    mu = float(br["mu"][0])
+    g = float(L.slip(p, q)[0]) * mu / model.g_A
     t = (1.0 - m) * float(L.tangential_ratio(p, q)[0]) * mu / model.mu0
     a_sl = float(slipped_area(L, p, q, model.area_reading)[0])
-    row = {key: float(v) for key, v in br.point(i - 1).items()}
-    return {**row, "g": 1.0, "t": t, "m": m, "A_SL": a_sl, "p": p, "q": float(q)}
+    row = {key: float(v) for key, v in br.point(len(br) - 1).items()}
+    values = {"g": g, "t": t, var: value}
+    return {**row, **values, "m": m, "A_SL": a_sl, "p": p, "q": float(q)}
 
 
 def refused_reduction(model: Any, F_A: float, F_Np: float) -> bool:

@@ -429,24 +429,21 @@ class ContactLoss:
         if math.isfinite(L.slip_limit(B["p"])):
             bounds["q"] = stick_bounds(L)  # e.g. a sphere: the stick zone vanishes at gross slip
         prob_bc = self.problem("BC", start=B["g"], constant=B["m"])
+        what = "F_T = F_A (point C)" if c_exists else "g_T = max_slip (point D)"
         bc = guards.trace_leg(
             self,
             "BC",
             prob_bc,
             [B[v] for v in prob_bc.unknowns],
-            "F_T = F_A (point C)" if c_exists else "g_T = max_slip (point D)",
+            what,
+            partial=True,
             free="g",
             bounds=bounds,
             targets=targets,
             monitor=["t", "A_SL"],
             options=o,
         )
-        C = guards.polish(self, "C", prob_bc, bc, "t", A["t"], o) if c_exists else None
-        D = None
-        if d_exists and guards.ended_at(bc) == "q":  # (at gross sliding, just past D)
-            D = guards.loading_end(self, bc, B["p"], B["m"])
-        elif d_exists:
-            D = guards.polish(self, "D", prob_bc, bc, "g", 1.0, o)
+        C, D = self._reloading_points(prob_bc, bc, B, A["t"], (c_exists, d_exists), what, o)
         legs = {"OA": oa, "AB": ab, "BC": bc}
         problems = {"OA": prob, "AB": prob_ab, "BC": prob_bc}
         return self._result(legs, problems, {"A": A, "B": B, "C": C, "D": D}, o)
@@ -527,6 +524,30 @@ class ContactLoss:
         if guards.ended_at(oa) != "q":
             return prob, oa, guards.polish(self, "A", prob, oa, "g", 1.0, o)
         return prob, oa, guards.loading_end(self, oa)
+
+    def _reloading_points(self, prob, bc, B, t_A: float, exist, what: str, o):
+        """C and D (None where they do not exist) on the reloading leg ``bc``: polished on
+        it, or, where the leg ended at gross sliding (the stick bound) or stopped short of
+        them (:func:`~cusp.models._path_guards.leg_end`), explicit in the stick level."""
+        c_exists, d_exists = exist
+        ended = bc.status == "bound"
+        if not ended and not c_exists:
+            raise guards.stopped(self, "BC", bc, what)
+        points: list[dict[str, float] | None] = []
+        for name, var, value, wanted in (("C", "t", t_A, c_exists), ("D", "g", 1.0, d_exists)):
+            reached = float(np.max(bc[var])) >= value
+            if not wanted:
+                points.append(None)
+            elif name == "D" and guards.ended_at(bc) == "q":  # (at gross sliding, past D)
+                points.append(guards.loading_end(self, bc, B["p"], B["m"]))
+            elif ended or reached:
+                points.append(guards.polish(self, name, prob, bc, var, value, o))
+            else:
+                try:
+                    points.append(guards.leg_end(self, bc, B["p"], B["m"], var, value))
+                except ArithmeticError as exc:
+                    raise guards.stopped(self, "BC", bc, what) from exc
+        return points[0], points[1]
 
     def _gross_sliding_messages(self, t_A: float, c_exists: bool, d_exists: bool) -> list[str]:
         """Why C or D does not exist (t_A = F_A/(μ0 F_N0))."""

@@ -26,10 +26,8 @@ Units as in :mod:`cusp.models.contact_loss`: µm, N, N·µm.
 
 from __future__ import annotations
 
-import logging
 import math
 from collections.abc import Mapping, Sequence
-from contextlib import contextmanager
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -46,7 +44,7 @@ from cusp.continuation import (
 )
 
 from ._loci_energy import EnergyError, energies, flag_rtol, note_rtol, path_chain, polish_row
-from ._path_guards import STATUSES
+from ._path_guards import STATUSES, quiet_stops
 from ._point_errors import chain_errors, point_bounds, relative
 from .contact_loss import DEFAULT_OPTIONS as PATH_OPTIONS
 from .contact_loss import ContactLoss
@@ -224,7 +222,7 @@ def trace_loci(
     mu0, ia = model.mu0, chain.unknowns.index("A.t")
     # F_A = μF'_N: t_A·μ0 = μ·(1 − m_B) (t = F_T/(μ0 F_N0), m = 1 − F_N/F_N0)
     boundary = Event(lambda u, p: u[ia] * mu0 - p["mu"] * (1.0 - p["m_B"]), label="C boundary")
-    with _ends_in_messages():
+    with quiet_stops():
         main = locus(
             chain,
             {x: start[x] for x in names},
@@ -245,7 +243,7 @@ def trace_loci(
             label="C unresolved",
             terminal=True,
         )
-        with _ends_in_messages():
+        with quiet_stops():
             branches["A-B-C-D"] = locus(
                 chain_c, seed[0], free=free, events=[near], scales=_sizes(model, "ABCD", free), **kw
             )
@@ -263,22 +261,6 @@ def _sizes(model: ContactLoss, names: str, free: str) -> dict[str, float]:
     # steps of 1e8 in μ from μ = 0.1, and a derivative check across them that failed the
     # locus at its start); a size only grows along the locus
     return out | ({"m_B": 1.0} if free == "m_B" else {"mu": model.mu0})
-
-
-@contextmanager
-def _ends_in_messages():
-    """While loci are traced: a locus that stops early (``throw=False``) is reported in
-    :attr:`Loci.messages`, so the tracer's log line saying so is not also printed."""
-    log = logging.getLogger("cusp.continuation.stepping._tracer")
-
-    def drop(record: logging.LogRecord) -> bool:
-        return not str(record.msg).startswith("continuation stopped")
-
-    log.addFilter(drop)
-    try:
-        yield
-    finally:
-        log.removeFilter(drop)
 
 
 def _c_seed(model, start, params, main: Branch, o):
