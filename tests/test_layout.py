@@ -259,6 +259,55 @@ def test_first_party_imports_go_through_cusp(package_modules):
     assert not bad, bad
 
 
+def _import_names(tree: ast.AST) -> list[tuple[str, int]]:
+    """(module, relative level) of every import statement in ``tree``."""
+    out = []
+    for node in ast.walk(tree):
+        if isinstance(node, ast.Import):
+            out += [(alias.name, 0) for alias in node.names]
+        elif isinstance(node, ast.ImportFrom):
+            out.append((node.module or "", node.level))
+    return out
+
+
+def _edits_the_import_path(tree: ast.AST) -> bool:
+    """Whether ``tree`` touches ``sys.path`` or calls ``syspath_prepend``."""
+    for node in ast.walk(tree):
+        if isinstance(node, ast.Attribute):
+            if node.attr == "syspath_prepend":
+                return True
+            if node.attr == "path" and isinstance(node.value, ast.Name) and node.value.id == "sys":
+                return True
+    return False
+
+
+def test_scripts_and_tests_get_their_helpers_by_name_or_fixture():
+    """What the scripts share is imported from ``cusp._scripts`` (scripts/_shared/), never a
+    sibling by its bare name (which needs scripts/ on the import path); tests get their
+    helpers from fixtures: only conftest.py files import ``tests.*`` or relatively; no
+    script or test edits ``sys.path``."""
+    scripts = ROOT / "scripts"
+    siblings = {p.stem for p in scripts.glob("*.py")}
+    bad = []
+    for path in [*scripts.glob("*.py"), *scripts.joinpath("_shared").glob("*.py")]:
+        tree = ast.parse(path.read_text(encoding="utf-8"))
+        for module, level in _import_names(tree):
+            top = module.split(".")[0]
+            if level or top in siblings or (top.startswith("_") and top != "__future__"):
+                bad.append(f"{path.relative_to(ROOT)}: imports {'.' * level}{module}")
+        if _edits_the_import_path(tree):
+            bad.append(f"{path.relative_to(ROOT)}: edits the import path")
+    for path in ROOT.joinpath("tests").rglob("*.py"):
+        tree = ast.parse(path.read_text(encoding="utf-8"))
+        if path.name != "conftest.py":
+            for module, level in _import_names(tree):
+                if level or module.split(".")[0] == "tests":
+                    bad.append(f"{path.relative_to(ROOT)}: imports {'.' * level}{module}")
+        if _edits_the_import_path(tree):
+            bad.append(f"{path.relative_to(ROOT)}: edits the import path")
+    assert not bad, bad
+
+
 def test_script_helpers_import_no_optional_dependency(package_modules):
     """Every module of ``cusp._scripts`` imports without contique, pacopy, mpmath or
     matplotlib: each is imported where it is used."""
