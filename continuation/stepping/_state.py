@@ -9,7 +9,8 @@ Both are built by keyword.
 from __future__ import annotations
 
 from collections.abc import Callable, Sequence
-from typing import Any, NamedTuple
+from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
@@ -19,8 +20,10 @@ from ..results._branch import Branch, SpecialPoint
 from ..systems._curve import CurveSystem
 
 
-class Point(NamedTuple):
-    """One row of a branch, linked to the row before it (``prev``)."""
+@dataclass(slots=True, eq=False)
+class Point:
+    """One row of a branch, linked to the row before it (``prev``); built by keyword
+    (:meth:`of`) and never changed after it is made."""
 
     z: np.ndarray
     """The curve vector (unknowns and free parameters)."""
@@ -61,16 +64,25 @@ class Point(NamedTuple):
     ) -> Point:
         """Built by keyword, fast: a class called with keywords first gathers them in a
         dict (three times the cost of this call, on every step)."""
-        return cls(
-            z, t, s, iterations, rejected, residual_norm, ds, special, prev, interpolation_error
+        self = object.__new__(cls)
+        self.z, self.t, self.s, self.iterations = z, t, s, iterations
+        self.rejected, self.residual_norm, self.ds, self.special = (
+            rejected,
+            residual_norm,
+            ds,
+            special,
         )
+        self.prev, self.interpolation_error = prev, interpolation_error
+        return self
 
 
-class TracerState(NamedTuple):
-    """Immutable solver state: the last point (with the branch behind it), the curve system
-    valid beyond it (augmented systems carry their bordering vectors here), the next step
-    size, the test functions' values at the last point, the step count and, once finished,
-    the status and message."""
+@dataclass(slots=True, eq=False)
+class TracerState:
+    """Immutable solver state (built by keyword, :meth:`of`; never changed after it is
+    made): the last point (with the branch behind it), the curve system valid beyond it
+    (augmented systems carry their bordering vectors here), the next step size, the test
+    functions' values at the last point, the step count and, once finished, the status and
+    message."""
 
     last: Point
     system: CurveSystem
@@ -100,7 +112,17 @@ class TracerState(NamedTuple):
     ) -> TracerState:
         """Built by keyword, fast: a class called with keywords first gathers them in a
         dict (three times the cost of this call, on every step)."""
-        return cls(last, system, ds, test_values, steps, status, message, n_points, stalled)
+        self = object.__new__(cls)
+        self.last, self.system, self.ds, self.test_values = last, system, ds, test_values
+        self.steps, self.status, self.message = steps, status, message
+        self.n_points, self.stalled = n_points, stalled
+        return self
+
+    def replaced(self, **changes: Any) -> TracerState:
+        """A copy with the fields given by keyword changed (this state is left as it is)."""
+        fields = {name: getattr(self, name) for name in self.__slots__}
+        fields.update(changes)
+        return TracerState.of(**fields)
 
 
 def _rows(state: TracerState) -> list[Point]:

@@ -564,7 +564,7 @@ class Tracer:
         if self.throw:
             raise failure.error
         logger.warning("continuation stopped: %s", failure.message)
-        return state._replace(status=failure.status, message=failure.message)
+        return state.replaced(status=failure.status, message=failure.message)
 
     # ------------------------------------------------------------------ result
 
