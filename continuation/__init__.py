@@ -16,8 +16,9 @@ The pieces: a problem (:class:`Problem`, or any object following
 into an underdetermined ``G(z) = 0`` and owns the test functions
 (:class:`~cusp.continuation.detection._tests.TestFunction`) whose sign changes mark its special
 points; the :class:`Tracer` steps along the curve through immutable
-:class:`TracerState` records; :func:`trace` and :func:`fold_curve` and :func:`locus` (loci
-of located points, or of a chain of corners across the legs of a loading program) are the
+:class:`TracerState` records; :func:`trace` (with ``stability=True``: eigenvalues and
+Hopf points), :func:`fold_curve`, :func:`hopf_curve` and :func:`locus` (loci of located
+points, or of a chain of corners across the legs of a loading program) are the
 entry points, returning a :class:`Branch`.
 """
 
@@ -40,12 +41,14 @@ from ._options import (
     RTOL_MAX,
     RTOL_MIN,
     ContinuationOptions,
+    StabilityOptions,
     point_tol,
     quadrature_tol,
 )
 from .detection._tests import TestFunction
 from .loci._chain import ChainPoint, PointChain
 from .loci._foldcurve import fold_curve
+from .loci._hopfcurve import hopf_curve
 from .loci._locus import locus, point_locus
 from .problem._derivatives import JacobianCheck, check_jacobian
 from .problem._events import Event
@@ -81,12 +84,14 @@ __all__ = [
     "SingularPointError",
     "StepGuardError",
     "SpecialPoint",
+    "StabilityOptions",
     "StalledError",
     "TestFunction",
     "Tracer",
     "TracerState",
     "check_jacobian",
     "fold_curve",
+    "hopf_curve",
     "locus",
     "point_locus",
     "point_tol",

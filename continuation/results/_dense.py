@@ -134,8 +134,11 @@ def _columns(branch: Any, out: np.ndarray) -> dict[str, np.ndarray]:
     cols = {v: out[:, j].copy() for j, v in enumerate(branch.variables)}
     n = out.shape[0]
     for key in branch.keys():
-        if key not in cols:
-            cols[key] = np.full(n, float(branch[key][0]))
+        column = branch[key]
+        # the fixed parameters; a column that varies but is not traced (n_unstable) has no
+        # value between rows: left out rather than given row 0's
+        if key not in cols and np.all(column == column[0]):
+            cols[key] = np.full(n, float(column[0]))
     return cols
 
 
