@@ -194,8 +194,8 @@ def _second_shift(jac: Any, m: Any, lam: np.ndarray, k: int) -> np.ndarray | Non
     sigma, lu = _factor(jac, 1j * omega2, m)
     op = spla.LinearOperator((n, n), matvec=lambda x: lu.solve(m @ x), dtype=complex)
     try:
-        nu = spla.eigs(op, k=min(k, 4), which="LM", v0=_start_vector(n).astype(complex),
-                       return_eigenvectors=False, tol=1e-8)  # fmt: skip
+        nu = spla.eigs(op, k=min(k, 4), ncv=min(n - 1, 20), which="LM", tol=1e-6,
+                       v0=_start_vector(n).astype(complex), return_eigenvectors=False)  # fmt: skip
     except spla.ArpackNoConvergence as exc:
         raise AccuracyError(f"the second-shift check did not converge ({exc})") from None
     found2 = sigma + 1.0 / nu[np.abs(nu) > 0.0]
@@ -209,8 +209,14 @@ def _second_shift(jac: Any, m: Any, lam: np.ndarray, k: int) -> np.ndarray | Non
     return np.array(new) if new else None
 
 
-def eigenvector_near(jac: Any, mass: Any, target: complex) -> tuple[complex, np.ndarray]:
-    """The eigenvalue of ``(jac, mass)`` nearest ``target`` and its right eigenvector."""
+def eigenvector_near(
+    jac: Any, mass: Any, target: complex, start: np.ndarray | None = None
+) -> tuple[complex, np.ndarray]:
+    """The eigenvalue of ``(jac, mass)`` nearest ``target`` and its right eigenvector: dense,
+    by LAPACK; sparse, by inverse iteration with the factors of ``A − target·M`` (from
+    ``start``, or a fixed random vector; ARPACK with one vector took 0.6 s at 10⁴
+    unknowns, inverse iteration a tenth), to a residual of 1e-10 or 8 steps (the Hopf
+    system's Newton refines it)."""
     n = jac.shape[0]
     if not sp.issparse(jac) or n <= 400:
         a = jac.toarray() if sp.issparse(jac) else np.asarray(jac, dtype=float)
@@ -223,9 +229,16 @@ def eigenvector_near(jac: Any, mass: Any, target: complex) -> tuple[complex, np.
         return complex(w[j]), v[:, j]
     m = sp.identity(n, format="csc") if mass is None else sp.csc_matrix(mass)
     sigma, lu = _factor(jac, complex(target), m)
-    op = spla.LinearOperator((n, n), matvec=lambda x: lu.solve(m @ x), dtype=complex)
-    nu, vecs = spla.eigs(op, k=1, which="LM", v0=_start_vector(n).astype(complex))
-    return complex(sigma + 1.0 / nu[0]), vecs[:, 0]
+    x = _start_vector(n).astype(complex) if start is None else np.asarray(start, complex)
+    mu = complex(sigma)
+    for _ in range(8):  # inverse iteration: each step multiplies the error by |λ−σ|/|λ'−σ|
+        y = lu.solve(m @ x)
+        x = y / np.linalg.norm(y)
+        ax, mx = jac @ x, m @ x
+        mu = complex(np.vdot(mx, ax) / np.vdot(mx, mx))
+        if np.linalg.norm(ax - mu * mx) <= 1e-10 * max(1.0, abs(mu)) * np.linalg.norm(mx):
+            break
+    return mu, x
 
 
 __all__ = [

@@ -8,13 +8,12 @@ from dataclasses import dataclass, replace
 from typing import Any
 
 import numpy as np
-import scipy.sparse as sp
 
 from .._errors import ContinuationError
 from .._outcomes import Kind, PointStatus
 from ..detection._eigen import eigenvector_near, n_unstable
 from ..detection._hopf import HopfPoint, locate_hopf
-from ..detection._lyapunov import first_lyapunov, solve
+from ..detection._lyapunov import Factored, first_lyapunov
 from ..problem._problem import as_matrix
 from ._branch import Branch, SpecialPoint
 
@@ -59,7 +58,8 @@ def hopf_row(
     if not _on_segment(branch, i, z):
         return None
     theta = _project(branch, i, z)
-    tangent = _tangent(problem, branch, i, theta, h)
+    lu = Factored(h.jacobian)  # (for the tangent and the Lyapunov coefficient)
+    tangent = _tangent(problem, branch, i, theta, h, lu)
     special = SpecialPoint(
         kind=Kind.HOPF,
         index=-1,
@@ -68,7 +68,7 @@ def hopf_row(
         status=PointStatus.CONVERGED,
         s=float(branch.s[i] + theta * (branch.s[i + 1] - branch.s[i])),
         interval=(float(branch.s[i]), float(branch.s[i + 1])),
-        details=hopf_details(problem, h, mass),
+        details=hopf_details(problem, h, mass, lu),
         scales=branch.info.get("scales"),
     )
     return HopfRow(
@@ -83,13 +83,15 @@ def hopf_row(
     )
 
 
-def hopf_details(problem: Any, h: HopfPoint, mass: Any) -> dict[str, Any]:
+def hopf_details(
+    problem: Any, h: HopfPoint, mass: Any, lu: Factored | None = None
+) -> dict[str, Any]:
     """A Hopf point's ``details``: ``omega``, Newton's ``iterations``, ``first_lyapunov``,
     ``criticality``, the ``eigenvector`` and ``adjoint`` (or a ``message`` saying why there
     is no first Lyapunov coefficient)."""
     details: dict[str, Any] = {"omega": h.omega, "iterations": h.iterations}
     try:
-        lya = first_lyapunov(problem, h.u, h.params, h.omega, h.q, h.jacobian, mass)
+        lya = first_lyapunov(problem, h.u, h.params, h.omega, h.q, h.jacobian, mass, lu)
     except ContinuationError as exc:
         details.update(first_lyapunov=None, message=f"no first Lyapunov coefficient: {exc}")
         return details
@@ -120,22 +122,18 @@ def _project(branch: Branch, i: int, z: np.ndarray) -> float:
     return min(1.0, max(0.0, theta))
 
 
-def _tangent(problem: Any, branch: Branch, i: int, theta: float, h: HopfPoint) -> np.ndarray:
-    """The branch's tangent at the Hopf point: ``[A, ∂R/∂p; tᵀ] x = [0; 1]`` with ``t`` the
-    interpolated tangent, scaled to its length."""
+def _tangent(
+    problem: Any, branch: Branch, i: int, theta: float, h: HopfPoint, lu: Factored
+) -> np.ndarray:
+    """The branch's tangent at the Hopf point, ``(−A⁻¹ ∂R/∂p, 1)`` (``A`` is regular
+    there), oriented and sized as the interpolated tangent ``t``."""
     t0, t1 = branch.tangents[i], branch.tangents[i + 1]
     t = t0 + theta * (t1 - t0)
     free = branch.variables[-1]
     dp = np.asarray(problem.param_jacobian(h.u, h.params, free), dtype=float)
-    jac = h.jacobian
-    if sp.issparse(jac):
-        top = sp.hstack([jac, sp.csc_matrix(dp.reshape(-1, 1))])
-        mat = sp.vstack([top, sp.csc_matrix(t.reshape(1, -1))], format="csc")
-    else:
-        mat = np.vstack([np.column_stack([np.asarray(jac), dp]), t])
-    rhs = np.zeros(t.size)
-    rhs[-1] = 1.0
-    x = solve(mat, rhs)
+    x = np.concatenate([-lu.solve(dp), [1.0]])
+    if float(x @ t) < 0.0:
+        x = -x
     return x * (np.linalg.norm(t) / np.linalg.norm(x))
 
 

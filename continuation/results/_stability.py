@@ -41,6 +41,7 @@ from .._outcomes import Kind, PointStatus
 from ..detection._eigen import REAL_TOL, Eigenvalues, spectrum, vector_field_mass
 from ..problem._problem import as_matrix
 from ._branch import Branch, SpecialPoint
+from ._dense import arrays, check_segment, segment
 from ._hopfrows import HopfRow, hopf_row, inserted
 
 logger = logging.getLogger(__name__)
@@ -59,6 +60,7 @@ class _Setting:
     options: StabilityOptions
     free: str
     states: np.ndarray
+    arcs: Any
 
 
 def with_stability(problem: Any, branch: Branch, options: StabilityOptions) -> Branch:
@@ -77,6 +79,7 @@ def with_stability(problem: Any, branch: Branch, options: StabilityOptions) -> B
         options=options,
         free=branch.variables[-1],
         states=np.column_stack([branch[name] for name in unknowns]),
+        arcs=_arcs(branch),
     )
     eigs = _row_spectra(setting, branch)
     rows = _hopf_rows(setting, branch, eigs) if options.hopf else []
@@ -90,6 +93,14 @@ def with_stability(problem: Any, branch: Branch, options: StabilityOptions) -> B
         "shift": options.shift,
     }
     return out
+
+
+def _arcs(branch: Branch) -> Any:
+    """The branch's interpolant's arrays, or None if it has none."""
+    try:
+        return arrays(branch)
+    except AccuracyError:
+        return None
 
 
 def _params(setting: _Setting, branch: Branch, i: int) -> dict[str, float]:
@@ -180,16 +191,16 @@ def _root(la_: complex, lb: complex) -> tuple[float, float]:
     return float(theta), float(la_.imag + theta * (lb.imag - la_.imag))
 
 
-def dense_guess(branch: Branch, i: int, theta: float) -> np.ndarray:
-    """The dense output at fraction ``theta`` of segment ``i`` (the chord if it has none)."""
-    names = branch.variables
-    s = branch.s[i] + theta * (branch.s[i + 1] - branch.s[i])
+def dense_guess(branch: Branch, i: int, theta: float, arcs: Any = None) -> np.ndarray:
+    """The dense output at fraction ``theta`` of segment ``i`` (the chord if it has none).
+    ``arcs``: the branch's interpolant's arrays (:func:`~._dense.arrays`), if computed."""
     try:
-        cols = branch.interpolate([s])
-        return np.array([cols[v][0] for v in names])
+        Z, T, w, errors, rtol = arcs if arcs is not None else arrays(branch)
+        check_segment(branch, i, errors[i + 1], rtol)
+        return segment(Z, T, w, i).sample(np.array([theta]))[0]
     except AccuracyError:
-        z0 = np.array([branch[v][i] for v in names])
-        z1 = np.array([branch[v][i + 1] for v in names])
+        z0 = np.array([branch[v][i] for v in branch.variables])
+        z1 = np.array([branch[v][i + 1] for v in branch.variables])
         return z0 + theta * (z1 - z0)
 
 
@@ -226,7 +237,7 @@ def _candidates(
         return [(ta + th * (tb - ta), om) for th, om in pairs]
     tm = 0.5 * (ta + tb)
     n = len(setting.problem.unknowns)
-    zm = dense_guess(branch, i, tm)
+    zm = dense_guess(branch, i, tm, setting.arcs)
     pm = _params(setting, branch, i)
     pm[setting.free] = float(zm[n])
     mid = (tm, _at(setting, zm[:n], pm, ea.start, verify=False))
@@ -244,7 +255,7 @@ def _locate(
 ) -> HopfRow | None:
     """The row of the Hopf point guessed at fraction ``theta`` of segment ``i`` (a guess's
     row if Newton fails; None if the point found lies elsewhere)."""
-    zg = dense_guess(branch, i, theta)
+    zg = dense_guess(branch, i, theta, setting.arcs)
     n = len(setting.problem.unknowns)
     pg = _params(setting, branch, i)
     pg[setting.free] = float(zg[n])
@@ -258,9 +269,22 @@ def _locate(
     if row is None:
         return None
     lam = _at(setting, row.z[:n], row.special.values, start, verify=False).values
-    if not np.min(np.abs(lam - 1j * row.special.details["omega"])) <= 1e-6 * max(1.0, omega):
+    omega_h = float(row.special.details["omega"])
+    if not np.min(np.abs(lam - 1j * omega_h)) <= 1e-6 * max(1.0, omega_h):
         logger.info("Newton's point at %s has no eigenvalue i*omega: dropped", row.z[n])
         return None
+    near = int(np.count_nonzero(np.abs(lam - 1j * omega_h) <= 1e-6 * max(1.0, omega_h)))
+    if near > 1:  # a double pair (a symmetric problem): located, but no generic Hopf point
+        details = {
+            k: v for k, v in row.special.details.items() if k not in ("criticality", "adjoint")
+        }
+        details.update(
+            first_lyapunov=None,
+            multiplicity=near,
+            message=f"{near} eigenvalues at i*omega: not a simple pair, so no first Lyapunov "
+            "coefficient (an equivariant Hopf point, as of a symmetric problem)",
+        )
+        row = replace(row, special=replace(row.special, details=details))
     return replace(row, eigenvalues=lam)
 
 
