@@ -24,18 +24,18 @@ expanded by multilinearity into real ones.
 
 from __future__ import annotations
 
-import warnings
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
-import scipy.linalg as la
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
+from scipy.linalg import lapack
 
 from .._errors import SingularMatrixError
 
+_EPS = float(np.finfo(float).eps)
 #: relative steps of the second and third differences (optimal for O(h⁴) after Richardson)
 H2, H3 = 2e-3, 1e-2
 
@@ -125,45 +125,51 @@ class Forms:
 
 
 class Factored:
-    """A square matrix (dense or sparse, real or complex) ready for repeated solves: a
-    sparse one factored once by SuperLU, a dense one solved by LAPACK per call (cheap at
-    the sizes that are dense). :meth:`solve` raises
-    :class:`~.._errors.SingularMatrixError` for a matrix singular to working precision."""
+    """A square matrix (dense or sparse, real or complex) factored once for repeated solves
+    (SuperLU; LAPACK getrf, with the condition number estimated by gecon). Building it or
+    :meth:`solve` raises :class:`~.._errors.SingularMatrixError` for a matrix singular to
+    working precision (a dense one's reciprocal condition number below ε, where
+    :func:`scipy.linalg.solve` warns)."""
 
     def __init__(self, matrix: Any) -> None:
         self.matrix = matrix
-        self.lu: Any = None
+        self.complex = np.iscomplexobj(matrix.data if sp.issparse(matrix) else matrix)
         if sp.issparse(matrix):
             try:
-                self.lu = spla.splu(sp.csc_matrix(matrix))
+                self.lu: Any = spla.splu(sp.csc_matrix(matrix))
             except RuntimeError as exc:  # "Factor is exactly singular"
                 raise SingularMatrixError(f"singular matrix in a Lyapunov solve: {exc}") from None
+            return
+        a = np.asarray(matrix, dtype=complex if self.complex else float)
+        if not np.all(np.isfinite(a)):
+            raise SingularMatrixError("a Lyapunov solve met a matrix with NaN or inf")
+        getrf, gecon = lapack.get_lapack_funcs(("getrf", "gecon"), (a,))
+        lu, piv, info = getrf(a)
+        anorm = float(np.max(np.sum(np.abs(a), axis=0)))
+        rcond = float(gecon(lu, anorm, norm="1")[0]) if info == 0 else 0.0
+        if not rcond >= _EPS:
+            raise SingularMatrixError(
+                f"singular matrix in a Lyapunov solve (reciprocal condition {rcond:.3g})"
+            )
+        self.lu = (lu, piv)
 
     def solve(self, rhs: np.ndarray, trans: str = "N") -> np.ndarray:
         """``matrix⁻¹ rhs`` (``trans``: ``"T"`` the transpose's, ``"H"`` the adjoint's)."""
-        if self.lu is None:
-            return _dense_solve(self.matrix, rhs, trans)
-        if np.iscomplexobj(rhs) and not np.iscomplexobj(self.matrix.data):
-            re = self.lu.solve(np.ascontiguousarray(rhs.real), trans=trans.replace("H", "T"))
-            im = self.lu.solve(np.ascontiguousarray(rhs.imag), trans=trans.replace("H", "T"))
-            return re + 1j * im
-        if np.iscomplexobj(self.matrix.data):
-            rhs = rhs.astype(complex)
-        out = self.lu.solve(rhs, trans=trans)
+        if np.iscomplexobj(rhs) and not self.complex:
+            t = trans.replace("H", "T")
+            re = self._solve(np.ascontiguousarray(rhs.real), t)
+            return re + 1j * self._solve(np.ascontiguousarray(rhs.imag), t)
+        out = self._solve(rhs.astype(complex) if self.complex else rhs, trans)
         if not np.all(np.isfinite(out)):
             raise SingularMatrixError("singular matrix in a Lyapunov solve (non-finite solution)")
         return out
 
-
-def _dense_solve(matrix: Any, rhs: np.ndarray, trans: str) -> np.ndarray:
-    a = np.asarray(matrix)
-    a = a if trans == "N" else (a.T if trans == "T" else a.conj().T)
-    try:
-        with np.errstate(all="ignore"), warnings.catch_warnings():
-            warnings.simplefilter("error", la.LinAlgWarning)  # singular to working precision
-            return la.solve(a, rhs, check_finite=True)
-    except (la.LinAlgError, la.LinAlgWarning, ValueError) as exc:
-        raise SingularMatrixError(f"singular matrix in a Lyapunov solve: {exc}") from None
+    def _solve(self, rhs: np.ndarray, trans: str) -> np.ndarray:
+        if not isinstance(self.lu, tuple):
+            return self.lu.solve(rhs, trans=trans)
+        lu, piv = self.lu
+        (getrs,) = lapack.get_lapack_funcs(("getrs",), (lu,))
+        return getrs(lu, piv, rhs, trans={"N": 0, "T": 1, "H": 2}[trans])[0]
 
 
 def solve(matrix: Any, rhs: np.ndarray) -> np.ndarray:
