@@ -9,6 +9,7 @@ from numpy.typing import ArrayLike
 
 from .._errors import ProblemDefinitionError
 from .._options import KEEP, ContinuationOptions, Keep, StabilityOptions, with_overrides
+from ..detection._eigen import vector_field_mass
 from ..problem._events import Event
 from ..problem._problem import ContinuationProblem
 from ..results._branch import Branch, SpecialPoint
@@ -121,6 +122,8 @@ detect_folds, detect_branch_points, locate_tol, max_locate_iterations
         :class:`StepGuardError`, :class:`NonFiniteResidualError`, :class:`StalledError`.
     """
     wanted = stability_options(stability)
+    if wanted is not None:
+        vector_field_mass(problem)  # (refused before tracing: no vector field, no stability)
     tracer = Tracer(
         problem,
         free=free,
