@@ -12,10 +12,9 @@ used).
 
 The pieces: a problem (:class:`Problem`, or any object following
 :class:`ContinuationProblem`) defines ``R(u, p) = 0``; a curve system
-(:class:`~cusp.continuation.systems._curve.CurveSystem`: an ordinary branch, a fold curve) turns it
-into an underdetermined ``G(z) = 0`` and owns the test functions
-(:class:`~cusp.continuation.detection._tests.TestFunction`) whose sign changes mark its special
-points; the :class:`Tracer` steps along the curve through immutable
+(:class:`CurveSystem`: an ordinary branch, a fold curve) turns it into an underdetermined
+``G(z) = 0``; test functions (:class:`TestFunction`) mark its special points by their sign
+changes; the :class:`Tracer` steps along the curve through immutable
 :class:`TracerState` records; :func:`trace` (with ``stability=True``: eigenvalues and
 Hopf points), :func:`fold_curve`, :func:`hopf_curve` and :func:`locus` (loci of located
 points, or of a chain of corners across the legs of a loading program) are the

@@ -38,9 +38,8 @@ from pathlib import Path
 import numpy as np  # noqa: E402
 import scipy.sparse as sp  # noqa: E402
 
+from cusp._scripts.report import commit_and_load, write_report  # noqa: E402
 from cusp.continuation import Problem, StabilityOptions, trace  # noqa: E402
-
-from _report import commit_and_load, write_report  # noqa: E402
 
 A, D = 2.0, 0.01
 ROOT = Path(__file__).resolve().parents[1]

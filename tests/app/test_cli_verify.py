@@ -15,7 +15,6 @@ sp = pytest.importorskip("sympy")
 
 import cusp.verification as verification  # noqa: E402
 from cusp.app import cli  # noqa: E402
-from tests.verification._stand_ins import NaiveRough, fake_models  # noqa: E402
 
 REQUIRED = {
     "equation": str,
@@ -91,10 +90,12 @@ def test_table_is_readable(capsys):
     assert "equations;" in out.splitlines()[-1]
 
 
-def test_implementation_disagreement_gives_nonzero_exit(capsys, monkeypatch):
+def test_implementation_disagreement_gives_nonzero_exit(capsys, monkeypatch, stand_ins):
     real = verification.check_implementation
     monkeypatch.setattr(
-        verification, "check_implementation", lambda models=None: real(fake_models(NaiveRough))
+        verification,
+        "check_implementation",
+        lambda models=None: real(stand_ins.fake_models(stand_ins.NaiveRough)),
     )
     status, recs = _run_json(capsys)
     assert status != 0

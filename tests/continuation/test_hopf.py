@@ -1,6 +1,6 @@
 """Stability along branches and Hopf points (issue 29): located Hopf points against closed
 forms, first Lyapunov coefficients against an independent 50-digit evaluation of
-Kuznetsov's formula (:mod:`hopf_oracle`: sympy derivatives, mpmath linear algebra)."""
+Kuznetsov's formula (the ``hopf_l1`` fixture: sympy derivatives, mpmath linear algebra)."""
 
 from __future__ import annotations
 
@@ -12,7 +12,6 @@ import scipy.sparse as sp
 import sympy as sy
 
 from cusp.continuation import Problem, ProblemDefinitionError, trace
-from tests.continuation.hopf_oracle import hopf_l1
 
 #: relative accuracy of a located Hopf parameter: rounding with an exact Jacobian; with a
 #: differenced one the floor of its (Richardson-extrapolated) rounding, ~1e-10 to 3e-10 here
@@ -39,7 +38,7 @@ def brusselator(a: float, jac: str) -> Problem:
     )  # fmt: skip
 
 
-def brusselator_oracle(a):
+def brusselator_oracle(hopf_l1, a):
     x, y, A, B = sy.symbols("x y a b")
     f = [A - (B + 1) * x + x**2 * y, B * x - x**2 * y]
     a = sy.nsimplify(a)
@@ -48,7 +47,7 @@ def brusselator_oracle(a):
 
 @pytest.mark.parametrize("jac", ["analytic", "central"])
 @pytest.mark.parametrize("a", [1.5, 2.0, 3.0])
-def test_brusselator_hopf_and_lyapunov(a, jac):
+def test_brusselator_hopf_and_lyapunov(a, jac, hopf_l1):
     br = trace(brusselator(a, jac), [a, 1.0 / a], free="b", bounds={"b": (1.0, 3 + a * a)},
                stability=True)  # fmt: skip
     (hopf,) = br.special("hopf")
@@ -56,7 +55,7 @@ def test_brusselator_hopf_and_lyapunov(a, jac):
     b_hopf = 1 + a * a  # closed form: trace of the Jacobian 0 at x = a, y = b/a
     assert abs(hopf.values["b"] - b_hopf) <= PARAM_RTOL[jac] * b_hopf
     assert abs(hopf.details["omega"] - a) <= PARAM_RTOL[jac] * a  # ω² = det = a²
-    omega, l1 = brusselator_oracle(a)  # 50 digits, e.g. a = 2: l1 = -1/6
+    omega, l1 = brusselator_oracle(hopf_l1, a)  # 50 digits, e.g. a = 2: l1 = -1/6
     assert float(omega) == pytest.approx(a, rel=1e-40)
     # closed form matching the oracle at a = 3/2, 2, 3: l1 = −(a² + 2)/(2a(2a² + 1))
     assert float(l1) == pytest.approx(-(a * a + 2) / (2 * a * (2 * a * a + 1)), rel=1e-15)
@@ -87,7 +86,7 @@ def lorenz(jac: str) -> Problem:
 
 
 @pytest.mark.parametrize("jac", ["analytic", "central"])
-def test_lorenz_subcritical_hopf(jac):
+def test_lorenz_subcritical_hopf(jac, hopf_l1):
     x0 = math.sqrt(BETA * 1.0)  # C+ at r = 2: x = y = sqrt(β(r − 1)), z = r − 1
     br = trace(lorenz(jac), [x0, x0, 1.0], free="r", bounds={"r": (2.0, 30.0)}, stability=True)
     (hopf,) = br.special("hopf")
@@ -202,7 +201,7 @@ def test_n_unstable_changes_by_one_at_folds():
 MASS = np.array([[2.0, 1.0], [0.0, 1.0]])
 
 
-def test_brusselator_with_a_mass_matrix():
+def test_brusselator_with_a_mass_matrix(hopf_l1):
     a = 2.0
     prob = brusselator(a, "analytic")
     prob = Problem(prob._residual, prob.unknowns, prob.params, jacobian=prob._jacobian, mass=MASS)
@@ -222,7 +221,7 @@ def test_brusselator_with_a_mass_matrix():
     assert hopf.details["first_lyapunov"] == pytest.approx(float(l1), rel=L1_RTOL)
 
 
-def test_singular_mass_matrix_matches_the_reduced_system():
+def test_singular_mass_matrix_matches_the_reduced_system(hopf_l1):
     """x' = a − (b+1)x + x²y, y' = bx − w, 0 = w − x²y: the Brusselator with an algebraic
     unknown w; its Hopf point is the Brusselator's (b = 1 + a², ω = a). The first Lyapunov
     coefficient is that of the reduced system in coordinates where q has the norm of its
@@ -244,7 +243,7 @@ def test_singular_mass_matrix_matches_the_reduced_system():
     assert hopf.details["omega"] == pytest.approx(2.0, rel=1e-10)
     q = hopf.details["eigenvector"]
     qxy2 = float(np.vdot(q[:2], q[:2]).real)
-    _, l1 = brusselator_oracle(a)  # −1/6
+    _, l1 = brusselator_oracle(hopf_l1, a)  # −1/6
     assert hopf.details["first_lyapunov"] == pytest.approx(float(l1) * qxy2, rel=L1_RTOL)
 
 

@@ -12,10 +12,9 @@ import sympy as sy
 
 from cusp.continuation import Problem, trace
 from cusp.examples import ab_reactor
-from tests.continuation.hopf_oracle import hopf_l1
 
 
-def test_auto_ab_demo_hopf_point():
+def test_auto_ab_demo_hopf_point(hopf_l1):
     """AUTO 97 tutorial, demo ab, first run (p2 = 14, p3 = 2; ``doc/tutorial.tex`` of the
     auto-07p repository) prints ``HB 4 PAR(1) = 1.308998E-01, U(1) = 8.950803E-01,
     U(2) = 4.177042E+00``. Closed form: on the branch u1 = 3θ/14 (θ = u2), p1 = u1e^{−θ}/(1−u1),
