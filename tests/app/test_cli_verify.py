@@ -4,9 +4,9 @@ from __future__ import annotations
 
 import dataclasses
 import json
+import resource
 import subprocess
 import sys
-import time
 from pathlib import Path
 
 import pytest
@@ -134,14 +134,18 @@ def test_wrong_printed_form_gives_nonzero_exit(capsys, monkeypatch):
 
 @pytest.mark.slow
 def test_cusp_verify_runs_in_under_60_s():
-    start = time.perf_counter()
+    """The whole verification takes under a minute of CPU time (the child's user + system
+    time, not the wall clock: on a machine shared with other jobs the wall clock measures
+    the load, and failed this test at 15 min for the whole suite)."""
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
     proc = subprocess.run(
         [sys.executable, "-m", "cusp.app.cli", "verify"],
         capture_output=True,
         text=True,
-        timeout=120,
+        timeout=600,
         cwd=Path(__file__).resolve().parents[2],
     )
-    elapsed = time.perf_counter() - start
-    assert elapsed < 60
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
+    assert cpu < 60, cpu
     assert proc.returncode == (0 if _models_available() else 1), proc.stdout[-2000:]

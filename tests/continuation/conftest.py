@@ -5,14 +5,16 @@ here): the derivative strategies and their fold-state tolerances, and checks of 
   wants only some, or combinations, parametrizes ``strategy`` itself;
 * ``state_rtol``: the tolerance on a refined fold's state for that strategy;
 * ``special``, ``first_fold_step``, ``branch_residual_norms``,
-  ``assert_special_points_consistent``: the functions of the same names.
+  ``assert_special_points_consistent``: the functions of the same names;
+* ``hopf_l1``: the independent 50-digit Hopf oracle (:mod:`tests.continuation.hopf_oracle`:
+  sympy derivatives, mpmath linear algebra, Kuznetsov's formula).
 """
 
 from __future__ import annotations
 
 import pytest
 
-from tests.continuation import helpers
+from tests.continuation import helpers, hopf_oracle
 
 
 @pytest.fixture(params=helpers.STRATEGIES)
@@ -49,3 +51,10 @@ def branch_residual_norms():
 def assert_special_points_consistent():
     """``assert_special_points_consistent(case, br)``: special points match the columns."""
     return helpers.assert_special_points_consistent
+
+
+@pytest.fixture(scope="session")
+def hopf_l1():
+    """``hopf_l1(f, variables, point, ...)``: ω and the first Lyapunov coefficient at a Hopf
+    point, by Kuznetsov's formula at 50 digits (:func:`tests.continuation.hopf_oracle.hopf_l1`)."""
+    return hopf_oracle.hopf_l1
