@@ -6,6 +6,7 @@ import math
 from collections.abc import Mapping
 from dataclasses import dataclass, field, fields, replace
 from enum import Enum
+from operator import is_, itemgetter
 from typing import Any
 
 from ._errors import OptionsError
@@ -341,8 +342,11 @@ def with_overrides(
     point's arguments by name (its ``locals()``), among them every option keyword
     (:data:`OPTION_KEYWORDS`), :data:`KEEP` where not given."""
     base = default if options is None else options
-    changes = {name: arguments[name] for name in OPTION_KEYWORDS if arguments[name] is not KEEP}
-    return base.replace(**changes) if changes else base
+    values = _option_values(arguments)
+    if all(map(is_, values, _KEEPS)):  # (the common case, none given: read in C)
+        return base
+    changes = {name: v for name, v in zip(OPTION_KEYWORDS, values) if v is not KEEP}
+    return base.replace(**changes)
 
 
 def _not_given(value: object) -> bool:
@@ -377,6 +381,9 @@ OPTION_KEYWORDS = (
 """The fields of :class:`ContinuationOptions` that the entry points (``trace``,
 ``fold_curve``, ``locus``, ``point_locus``, :class:`~.stepping._tracer.Tracer`) take by
 keyword, overriding their ``options`` (every field there is)."""
+_option_values = itemgetter(*OPTION_KEYWORDS)
+_KEEPS = (KEEP,) * len(OPTION_KEYWORDS)
+
 
 #: the options that must be finite numbers > 0, in the order they are checked
 _POSITIVE = (

@@ -408,8 +408,7 @@ def _on_floats(
     if g is None or not abs(g) < math.inf:
         return None
     x, lam = z0.tolist()
-    r0, r1 = row.tolist()
-    w0, w1 = system.weights.tolist()
+    (r0, r1), (w0, w1) = row.tolist(), system.weights.tolist()
     i0, i1 = inverse_magnitudes(system.scales, z0)
     rel_step_tol = floor_step_tol(system, settings)
     b2 = 0.0 if c is None else r0 * x + r1 * lam - c  # the border's residual, then 0
