@@ -43,6 +43,9 @@ from ._options import (
     quadrature_tol,
 )
 from .detection._tests import TestFunction
+from .diagram._deflation import Deflation, deflate
+from .diagram._diagram import DeflationStarts, diagram
+from .diagram._records import Diagram, DiagramBranch, DiagramPoint
 from .loci._chain import ChainPoint, PointChain
 from .loci._foldcurve import fold_curve
 from .loci._locus import locus, point_locus
@@ -66,6 +69,11 @@ __all__ = [
     "ContinuationOptions",
     "ContinuationProblem",
     "CurveSystem",
+    "Deflation",
+    "DeflationStarts",
+    "Diagram",
+    "DiagramBranch",
+    "DiagramPoint",
     "ConvergenceError",
     "MaxStepsWarning",
     "Event",
@@ -85,6 +93,8 @@ __all__ = [
     "Tracer",
     "TracerState",
     "check_jacobian",
+    "deflate",
+    "diagram",
     "fold_curve",
     "locus",
     "point_locus",
