@@ -22,7 +22,7 @@ from ..numerics._arc import HermiteArc, arc_length
 from ..results._branch import Branch, join_halves
 from ..stepping._state import Point, TracerState
 from ..stepping._tracer import Tracer
-from ._geometry import _nearest_on_arc
+from ._geometry import _nearest_on_arc, unit
 
 CLOSING_COSINE = 0.9
 """How parallel (and same way) the returning arc must run to the start's tangent."""
@@ -94,7 +94,7 @@ def _returns(a: Point, b: Point, start: Point, w: np.ndarray, tol: float) -> boo
     if min(_distance(a.z, start.z, w), _distance(b.z, start.z, w)) > tol + chord:
         return False
     distance, tangent, _ = _nearest_on_arc(HermiteArc(a.z, a.t, b.z, b.t, length), start.z, w)
-    return distance <= tol and float(tangent.dot(w * start.t)) >= CLOSING_COSINE
+    return distance <= tol and float(tangent.dot(w * unit(start.t, w))) >= CLOSING_COSINE
 
 
 def _distance(x: np.ndarray, y: np.ndarray, w: np.ndarray) -> float:

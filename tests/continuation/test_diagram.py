@@ -15,6 +15,7 @@ import pytest
 
 from cusp.continuation import DeflationStarts, Problem, deflate, diagram, trace
 from cusp.continuation.diagram import _diagram as diag
+from cusp.examples.diagrams import isola, painleve, two_modes
 from cusp.examples.symmetric import chafee_infante, chafee_infante_eigenvalue
 from cusp.examples.symmetric_cells import cstr_pair, cstr_pair_references
 
@@ -78,36 +79,6 @@ def test_depth_limit_and_max_branches():
 
 
 # --- secondary bifurcations: two interacting modes ------------------------------------------
-
-
-def two_modes() -> Problem:
-    """x(λ − 1 − x² − y²/2) = 0, y(λ − 2 − y² − x²/2) = 0.
-
-    Closed forms: the trivial branch x = y = 0 has branch points at λ = 1 (mode x) and λ = 2
-    (mode y); the x-branch y = 0, x² = λ − 1 carries a secondary branch point where
-    λ − 2 − x²/2 = (λ − 3)/2 = 0: λ = 3, x = ±√2; the y-branch x = 0, y² = λ − 2 none
-    (λ − 1 − y²/2 = λ/2 ≠ 0 for λ ≥ 2); the mixed branches x² + y²/2 = λ − 1,
-    y² + x²/2 = λ − 2, i.e. x² = 2λ/3, y² = (2λ − 6)/3 (from λ = 3), one for x > 0 and one for
-    x < 0, with det J = 3x²y² ≠ 0 off y = 0: none either."""
-
-    def residual(u, p):
-        x, y, lam = u[0], u[1], p["lam"]
-        return np.array([x * (lam - 1 - x * x - y * y / 2), y * (lam - 2 - y * y - x * x / 2)])
-
-    def jacobian(u, p):
-        x, y, lam = u[0], u[1], p["lam"]
-        return np.array(
-            [
-                [lam - 1 - 3 * x * x - y * y / 2, -x * y],
-                [-x * y, lam - 2 - 3 * y * y - x * x / 2],
-            ]
-        )
-
-    def param_jacobian(u, p, name):
-        return np.array([u[0], u[1]])
-
-    return Problem(residual, ["x", "y"], {"lam": 0.0}, jacobian=jacobian,
-                   param_jacobian=param_jacobian)  # fmt: skip
 
 
 def test_secondary_bifurcations():
@@ -223,20 +194,6 @@ def test_nearby_parallel_branches_are_not_merged():
 # --- closed branches and deflation ----------------------------------------------------------
 
 
-def isola() -> Problem:
-    """x·((x − 3)² + (λ − 2)² − 1) = 0: the line x = 0 (∂R/∂x = (9 + (λ − 2)² − 1) > 0 on it:
-    no branch point) and the circle of radius 1 about (x, λ) = (3, 2), regular (∇R = x·∇ of
-    the circle, x ∈ [2, 4]): an isola, reachable from x = 0 only by deflation. At λ = 2 the
-    solutions are x = 0, 2, 4."""
-    return Problem(
-        lambda u, p: [u[0] * ((u[0] - 3.0) ** 2 + (p["lam"] - 2.0) ** 2 - 1.0)],
-        ["x"],
-        {"lam": 0.0},
-        jacobian=lambda u, p: [[3 * u[0] ** 2 - 12 * u[0] + 8 + (p["lam"] - 2.0) ** 2]],
-        param_jacobian=lambda u, p, name: [2 * u[0] * (p["lam"] - 2.0)],
-    )
-
-
 def test_isola_only_by_deflation():
     """Without deflation one branch (x = 0); with deflation at λ = 2 from x = 1 the isola:
     deflation finds x = 2 and 4 (0 is on the known branch and deflated first), the branch
@@ -314,3 +271,53 @@ def test_deflation_jacobian_is_sherman_morrison():
     Jd = M * Jm + Rm * grad.T
     want = -mpmath.lu_solve(Jd, M * Rm)
     assert np.allclose(ours, [float(v) for v in want], rtol=1e-13, atol=0)
+
+
+# --- a published deflation example: the first Painlevé transcendent --------------------------
+
+
+def test_painleve_two_solutions_from_one_guess():
+    """Farrell, Birkisson & Funke (2015), the first Painlevé transcendent example: the
+    problem has two solutions, and deflation finds both from one initial guess. Here from
+    y = √x: exactly two (a third deflated run finds none), each with residual ≤ 1e-10. The
+    oracle is an independent solver: scipy's collocation ``solve_bvp`` (tol 1e-10) started
+    from each, which gives y'(0) = 0.92438 and −3.79199; the finite-difference solutions
+    converge to them at second order (the error's ratio from n = 99 to 199, h halved, is
+    4 to 1 %)."""
+    from scipy.integrate import solve_bvp
+
+    errors: list[list[float]] = [[], []]
+    slopes = []
+    for n in (99, 199):
+        prob, x = painleve(n)
+        found = deflate(prob, [np.sqrt(x)], max_solutions=10)
+        assert len(found) == 2 and found.runs == 3
+        assert all(r <= 1e-10 for r in found.residual_norms)
+        for j, u in enumerate(sorted(found.solutions, key=lambda v: -v[0])):
+            xs = np.concatenate([[0.0], x, [10.0]])
+            ys = np.concatenate([[0.0], u, [math.sqrt(10.0)]])
+            ref = solve_bvp(
+                lambda t, Y: np.vstack([Y[1], Y[0] ** 2 - t]),
+                lambda a, b: np.array([a[0], b[0] - math.sqrt(10.0)]),
+                xs, np.vstack([ys, np.gradient(ys, xs)]), tol=1e-10, max_nodes=200000,
+            )  # fmt: skip
+            assert ref.status == 0
+            errors[j].append(float(np.max(np.abs(ref.sol(x)[0] - u))))
+            slopes.append(float(ref.sol(0.0)[1]))
+    for e in errors:
+        assert abs(e[0] / e[1] - 4.0) <= 0.04, errors
+    assert slopes[0] == pytest.approx(slopes[2], abs=1e-8)  # the same solution at both n
+    assert slopes[0] > 0.9 and slopes[1] < -3.7  # one rising, one dipping below zero
+
+
+def test_plot_draws_every_branch_and_the_points():
+    """One line per branch (no stability column here) and one marker line for the points."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    d = diagram(two_modes(), [0.0, 0.0], free="lam", bounds={"lam": (0.0, 6.0)})
+    ax = d.plot("lam", "x")
+    assert len(ax.lines) == len(d.branches) + 1
+    plt.close(ax.figure)
