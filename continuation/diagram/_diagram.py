@@ -33,7 +33,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike
 
-from .._errors import ContinuationError, ProblemDefinitionError
+from .._errors import AccuracyError, ContinuationError, ProblemDefinitionError
 from .._options import KEEP, ContinuationOptions, Keep
 from .._outcomes import Kind, PointStatus
 from ..problem._problem import ContinuationProblem, as_problem
@@ -277,9 +277,26 @@ def _switch(book: _Book, k: int, index: int, sp: SpecialPoint) -> str:
             f"{where}: switching failed: the trace from it (ends {walked.ends}) lies on "
             f"branch {dup}, which does not leave the point along the other branch's direction"
         )
+    walked, jumped = _drop_jumped_half(book, index, sp, walked)
     book.traces -= 1  # counted by _add
     new = _add(book, walked, depth=depth + 1, origin="branch_point", source=k)
-    return f"{where}: switched into branch {new}"
+    return f"{where}: switched into branch {new}{jumped}"
+
+
+def _drop_jumped_half(book: _Book, index: int, sp: SpecialPoint, walked: Walked) -> tuple:
+    """(walked, note): a half of a switch that lies on a known branch not leaving the point
+    along the other direction (the tracer jumped back onto it) is dropped, the other half
+    kept alone, and the note says so; otherwise ``walked`` as it is and no note."""
+    if walked.closed:
+        return walked, ""
+    for h, half in enumerate(walked.halves):
+        dup = _duplicate_of(book, half)
+        if dup is not None and not _along_other(book, index, sp, dup):
+            keep = walked.halves[1 - h]
+            ends = (f"jumped onto branch {dup}", str(keep.status))
+            kept = Walked(branch=keep, closed=False, ends=ends, halves=(keep,))
+            return kept, f" (one half only: the other jumped onto branch {dup}, dropped)"
+    return walked, ""
 
 
 def _link(book: _Book, k: int, branch: int) -> None:
@@ -357,7 +374,10 @@ def _known_at(book: _Book, value: float) -> list[np.ndarray]:
         br = item.branch
         x = br[book.free]
         for i in np.flatnonzero((x[:-1] - value) * (x[1:] - value) <= 0.0).tolist():
-            part = br.interpolate([_crossing_s(br, i, value)])
+            try:
+                part = br.interpolate([_crossing_s(br, i, value)])
+            except AccuracyError:  # an arc off the curve (a kink): not deflated
+                continue
             out.append(np.array([part[v][0] for v in br.variables[:-1]]))
     return out
 

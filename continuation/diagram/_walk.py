@@ -29,12 +29,14 @@ CLOSING_COSINE = 0.9
 
 
 class Walked(NamedTuple):
-    """A traced branch of a diagram: the ``branch``, whether it ``closed`` on itself, and how
-    each half ended (``ends``: the statuses, minus half first; one entry if closed)."""
+    """A traced branch of a diagram: the ``branch``, whether it ``closed`` on itself, how
+    each half ended (``ends``: the statuses, minus half first; one entry if closed) and the
+    ``halves`` as traced (minus, plus; the one half if closed)."""
 
     branch: Branch
     closed: bool
     ends: tuple[str, ...]
+    halves: tuple[Branch, ...]
 
 
 def walk(begin: Callable[[int], tuple[Tracer, TracerState]], tol: float) -> Walked:
@@ -42,12 +44,13 @@ def walk(begin: Callable[[int], tuple[Tracer, TracerState]], tol: float) -> Walk
     the half in direction ``d``), ending a half that returns to the start (see the module)."""
     plus, closed = _half(*begin(1), tol)
     if closed:
-        return Walked(branch=plus, closed=True, ends=("closed",))
+        return Walked(branch=plus, closed=True, ends=("closed",), halves=(plus,))
     minus, closed = _half(*begin(-1), tol)
     if closed:  # only a loop traced the other way round could close here
-        return Walked(branch=minus, closed=True, ends=("closed",))
+        return Walked(branch=minus, closed=True, ends=("closed",), halves=(minus,))
     both = join_halves(minus, plus)
-    return Walked(branch=both, closed=False, ends=(str(minus.status), str(plus.status)))
+    ends = (str(minus.status), str(plus.status))
+    return Walked(branch=both, closed=False, ends=ends, halves=(minus, plus))
 
 
 def _half(tracer: Tracer, state: TracerState, tol: float) -> tuple[Branch, bool]:

@@ -172,6 +172,20 @@ def test_a_failed_switch_is_reported_not_taken_for_a_duplicate():
     assert "switching failed" in d.points[0].notes[0]
 
 
+def test_a_half_that_jumps_back_is_dropped():
+    """(x − p)(x − 1.2 p) = 0 with the default typical sizes: one half of the switch jumps
+    back onto x = p next to the branch point (the tracer's limit at 4° apart); that half lies
+    on the start's branch, which does not leave along the other direction, so it is dropped
+    and the other half, on x = 1.2 p, is kept alone: no branch mixes the two lines."""
+    prob = Problem(lambda u, p: [(u[0] - p["p"]) * (u[0] - 1.2 * p["p"])], ["x"], {"p": -1.0})
+    d = diagram(prob, [-1.0], free="p", bounds={"p": (-1.0, 1.0)})
+    assert len(d.branches) == 2, d
+    other = d.branches[1]
+    assert other.ends[0] == "jumped onto branch 0" and other.ends[1] == "bound"
+    assert np.max(np.abs(other.branch["x"] - 1.2 * other.branch["p"])) <= 1e-12
+    assert "jumped onto branch 0" in d.points[0].notes[0]
+
+
 def test_nearby_parallel_branches_are_not_merged():
     """x = p and x = p + c: a branch lies on another only if all its checked points are
     within tol = 4·rtol (weighted, relative to the typical sizes); at c = 10·tol they are
