@@ -15,8 +15,9 @@ The pieces: a problem (:class:`Problem`, or any object following
 (:class:`CurveSystem`: an ordinary branch, a fold curve) turns it into an underdetermined
 ``G(z) = 0``; test functions (:class:`TestFunction`) mark its special points by their sign
 changes; the :class:`Tracer` steps along the curve through immutable
-:class:`TracerState` records; :func:`trace` and :func:`fold_curve` and :func:`locus` (loci
-of located points, or of a chain of corners across the legs of a loading program) are the
+:class:`TracerState` records; :func:`trace` (with ``stability=True``: eigenvalues and
+Hopf points), :func:`fold_curve`, :func:`hopf_curve` and :func:`locus` (loci of located
+points, or of a chain of corners across the legs of a loading program) are the
 entry points, returning a :class:`Branch`.
 """
 
@@ -39,6 +40,7 @@ from ._options import (
     RTOL_MAX,
     RTOL_MIN,
     ContinuationOptions,
+    StabilityOptions,
     point_tol,
     quadrature_tol,
 )
@@ -48,6 +50,7 @@ from .diagram._diagram import DeflationStarts, diagram
 from .diagram._records import Diagram, DiagramBranch, DiagramPoint
 from .loci._chain import ChainPoint, PointChain
 from .loci._foldcurve import fold_curve
+from .loci._hopfcurve import hopf_curve
 from .loci._locus import locus, point_locus
 from .problem._derivatives import JacobianCheck, check_jacobian
 from .problem._events import Event
@@ -88,6 +91,7 @@ __all__ = [
     "SingularPointError",
     "StepGuardError",
     "SpecialPoint",
+    "StabilityOptions",
     "StalledError",
     "TestFunction",
     "Tracer",
@@ -96,6 +100,7 @@ __all__ = [
     "deflate",
     "diagram",
     "fold_curve",
+    "hopf_curve",
     "locus",
     "point_locus",
     "point_tol",

@@ -284,6 +284,42 @@ class ContinuationOptions:
         return replace(self, **changes)
 
 
+@dataclass(frozen=True, kw_only=True)
+class StabilityOptions:
+    """How ``trace(..., stability=...)`` computes stability (``stability=True`` is
+    ``StabilityOptions()``).
+
+    ``nev``: the eigenvalues computed nearest ``shift`` on sparse problems (shift-invert
+    Arnoldi; at least 2); ``dense_limit``: sparse Jacobians of at most this many unknowns
+    get all their eigenvalues densely; ``shift``: the real shift of the sparse
+    computation (0: the eigenvalues nearest the imaginary axis's origin); ``hopf``: locate
+    the Hopf points (False: eigenvalues and ``n_unstable`` only).
+
+    >>> StabilityOptions(nev=1)
+    Traceback (most recent call last):
+    ...
+    cusp.continuation.OptionsError: option 'nev' must be an integer >= 2, got 1
+    """
+
+    nev: int = 8
+    dense_limit: int = 400
+    shift: float = 0.0
+    hopf: bool = True
+
+    def __post_init__(self) -> None:
+        whole = lambda v: isinstance(v, int) and not isinstance(v, bool)  # noqa: E731
+        _check("nev", self.nev, whole(self.nev) and self.nev >= 2, "an integer >= 2")
+        _check(
+            "dense_limit",
+            self.dense_limit,
+            whole(self.dense_limit) and self.dense_limit >= 0,
+            "an integer >= 0",
+        )
+        finite = isinstance(self.shift, (int, float)) and not isinstance(self.shift, bool)
+        _check("shift", self.shift, finite and math.isfinite(self.shift), "a finite number")
+        _check("hopf", self.hopf, isinstance(self.hopf, bool), "True or False")
+
+
 class Keep(Enum):
     """The default of the option keywords of the entry points (``trace(..., ds_max=...)``):
     not given, the field of ``options`` is kept."""

@@ -29,12 +29,11 @@ import time
 
 import numpy as np
 
+from cusp._scripts.report import commit_and_load, write_report
 from cusp.continuation import deflate, diagram, trace
 from cusp.examples.diagrams import isola, painleve, two_modes
 from cusp.examples.symmetric import chafee_infante, chafee_infante_eigenvalue
 from cusp.examples.symmetric_cells import cstr_pair
-
-from _report import commit_and_load, write_report
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]
 

@@ -16,10 +16,9 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
+from cusp._scripts.report import save_figure  # noqa: E402
 from cusp.continuation import Problem, diagram  # noqa: E402
 from cusp.examples.symmetric import chafee_infante  # noqa: E402
-
-from _report import save_figure  # noqa: E402
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]
 

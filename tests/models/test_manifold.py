@@ -2,7 +2,7 @@
 (cusp.models.manifold): for exponential heights against the sympy closed forms of
 :func:`cusp.verification.contact_loss_path` (points, energies) and the closed-form events;
 for Gaussian heights and a sphere against single runs and the mpmath oracles of
-``tests/models/_contact_oracles.py``. Events:
+``cusp.verification.oracles``. Events:
 
 * C boundary, F_A = μF'_N with F_A = μF_N0(1 − exp(−g_A/(λμ))):
   μ_C = g_A / (λ ln(F_N0/ΔF_N)), or at fixed μ, F'_N = F_A/μ;
@@ -18,8 +18,8 @@ import pytest
 
 from cusp.models import ContactLoss, ExponentialRoughSurface, GaussianRoughSurface, Sphere
 from cusp.models.manifold import C_MARGIN, CSV_COLUMNS, LOCI_UNITS, point_loci
-from tests.models import _contact_oracles as oracles
-from tests.models._exponential_closed import closed_form
+from cusp.verification import oracles
+from cusp.verification.oracles import exponential_closed_form as closed_form
 
 pytest.importorskip("cusp.verification")  # (sympy: the closed forms)
 
