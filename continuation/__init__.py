@@ -45,6 +45,9 @@ from ._options import (
     quadrature_tol,
 )
 from .detection._tests import TestFunction
+from .diagram._deflation import Deflation, deflate
+from .diagram._diagram import DeflationStarts, diagram
+from .diagram._records import Diagram, DiagramBranch, DiagramPoint
 from .loci._chain import ChainPoint, PointChain
 from .loci._foldcurve import fold_curve
 from .loci._hopfcurve import hopf_curve
@@ -69,6 +72,11 @@ __all__ = [
     "ContinuationOptions",
     "ContinuationProblem",
     "CurveSystem",
+    "Deflation",
+    "DeflationStarts",
+    "Diagram",
+    "DiagramBranch",
+    "DiagramPoint",
     "ConvergenceError",
     "MaxStepsWarning",
     "Event",
@@ -89,6 +97,8 @@ __all__ = [
     "Tracer",
     "TracerState",
     "check_jacobian",
+    "deflate",
+    "diagram",
     "fold_curve",
     "hopf_curve",
     "locus",

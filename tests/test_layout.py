@@ -72,6 +72,7 @@ ENGINE_ORDER = (
     "results",  # Branch, SpecialPoint, dense output
     "stepping",  # the tracer: start, step, confirmation, work budget, state
     "loci",  # fold curves, loci of located points, chains of points
+    "diagram",  # whole diagrams: recursive branch switching, each branch once, deflation
 )
 
 
