@@ -72,7 +72,7 @@ def _half(tracer: Tracer, state: TracerState, tol: float) -> tuple[Branch, bool]
                     f"closed: the branch returned to its start (within {tol:.3g}, weighted) "
                     f"at s = {b.s:.6g}"
                 )
-                state = state._replace(status=Status.TERMINAL_EVENT, message=message)
+                state = state.replaced(status=Status.TERMINAL_EVENT, message=message)
                 return tracer.result(state), True
     return tracer.result(state), False
 
