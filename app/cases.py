@@ -103,7 +103,7 @@ def length_notes(scene: Scene) -> list[str]:
         ("surface", "radius"): scene.surface.get("radius"),
     }
     given = {k: float(v) for k, v in lengths.items() if isinstance(v, float) and v > 0.0}
-    notes = []
+    notes: list[str] = []
     for key in (("loading", "max_slip"), ("surface", "sigma")):
         if key not in given or len(given) < 2 or (notes and len(given) == 2):
             continue  # (of two lengths far apart, the note names max_slip)

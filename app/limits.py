@@ -91,8 +91,8 @@ def check_text(text: str) -> str | None:
             depth += 1
             deepest = max(deepest, depth)
             if deepest > MAX_NESTING:
-                line = text.count("\n", 0, i) + 1
-                return f"nesting deeper than the limit of {MAX_NESTING} (line {line})"
+                lineno = text.count("\n", 0, i) + 1
+                return f"nesting deeper than the limit of {MAX_NESTING} (line {lineno})"
         elif ch in "]}":
             depth = max(depth - 1, 0)
         i += 1

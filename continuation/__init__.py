@@ -12,12 +12,12 @@ used).
 
 The pieces: a problem (:class:`Problem`, or any object following
 :class:`ContinuationProblem`) defines ``R(u, p) = 0``; a curve system
-(:class:`~cusp.continuation.systems._curve.CurveSystem`: an ordinary branch, a fold curve) turns it
-into an underdetermined ``G(z) = 0`` and owns the test functions
-(:class:`~cusp.continuation.detection._tests.TestFunction`) whose sign changes mark its special
-points; the :class:`Tracer` steps along the curve through immutable
-:class:`TracerState` records; :func:`trace` and :func:`fold_curve` and :func:`locus` (loci
-of located points, or of a chain of corners across the legs of a loading program) are the
+(:class:`CurveSystem`: an ordinary branch, a fold curve) turns it into an underdetermined
+``G(z) = 0``; test functions (:class:`TestFunction`) mark its special points by their sign
+changes; the :class:`Tracer` steps along the curve through immutable
+:class:`TracerState` records; :func:`trace` (with ``stability=True``: eigenvalues and
+Hopf points), :func:`fold_curve`, :func:`hopf_curve` and :func:`locus` (loci of located
+points, or of a chain of corners across the legs of a loading program) are the
 entry points, returning a :class:`Branch`.
 """
 
@@ -40,12 +40,17 @@ from ._options import (
     RTOL_MAX,
     RTOL_MIN,
     ContinuationOptions,
+    StabilityOptions,
     point_tol,
     quadrature_tol,
 )
 from .detection._tests import TestFunction
+from .diagram._deflation import Deflation, deflate
+from .diagram._diagram import DeflationStarts, diagram
+from .diagram._records import Diagram, DiagramBranch, DiagramPoint
 from .loci._chain import ChainPoint, PointChain
 from .loci._foldcurve import fold_curve
+from .loci._hopfcurve import hopf_curve
 from .loci._locus import locus, point_locus
 from .problem._derivatives import JacobianCheck, check_jacobian
 from .problem._events import Event
@@ -67,6 +72,11 @@ __all__ = [
     "ContinuationOptions",
     "ContinuationProblem",
     "CurveSystem",
+    "Deflation",
+    "DeflationStarts",
+    "Diagram",
+    "DiagramBranch",
+    "DiagramPoint",
     "ConvergenceError",
     "MaxStepsWarning",
     "Event",
@@ -81,12 +91,16 @@ __all__ = [
     "SingularPointError",
     "StepGuardError",
     "SpecialPoint",
+    "StabilityOptions",
     "StalledError",
     "TestFunction",
     "Tracer",
     "TracerState",
     "check_jacobian",
+    "deflate",
+    "diagram",
     "fold_curve",
+    "hopf_curve",
     "locus",
     "point_locus",
     "point_tol",

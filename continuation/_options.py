@@ -6,6 +6,7 @@ import math
 from collections.abc import Mapping
 from dataclasses import dataclass, field, fields, replace
 from enum import Enum
+from operator import is_, itemgetter
 from typing import Any
 
 from ._errors import OptionsError
@@ -284,6 +285,42 @@ class ContinuationOptions:
         return replace(self, **changes)
 
 
+@dataclass(frozen=True, kw_only=True)
+class StabilityOptions:
+    """How ``trace(..., stability=...)`` computes stability (``stability=True`` is
+    ``StabilityOptions()``).
+
+    ``nev``: the eigenvalues computed nearest ``shift`` on sparse problems (shift-invert
+    Arnoldi; at least 2); ``dense_limit``: sparse Jacobians of at most this many unknowns
+    get all their eigenvalues densely; ``shift``: the real shift of the sparse
+    computation (0: the eigenvalues nearest the imaginary axis's origin); ``hopf``: locate
+    the Hopf points (False: eigenvalues and ``n_unstable`` only).
+
+    >>> StabilityOptions(nev=1)
+    Traceback (most recent call last):
+    ...
+    cusp.continuation.OptionsError: option 'nev' must be an integer >= 2, got 1
+    """
+
+    nev: int = 8
+    dense_limit: int = 400
+    shift: float = 0.0
+    hopf: bool = True
+
+    def __post_init__(self) -> None:
+        whole = lambda v: isinstance(v, int) and not isinstance(v, bool)  # noqa: E731
+        _check("nev", self.nev, whole(self.nev) and self.nev >= 2, "an integer >= 2")
+        _check(
+            "dense_limit",
+            self.dense_limit,
+            whole(self.dense_limit) and self.dense_limit >= 0,
+            "an integer >= 0",
+        )
+        finite = isinstance(self.shift, (int, float)) and not isinstance(self.shift, bool)
+        _check("shift", self.shift, finite and math.isfinite(self.shift), "a finite number")
+        _check("hopf", self.hopf, isinstance(self.hopf, bool), "True or False")
+
+
 class Keep(Enum):
     """The default of the option keywords of the entry points (``trace(..., ds_max=...)``):
     not given, the field of ``options`` is kept."""
@@ -305,8 +342,11 @@ def with_overrides(
     point's arguments by name (its ``locals()``), among them every option keyword
     (:data:`OPTION_KEYWORDS`), :data:`KEEP` where not given."""
     base = default if options is None else options
-    changes = {name: arguments[name] for name in OPTION_KEYWORDS if arguments[name] is not KEEP}
-    return base.replace(**changes) if changes else base
+    values = _option_values(arguments)
+    if all(map(is_, values, _KEEPS)):  # (the common case, none given: read in C)
+        return base
+    changes = {name: v for name, v in zip(OPTION_KEYWORDS, values) if v is not KEEP}
+    return base.replace(**changes)
 
 
 def _not_given(value: object) -> bool:
@@ -341,6 +381,9 @@ OPTION_KEYWORDS = (
 """The fields of :class:`ContinuationOptions` that the entry points (``trace``,
 ``fold_curve``, ``locus``, ``point_locus``, :class:`~.stepping._tracer.Tracer`) take by
 keyword, overriding their ``options`` (every field there is)."""
+_option_values = itemgetter(*OPTION_KEYWORDS)
+_KEEPS = (KEEP,) * len(OPTION_KEYWORDS)
+
 
 #: the options that must be finite numbers > 0, in the order they are checked
 _POSITIVE = (

@@ -96,6 +96,13 @@ class Kind(Outcome):
     EVENT = "event", "a zero of a user's event function"
     TARGET = "target", "a component at a requested value"
     ENDPOINT = "endpoint", "an end of the branch: its start, a bound hit, or where it stopped"
+    HOPF = "hopf", "a complex pair of eigenvalues crosses the imaginary axis (stability)"
+    BAUTIN = "bautin", "a Hopf point whose first Lyapunov coefficient vanishes (generalised Hopf)"
+    BOGDANOV_TAKENS = (
+        "bogdanov_takens",
+        "a double zero eigenvalue with one eigenvector: fold and Hopf curves meet",
+    )
+    ZERO_HOPF = "zero_hopf", "a zero eigenvalue and an imaginary pair (fold-Hopf)"
 
 
 class PointStatus(Outcome):

@@ -474,6 +474,7 @@ def chafee_infante_pitchforks(n: int = 5, lam_max: float = 10.0) -> tuple[Pitchf
 def _ci_other(n: int, k: int):
     """(other, point) of the exact branch u = a·pattern, λ = q/(h² (1 − a²)) of mode k, when
     2k = n + 1 (q = 2) or 3k = n + 1 (q = 1); (None, None) otherwise."""
+    period: tuple[int, ...]
     if 2 * k == n + 1:
         q, period = 2.0, (1, 0, -1, 0)
     elif 3 * k == n + 1:

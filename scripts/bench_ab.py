@@ -25,20 +25,22 @@ from __future__ import annotations
 
 import argparse
 import importlib
+import importlib.util
 import subprocess
 import sys
 import tempfile
 import time
 from pathlib import Path
 
-from bench_trace import PROBLEMS, run_ours
+from cusp._scripts.tools import run_ours, trace_problems
 
 ROOT = Path(__file__).resolve().parents[1]
 
 
 def load_revision(rev: str | None, into: Path, name: str):
     """The engine at git revision ``rev`` (None: the working tree, as installed), imported as
-    module ``name``."""
+    module ``name`` from its ``continuation/`` folder extracted under ``into`` (a package
+    loaded from its folder's ``__init__.py``: the import path is left as it is)."""
     if rev is None:
         return importlib.import_module("cusp.continuation")
     target = into / name
@@ -49,9 +51,19 @@ def load_revision(rev: str | None, into: Path, name: str):
     subprocess.run(
         ["tar", "-x", "--strip-components=1", "-C", str(target)], input=archive, check=True
     )
-    if str(into) not in sys.path:
-        sys.path.insert(0, str(into))
-    return importlib.import_module(name)
+    spec = importlib.util.spec_from_file_location(
+        name, target / "__init__.py", submodule_search_locations=[str(target)]
+    )
+    if spec is None or spec.loader is None:
+        raise RuntimeError(f"cannot load the engine of revision {rev!r} from {target}")
+    module = importlib.util.module_from_spec(spec)
+    sys.modules[name] = module  # its relative imports resolve through the package's name
+    try:
+        spec.loader.exec_module(module)
+    except BaseException:
+        del sys.modules[name]
+        raise
+    return module
 
 
 def main(argv=None) -> int:
@@ -74,7 +86,7 @@ def main(argv=None) -> int:
         }
         if args.sparse:
             return sparse_ab(sides, args.sparse, args.rounds)
-        for pb in PROBLEMS:
+        for pb in trace_problems():
             runs = {
                 side: (lambda m=m, pb=pb: run_ours(pb, True, api=m)) for side, m in sides.items()
             }

@@ -46,6 +46,7 @@ from typing import Any
 import numpy as np
 import scipy
 
+from cusp._scripts.report import commit_and_load, write_report
 from cusp.continuation import Problem, trace
 from cusp.examples.suite import (
     SUITE,
@@ -56,8 +57,6 @@ from cusp.examples.suite import (
     problem,
     watchdog,
 )
-
-from _report import commit_and_load, write_report
 
 ROOT = Path(__file__).resolve().parents[1]
 DOC = ROOT / "docs" / "benchmarks" / "branch-points.md"

@@ -23,9 +23,8 @@ import platform
 import sys
 import time
 
+from cusp._scripts.report import commit_and_load, write_report
 from cusp.verification.extremes import BODIES, grid, run_case
-
-from _report import commit_and_load, write_report
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]
 

@@ -29,9 +29,8 @@ import numpy as np
 from scipy.optimize import fsolve
 
 import cusp.examples as ex
+from cusp._scripts.report import save_figure
 from cusp.continuation import Problem, fold_curve, trace
-
-from _report import save_figure
 
 ROOT = Path(__file__).resolve().parents[1]
 

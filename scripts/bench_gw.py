@@ -24,9 +24,8 @@ import numpy as np
 import scipy
 from scipy import integrate, special
 
+from cusp._scripts.report import write_report
 from cusp.models.gw import gw_integral, log_gw_integral
-
-from _report import write_report
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]
 

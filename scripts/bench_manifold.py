@@ -28,9 +28,8 @@ from pathlib import Path
 
 import numpy as np
 
+from cusp._scripts.report import commit_and_load, write_report
 from cusp.models import ContactLoss, ExponentialRoughSurface, point_loci
-
-from _report import commit_and_load, write_report
 
 ROOT = Path(__file__).resolve().parents[1]
 DOC = ROOT / "docs" / "benchmarks" / "manifold.md"

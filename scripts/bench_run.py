@@ -27,7 +27,7 @@ import time
 from datetime import datetime, timezone
 from pathlib import Path
 
-from _report import commit_and_load, write_report
+from cusp._scripts.report import commit_and_load, write_report
 
 ROOT = Path(__file__).resolve().parents[1]
 SCENE = ROOT / "scenes" / "fig6.toml"

@@ -27,7 +27,6 @@ import argparse
 import datetime
 import pathlib
 import platform
-import subprocess
 import time
 
 import numpy as np
@@ -35,9 +34,8 @@ import scipy
 import scipy.sparse.linalg as spla
 
 import cusp.examples as ex
+from cusp._scripts.report import commit, write_report
 from cusp.continuation import BranchSystem, trace
-
-from _report import write_report
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]
 
@@ -97,19 +95,6 @@ def measure(n: int, sparse: bool, reps: int, ref) -> dict:
     }
 
 
-def git_rev() -> str:
-    try:
-        return subprocess.run(
-            ["git", "rev-parse", "--short", "HEAD"],
-            cwd=ROOT,
-            capture_output=True,
-            text=True,
-            check=True,
-        ).stdout.strip()
-    except (OSError, subprocess.CalledProcessError):
-        return "unknown"
-
-
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--sizes", type=int, nargs="+", default=[999, 3999, 9999, 39999, 99999])
@@ -151,7 +136,7 @@ def main(argv=None) -> int:
     lines = [
         "# Benchmark: cost per step on a banded problem (sparse Bratu)",
         "",
-        f"Measured {now} at commit `{git_rev()}` on {platform.machine()}, "
+        f"Measured {now} at commit `{commit()}` on {platform.machine()}, "
         f"{platform.python_implementation()} {platform.python_version()}, NumPy "
         f"{np.__version__}, SciPy {scipy.__version__} (2 logical CPUs shared with other jobs).",
         "",

@@ -49,24 +49,17 @@ contique and pacopy are optional: if one is missing the report says so.
 from __future__ import annotations
 
 import argparse
-import contextlib
 import datetime
 import importlib.metadata
 import math
-import os
-import platform
-import subprocess
 import time
 from pathlib import Path
 
 import numpy as np
-import scipy
 from scipy.linalg import lapack
 
-import cusp.examples as ex
-
-from _report import write_report
-from _tools import (
+from cusp._scripts.report import commit, machine, write_report
+from cusp._scripts.tools import (
     TOL,
     best_times,
     fold_errors,
@@ -77,49 +70,18 @@ from _tools import (
     run_ours,
     run_pacopy,
     run_scipy,
+    trace_problems,
 )
 
 ROOT = Path(__file__).resolve().parents[1]
 
-# ----------------------------------------------------------------------------- problems
-# Each problem: an example of `cusp.examples` with one unknown x and one free parameter lam
-# (its other parameters fixed), the start (x0, lam0), the end lam1, and the exact folds
-# [(x, lam), ...] in path order (the example's mpmath references). Every tool calls the
-# example's own residual and derivatives.
-
-
-def _cusp():
-    # mpmath, 40 digits: r = 1/sqrt(3), b = 2 r^3 = 2/(3 sqrt 3), correctly rounded (in float
-    # arithmetic 2*(1/sqrt(3))**3 is 2 ulp high); x0 = -1.324717957244746, the root of
-    # x^3 - x + 1 (minus the plastic number)
-    return {
-        "name": "cusp x³ − x − b, b ∈ [−1, 1]",
-        "example": ex.cusp_normal_form(a=1.0, b=-1.0),
-        "x0": ex.cusp_start(1.0, -1.0),
-        "lam0": -1.0,
-        "lam1": 1.0,
-        "folds": list(ex.cusp_folds(1.0)),
-    }
-
-
-def _truss():
-    H = 0.5
-    # mpmath, 40 digits: v = H(1 -+ 1/sqrt 3), P = K v (H - v)(2H - v), correctly rounded
-    return {
-        "name": "Green truss (EA = L = 1, H = 0.5), v ∈ [−0.5, 1.5]",
-        "example": ex.truss_green(EA=1.0, L=1.0, H=H),
-        "x0": -0.5,
-        "lam0": ex.truss_green_force(-0.5, 1.0, 1.0, H),
-        "lam1": ex.truss_green_force(1.5, 1.0, 1.0, H),
-        "folds": list(ex.truss_green_limits(1.0, 1.0, H)),
-    }
-
-
-PROBLEMS = [_cusp(), _truss()]
+# The problems (cusp and truss) are `trace_problems()` of cusp._scripts.tools, shared with
+# bench_ab.py and bench_work_precision.py.
+PROBLEMS = trace_problems()
 
 
 # ----------------------------------------------------------------------------- runners
-# The tools' runners are in _tools.py (shared with bench_work_precision.py); here only the
+# The tools' runners are in cusp._scripts.tools (shared with bench_work_precision.py); here only the
 # floor, which no other script uses.
 
 
@@ -268,33 +230,6 @@ def _phases_once(pb, rounds):
     return total / rounds, out
 
 
-def machine():
-    cpu = platform.processor() or platform.machine()
-    with contextlib.suppress(OSError):
-        for line in Path("/proc/cpuinfo").read_text().splitlines():
-            if line.startswith("model name"):
-                cpu = line.split(":", 1)[1].strip()
-                break
-    return (
-        f"{cpu}, {os.cpu_count()} logical CPUs (shared with other jobs); "
-        f"{platform.system()} {platform.release()}; Python {platform.python_version()}, "
-        f"NumPy {np.__version__}, SciPy {scipy.__version__}"
-    )
-
-
-def git_rev():
-    try:
-        return subprocess.run(
-            ["git", "rev-parse", "--short", "HEAD"],
-            cwd=ROOT,
-            text=True,
-            capture_output=True,
-            check=True,
-        ).stdout.strip()
-    except (OSError, subprocess.CalledProcessError):
-        return "unknown"
-
-
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--repeat", type=int, default=15)
@@ -387,7 +322,7 @@ def main(argv=None):
     lines = [
         "# Benchmark: `trace` vs contique vs pacopy vs a SciPy natural-parameter loop",
         "",
-        f"Measured {now} at commit `{git_rev()}` on: {machine()}.",
+        f"Measured {now} at commit `{commit()}` on: {machine()}.",
         "",
         "Reproduce from the repository root: `python scripts/bench_trace.py` "
         "(contique is optional: `pip install contique==1.1.1`; so is pacopy 0.1.9, GPL, "

@@ -9,8 +9,8 @@ Usage (from the repository root):
 Ours runs at rtol = 1e-2, 1e-3, ..., 1e-13 (`ContinuationOptions(rtol=...)`); contique
 1.1.1 over its step limits (dxmax = dlpfmax) and residual tolerance; pacopy 0.1.9 over
 stepsize_max and newton_tol; the SciPy loop over its number of parameter steps (the runners
-are those of `bench_trace.py`, in `_tools.py`). The tasks (`_wp_problems.py`,
-`_wp_contact.py`):
+are those of `bench_trace.py`, in `cusp._scripts.tools`). The tasks (`cusp._scripts.wp_problems`,
+`cusp._scripts.wp_contact`; all in scripts/_shared/):
 
 (a) fold location on the cusp normal form, the Green truss and the FD Bratu problem with
     N = 999 and N = 99 999 (h = 1e-3 and 1e-5), and the curve itself on the first two;
@@ -39,9 +39,9 @@ import warnings
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from _tools import best_times, import_contique, import_pacopy
-from _wp_contact import locus_task, path_tasks
-from _wp_problems import (
+from cusp._scripts.tools import best_times, import_contique, import_pacopy
+from cusp._scripts.wp_contact import locus_task, path_tasks
+from cusp._scripts.wp_problems import (
     BRATU_BIG_PLAN,
     BRATU_PLANS,
     QUICK_RTOLS,
@@ -56,7 +56,7 @@ from _wp_problems import (
     fold_settings,
     small_problems,
 )
-from _wp_report import write_all
+from cusp._scripts.wp_report import write_all
 
 ROOT = Path(__file__).resolve().parents[1]
 TASK_KEYS = ("cusp", "truss", "bratu999", "bratu99999", "co", "fig6", "gaussian", "manifold")

@@ -16,9 +16,8 @@ import sys
 
 import numpy as np
 
+from cusp._scripts.report import save_figure
 from cusp.models import Cylinder, ExponentialRoughSurface, FlatPlane, Sphere
-
-from _report import save_figure
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]
 

@@ -15,7 +15,7 @@ d = ΔF_N/F_N0 (or μ) varies, are the loci of the corners A and B. Measured her
   :func:`cusp.verification.contact_loss_path` (and their series in d, the exact exponents);
   for the Gaussian surface and the sphere, the path written out from the physics with
   mpmath (the frozen stick level of AB, the energies as loop integrals of F_T dg_T); both in
-  ``scripts/_pleat_reference.py``;
+  ``scripts/_shared/pleat_reference.py`` (``cusp._scripts.pleat_reference``);
 * the slopes of the loci of A, B and D at the closure (d = 0), from the tangent of the locus
   in F'_N (:func:`cusp.models.manifold.point_loci`), traced through F'_N = F_N0;
 * μ → 0 at the scene's F'_N: the same quantities over μ = 0.1 … 10⁻⁴ (as far as each body
@@ -39,15 +39,14 @@ from pathlib import Path
 
 import numpy as np
 
+from cusp._scripts.pleat_reference import REF_DPS, exponential_series, reference, rel_error
+from cusp._scripts.report import commit_and_load, save_figure, write_report
 from cusp.app.run import bundled_scene
 from cusp.app.scene import load_scene
 from cusp.continuation import ChainPoint, ContinuationError, PointChain
 from cusp.models import ContactLoss, ModelParameterError
 from cusp.models.manifold import point_loci
 from cusp.models.registry import build_body
-
-from _pleat_reference import REF_DPS, exponential_series, reference, rel_error
-from _report import commit_and_load, save_figure, write_report
 
 ROOT = Path(__file__).resolve().parents[1]
 #: the bodies: label -> bundled scene
@@ -504,7 +503,7 @@ def report(results: dict, series: dict, seconds: float) -> str:
         "its error is the largest relative difference, over the six quantities, from the",
         "reference (exponential: the sympy closed forms of `contact_loss_path()`, evaluated at",
         "the exact binary inputs; Gaussian and sphere: the path written out with mpmath at",
-        f"{REF_DPS} digits; both in `scripts/_pleat_reference.py`). Fits: least squares of",
+        f"{REF_DPS} digits; both in `scripts/_shared/pleat_reference.py`). Fits: least squares of",
         f"log y on log d over d ∈ [{FIT_RANGE[0]:g}, {FIT_RANGE[1]:g}], at rows with error ≤",
         f"{TRUST:g}.",
         "",

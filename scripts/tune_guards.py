@@ -29,10 +29,9 @@ from pathlib import Path
 
 import numpy as np
 
+from cusp._scripts.report import write_report
 from cusp.continuation import ContinuationOptions
 from cusp.examples.suite import SUITE, check
-
-from _report import write_report
 
 ROOT = Path(__file__).resolve().parents[1]
 DEFAULTS = ContinuationOptions()

@@ -1,8 +1,11 @@
-"""Type-check the engine and the physics with mypy, as installed.
+"""Type-check the engine, the physics and the scripts' shared helpers with mypy, as installed.
 
 Usage (from the repository root, with the test extra installed):
 
-    python scripts/typecheck.py [PACKAGE ...]   # default: cusp.continuation cusp.models
+    python scripts/typecheck.py [PACKAGE ...]
+
+checks the named packages, by default ``cusp.continuation``, ``cusp.models`` and
+``cusp._scripts`` (and what they import).
 
 The repository keeps each layer in its own top-level folder, mapped into the one package
 ``cusp`` at install time, which mypy cannot follow from the source tree (nor through an
@@ -27,7 +30,7 @@ except ModuleNotFoundError:  # Python 3.10
     import tomli as tomllib
 
 ROOT = Path(__file__).resolve().parents[1]
-DEFAULT = ("cusp.continuation", "cusp.models")
+DEFAULT = ("cusp.continuation", "cusp.models", "cusp._scripts")
 
 
 def build(into: Path) -> None:

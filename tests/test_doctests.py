@@ -5,16 +5,10 @@ from __future__ import annotations
 import doctest
 import importlib
 
-import pytest
 
-from tests.test_layout import _modules
-
-MODULES = sorted(name for name in _modules() if not name.endswith("__main__"))
-
-
-@pytest.mark.parametrize("name", MODULES)
-def test_docstring_examples(name):
-    module = importlib.import_module(name)
+def test_docstring_examples(package_module):
+    """``package_module``: each module of the package (tests/conftest.py)."""
+    module = importlib.import_module(package_module)
     flags = doctest.ELLIPSIS | doctest.NORMALIZE_WHITESPACE
     result = doctest.testmod(module, optionflags=flags, report=True, verbose=False)
     assert result.failed == 0, f"{result.failed} of {result.attempted} examples failed"

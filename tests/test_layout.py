@@ -5,7 +5,10 @@ The layers (repository folder → import name): ``continuation/`` → ``cusp.con
 (the engine: numpy and scipy only), ``examples/`` → ``cusp.examples`` and ``models/`` →
 ``cusp.models`` (each on the engine only), ``verification/`` → ``cusp.verification`` (may
 use the physics), ``app/`` → ``cusp.app`` (may use everything), ``scenes/`` →
-``cusp.scenes`` (data).
+``cusp.scenes`` (data), and above them all ``scripts/_shared/`` → ``cusp._scripts`` (what
+the scripts share; may use everything, nothing in the package imports it).
+
+The modules of the package come from the ``package_modules`` fixture (tests/conftest.py).
 """
 
 from __future__ import annotations
@@ -43,6 +46,15 @@ ALLOWED = {
         "cusp.scenes",
     },
     "cusp.scenes": set(),
+    # the scripts' shared helpers: the top layer
+    "cusp._scripts": {
+        "cusp.continuation",
+        "cusp.examples",
+        "cusp.models",
+        "cusp.verification",
+        "cusp.app",
+        "cusp.scenes",
+    },
 }
 MAX_FUNCTION_LINES = 80
 MAX_MODULE_LINES = 600
@@ -60,22 +72,13 @@ ENGINE_ORDER = (
     "results",  # Branch, SpecialPoint, dense output
     "stepping",  # the tracer: start, step, confirmation, work budget, state
     "loci",  # fold curves, loci of located points, chains of points
+    "diagram",  # whole diagrams: recursive branch switching, each branch once, deflation
 )
 
 
 def _package_dirs() -> dict[str, Path]:
     mapping = PYPROJECT["tool"]["setuptools"]["package-dir"]
     return {name: ROOT / folder for name, folder in mapping.items()}
-
-
-def _modules() -> dict[str, Path]:
-    """Every module of the installed package: dotted name -> source file."""
-    out = {}
-    for package, folder in _package_dirs().items():
-        for path in sorted(folder.glob("*.py")):
-            name = package if path.stem == "__init__" else f"{package}.{path.stem}"
-            out[name] = path
-    return out
 
 
 def _imports(name: str, path: Path) -> set[str]:
@@ -116,7 +119,7 @@ def test_one_import_name():
         assert (folder / "__init__.py").is_file(), folder
 
 
-def test_build_holds_only_cusp(tmp_path):
+def test_build_holds_only_cusp(tmp_path, package_modules):
     """What setuptools builds from the project's own files: only ``cusp/`` (the wheel adds its
     dist-info; ``pip install --target`` adds the ``bin/cusp`` command)."""
     pytest.importorskip("setuptools")
@@ -134,15 +137,15 @@ def test_build_holds_only_cusp(tmp_path):
     expected = {
         (f"{name.replace('.', '/')}/__init__.py" if path.stem == "__init__" else None)
         or f"{name.rpartition('.')[0].replace('.', '/')}/{path.name}"
-        for name, path in _modules().items()
+        for name, path in package_modules.items()
     }
     assert built == expected
     assert (tmp_path / "cusp" / "scenes" / "fig6.toml").is_file()
 
 
-def test_layers_import_only_downwards():
+def test_layers_import_only_downwards(package_modules):
     bad = []
-    for name, path in _modules().items():
+    for name, path in package_modules.items():
         own = _layer(name)
         for target in _imports(name, path):
             if not (target == "cusp" or target.startswith("cusp.")):
@@ -153,8 +156,8 @@ def test_layers_import_only_downwards():
     assert not bad, bad
 
 
-def test_no_import_cycle():
-    modules = _modules()
+def test_no_import_cycle(package_modules):
+    modules = package_modules
     graph = defaultdict(set)
     for name, path in modules.items():
         for target in _imports(name, path):
@@ -199,11 +202,11 @@ def _engine_rank(module: str) -> int | None:
     return ENGINE_ORDER.index(part) + 1 if part in ENGINE_ORDER else 0
 
 
-def test_engine_packages_import_only_lower_ones():
+def test_engine_packages_import_only_lower_ones(package_modules):
     """Each concept package of the engine imports only from packages below it in
     :data:`ENGINE_ORDER` (and from the engine's root modules), at import time, inside
     functions or for type checking alike; every engine module lies in one of them."""
-    modules = _modules()
+    modules = package_modules
     bad = []
     for name, path in modules.items():
         own = _engine_rank(name)
@@ -234,14 +237,14 @@ def test_engine_packages_are_small_and_their_modules_private():
         assert not public, (folder.name, public)
 
 
-def test_first_party_imports_go_through_cusp():
+def test_first_party_imports_go_through_cusp(package_modules):
     """Tests, scripts and the package never import the repository folders by their bare
     names (they would shadow or duplicate the installed package); scripts never import
     tests."""
     bare = {"continuation", "models", "verification", "app", "scenes", "examples"}
     bad = []
     files = [*ROOT.joinpath("tests").rglob("*.py"), *ROOT.joinpath("scripts").glob("*.py")]
-    files += list(_modules().values())
+    files += list(package_modules.values())
     for path in files:
         tree = ast.parse(path.read_text(encoding="utf-8"))
         for node in ast.walk(tree):
@@ -257,6 +260,73 @@ def test_first_party_imports_go_through_cusp():
     assert not bad, bad
 
 
+def _import_names(tree: ast.AST) -> list[tuple[str, int]]:
+    """(module, relative level) of every import statement in ``tree``."""
+    out = []
+    for node in ast.walk(tree):
+        if isinstance(node, ast.Import):
+            out += [(alias.name, 0) for alias in node.names]
+        elif isinstance(node, ast.ImportFrom):
+            out.append((node.module or "", node.level))
+    return out
+
+
+def _edits_the_import_path(tree: ast.AST) -> bool:
+    """Whether ``tree`` touches ``sys.path`` or calls ``syspath_prepend``."""
+    for node in ast.walk(tree):
+        if isinstance(node, ast.Attribute):
+            if node.attr == "syspath_prepend":
+                return True
+            if node.attr == "path" and isinstance(node.value, ast.Name) and node.value.id == "sys":
+                return True
+    return False
+
+
+def test_scripts_and_tests_get_their_helpers_by_name_or_fixture():
+    """What the scripts share is imported from ``cusp._scripts`` (scripts/_shared/), never a
+    sibling by its bare name (which needs scripts/ on the import path); tests get their
+    helpers from fixtures: only conftest.py files import ``tests.*`` or relatively; no
+    script or test edits ``sys.path``."""
+    scripts = ROOT / "scripts"
+    siblings = {p.stem for p in scripts.glob("*.py")}
+    bad = []
+    for path in [*scripts.glob("*.py"), *scripts.joinpath("_shared").glob("*.py")]:
+        tree = ast.parse(path.read_text(encoding="utf-8"))
+        for module, level in _import_names(tree):
+            top = module.split(".")[0]
+            if level or top in siblings or (top.startswith("_") and top != "__future__"):
+                bad.append(f"{path.relative_to(ROOT)}: imports {'.' * level}{module}")
+        if _edits_the_import_path(tree):
+            bad.append(f"{path.relative_to(ROOT)}: edits the import path")
+    for path in ROOT.joinpath("tests").rglob("*.py"):
+        tree = ast.parse(path.read_text(encoding="utf-8"))
+        if path.name != "conftest.py":
+            for module, level in _import_names(tree):
+                if level or module.split(".")[0] == "tests":
+                    bad.append(f"{path.relative_to(ROOT)}: imports {'.' * level}{module}")
+        if _edits_the_import_path(tree):
+            bad.append(f"{path.relative_to(ROOT)}: edits the import path")
+    assert not bad, bad
+
+
+def test_script_helpers_import_no_optional_dependency(package_modules):
+    """Every module of ``cusp._scripts`` imports without contique, pacopy, mpmath or
+    matplotlib: each is imported where it is used."""
+    names = sorted(n for n in package_modules if n.split(".")[:2] == ["cusp", "_scripts"])
+    assert len(names) >= 8, names  # the package and its seven modules
+    code = (
+        "import importlib, json, sys\n"
+        f"for name in {names!r}:\n"
+        "    importlib.import_module(name)\n"
+        "print(json.dumps(sorted(sys.modules)))"
+    )
+    done = subprocess.run(
+        [sys.executable, "-c", code], capture_output=True, text=True, check=True, cwd=ROOT
+    )
+    loaded = {m.split(".")[0] for m in json.loads(done.stdout)}
+    assert not loaded & {"contique", "pacopy", "mpmath", "matplotlib"}
+
+
 def _body_lines(node) -> int:
     n = node.end_lineno - node.lineno + 1
     body = node.body
@@ -270,11 +340,11 @@ def _body_lines(node) -> int:
     return n
 
 
-def test_small_modules_and_functions():
+def test_small_modules_and_functions(package_modules):
     """Modules of at most 600 lines, functions of at most 80 (60 in the engine), the
     docstring excluded, the signature included."""
     long_modules, long_functions = [], []
-    for name, path in _modules().items():
+    for name, path in package_modules.items():
         text = path.read_text(encoding="utf-8")
         if text.count("\n") > MAX_MODULE_LINES:
             long_modules.append(f"{name}: {text.count(chr(10))} lines")

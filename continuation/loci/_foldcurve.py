@@ -27,19 +27,23 @@ generic ones.
 
 from __future__ import annotations
 
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from typing import Any, NamedTuple
 
 import numpy as np
 
 from .._errors import ProblemDefinitionError
-from .._options import KEEP, ContinuationOptions, Keep, with_overrides
+from .._options import KEEP, ContinuationOptions, Keep, StabilityOptions, with_overrides
 from .._outcomes import Kind
 from ..detection._cusp import Codim2Test, CuspTest
+from ..detection._eigen import vector_field_mass
+from ..detection._foldhopf import BogdanovTakensTest, ZeroHopfTest
+from ..detection._tests import TestFunction
 from ..problem._events import Event
 from ..problem._problem import ContinuationProblem, as_problem
 from ..results._branch import Branch, SpecialPoint
 from ..stepping._state import TracerState
+from ..stepping._trace import stability_options
 from ..stepping._tracer import Tracer
 from ..systems._fold import FoldSystem
 from ._directions import trace_directions
@@ -58,6 +62,7 @@ def fold_curve(
     scales: Mapping[str, float] | None = None,
     options: ContinuationOptions | None = None,
     throw: bool = True,
+    stability: bool | StabilityOptions = False,
     rtol: float | Keep = KEEP,
     ds: float | Keep = KEEP,
     ds_min: float | Keep = KEEP,
@@ -101,6 +106,10 @@ def fold_curve(
         on the branch (0, or 0 up to rounding) takes that size unless ``scales`` gives one.
     options : ContinuationOptions, optional
         Default: ``ContinuationOptions(detect_branch_points=False)``.
+    stability : bool or StabilityOptions
+        For a problem declared a vector field (``Problem(..., mass=...)``) and a fold in
+        the free parameter: also detect and locate ``"bogdanov_takens"`` and
+        ``"zero_hopf"`` points (:mod:`~..detection._foldhopf`).
 
     Other Parameters
     ----------------
@@ -115,11 +124,13 @@ detect_folds, detect_branch_points, locate_tol, max_locate_iterations
     Branch
         The fold curve; its special points include ``"cusp"`` (details: the coefficient on
         each side, the tangent's parameter components, the fold branches that meet) and
-        ``"codim2"`` (a second zero eigenvalue). ``info["direction"]`` says which way(s)
+        ``"codim2"`` (a second zero eigenvalue); with ``stability``, ``"bogdanov_takens"``
+        and ``"zero_hopf"`` (``details["omega"]``). ``info["direction"]`` says which way(s)
         were traced and ``info["start_index"]`` where the starting fold is.
     """
     problem = as_problem(problem)
     start = _fold_setup(problem, fold_point, free)
+    dynamic = _dynamic_tests(problem, start, stability_options(stability))
     options = with_overrides(options, FOLD_OPTIONS, locals())
     if direction not in ("both", 1, -1):
         raise ProblemDefinitionError(f"direction must be 'both', +1 or -1, got {direction!r}")
@@ -133,10 +144,27 @@ detect_folds, detect_branch_points, locate_tol, max_locate_iterations
     label = "start (fold)"
 
     def begin(d: int) -> tuple[Tracer, TracerState]:
-        tracer = Tracer.for_system(system, direction=d, tests=(CuspTest(), Codim2Test()), **curve)
+        tests = (CuspTest(), Codim2Test(), *dynamic())
+        tracer = Tracer.for_system(system, direction=d, tests=tests, **curve)
         return tracer, tracer.init_at(start.z0, start_label=label, scales=fold_point.scales)
 
     return trace_directions(begin, direction, start_kind="fold", start_label=label)
+
+
+def _dynamic_tests(
+    problem: ContinuationProblem, start: _FoldStart, wanted: StabilityOptions | None
+) -> Callable[[], tuple[TestFunction, ...]]:
+    """A maker of the Bogdanov–Takens and zero-Hopf tests (none without ``wanted``),
+    checked: the problem is a vector field, the fold one of the free parameter."""
+    if wanted is None:
+        return tuple
+    mass = vector_field_mass(problem)
+    if start.k != len(problem.unknowns):
+        raise ProblemDefinitionError(
+            "stability on a fold curve needs a fold of the free parameter; this fold is a "
+            "turning point of a monitored unknown (a snap-back), whose matrix is not ∂R/∂u"
+        )
+    return lambda: (BogdanovTakensTest(mass), ZeroHopfTest(mass, wanted))
 
 
 FOLD_OPTIONS = ContinuationOptions(detect_branch_points=False)

@@ -61,6 +61,11 @@ class Problem:
     sparsity:
         the nonzero pattern of ``∂R/∂u`` (any sparse or dense matrix): finite differences then
         use column grouping and return sparse Jacobians.
+    mass:
+        declares the residual a vector field, ``M u' = R(u, p)``: ``True`` for ``M = I``, or
+        the constant ``n × n`` mass matrix (dense or sparse; singular for algebraic
+        equations). Only stability and Hopf points use it (``trace(..., stability=True)``);
+        None (default): ``R`` is not a vector field, and stability is refused.
     """
 
     def __init__(
@@ -74,6 +79,7 @@ class Problem:
         derivatives: str = "central",
         sparsity=None,
         name: str | None = None,
+        mass: Any = None,
     ) -> None:
         if not callable(residual):
             raise ProblemDefinitionError(f"residual must be callable, got {residual!r}")
@@ -99,6 +105,7 @@ class Problem:
                 f"sparsity must be {len(unknowns)}×{len(unknowns)}, got {self.sparsity.shape}"
             )
         self._groups = None if self.sparsity is None else column_groups(self.sparsity)
+        self.mass = _mass_matrix(mass, len(unknowns))
         # the scales (typical sizes) of the finite-difference steps (see with_scales)
         self._scales_u: Any = 1.0
         self._scales_p: dict[str, float] = {}
@@ -291,6 +298,29 @@ def extrapolated_derivatives(problem: Any, u: np.ndarray, p: Mapping[str, float]
         ),
     )
     return jac, dp
+
+
+def _mass_matrix(mass: Any, n: int) -> Any:
+    """The ``mass`` argument of :class:`Problem` checked: None, or a float ``n × n`` matrix
+    (sparse kept as CSC); ``True`` is the identity.
+
+    >>> _mass_matrix(True, 2).toarray().tolist()
+    [[1.0, 0.0], [0.0, 1.0]]
+    """
+    if mass is None or mass is False:
+        return None
+    if mass is True:
+        return sp.identity(n, format="csc")
+    try:
+        m = sp.csc_matrix(mass, dtype=float) if sp.issparse(mass) else np.array(mass, float)
+    except (TypeError, ValueError):
+        raise ProblemDefinitionError(f"mass must be a real n×n matrix, got {mass!r}") from None
+    if m.shape != (n, n):
+        raise ProblemDefinitionError(f"mass must be {n}×{n} (one row per unknown), got {m.shape}")
+    data = m.data if sp.issparse(m) else m
+    if not np.all(np.isfinite(data)):
+        raise ProblemDefinitionError("mass must be finite, got a matrix with NaN or inf")
+    return m
 
 
 def _point(problem: Problem, u, p) -> dict[str, Any]:

@@ -17,7 +17,9 @@ class SpecialPoint:
     ``kind`` (a :class:`~.._outcomes.Kind`, equal to its string, or a test function's own
     kind): ``"fold"`` (a turning point with respect to ``with_respect_to``),
     ``"branch_point"``, ``"cusp"``, ``"codim2"``, ``"event"``, ``"target"`` or
-    ``"endpoint"``. ``index``: its row in the branch arrays. ``values``: every unknown and
+    ``"endpoint"``; with stability (``trace(..., stability=True)``) also ``"hopf"``, and on
+    Hopf and fold curves ``"bautin"``, ``"bogdanov_takens"`` and ``"zero_hopf"``.
+    ``index``: its row in the branch arrays. ``values``: every unknown and
     parameter. ``status`` (a :class:`~.._outcomes.PointStatus`): ``"converged"`` (located
     to tolerance) or ``"guess"`` (only bracketed: the ``interval`` of arclength holds it).
     ``details``: kind-specific data (test-function values, null vectors, Newton iterations,
@@ -56,7 +58,9 @@ class Branch:
     located fold, has ``ds = 0`` and the locating method's iterations), ``variables`` (the
     names of the traced components, i.e. the unknowns and the free parameter(s)),
     ``kinds`` (the kinds of special point the curve's test functions report: with every
-    :class:`~.._outcomes.Kind` and the kinds on the branch, what :meth:`special` accepts).
+    :class:`~.._outcomes.Kind` and the kinds on the branch, what :meth:`special` accepts),
+    ``eigenvalues`` (traced with ``stability=True``: per row, the computed eigenvalues of
+    the equilibrium by decreasing real part, and the column ``"n_unstable"``; else None).
     """
 
     def __init__(
@@ -72,6 +76,7 @@ class Branch:
         stats: dict[str, np.ndarray],
         info: dict[str, Any] | None = None,
         kinds: frozenset[str] = frozenset(),
+        eigenvalues: list[np.ndarray] | None = None,
     ) -> None:
         self._columns = columns
         self.variables = variables
@@ -83,6 +88,7 @@ class Branch:
         self.message = message
         self.stats = stats
         self.info = dict(info or {})
+        self.eigenvalues = eigenvalues
 
     @property
     def success(self) -> bool:

@@ -27,7 +27,7 @@ from .._errors import AccuracyError, ProblemDefinitionError
 from ..numerics._arc import HermiteArc, arc_length
 
 
-def _arrays(branch: Any) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, float]:
+def arrays(branch: Any) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, float]:
     """The branch's points, unit tangents, weights, per-segment errors and rtol, or an
     AccuracyError saying why it has no interpolant."""
     info = branch.info
@@ -52,7 +52,7 @@ def _arrays(branch: Any) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray
 
 def interpolate(branch: Any, s: ArrayLike) -> dict[str, np.ndarray]:
     """The branch's interpolant at pseudo-arclengths ``s`` (see the module)."""
-    Z, T, w, errors, rtol = _arrays(branch)
+    Z, T, w, errors, rtol = arrays(branch)
     sv = np.atleast_1d(np.asarray(s, dtype=float))
     S = branch.s
     if sv.size and not (np.all(np.isfinite(sv)) and sv.min() >= S[0] and sv.max() <= S[-1]):
@@ -67,9 +67,9 @@ def interpolate(branch: Any, s: ArrayLike) -> dict[str, np.ndarray]:
         if S.size == 1 or S[i + 1] == S[i]:
             out[pick] = Z[min(i + 1, S.size - 1)]
             continue
-        _check_segment(branch, i, errors[i + 1], rtol)
+        check_segment(branch, i, errors[i + 1], rtol)
         theta = (sv[pick] - S[i]) / (S[i + 1] - S[i])
-        out[pick] = _segment(Z, T, w, i).sample(theta)
+        out[pick] = segment(Z, T, w, i).sample(theta)
     return _columns(branch, out)
 
 
@@ -82,7 +82,7 @@ def interpolate_at(branch: Any, name: str, values: ArrayLike) -> dict[str, np.nd
             f"name {name!r} is not traced on this branch; it must be one of "
             f"{list(branch.variables)}"
         )
-    Z, T, w, errors, rtol = _arrays(branch)
+    Z, T, w, errors, rtol = arrays(branch)
     k = branch.variables.index(name)
     x = Z[:, k]
     vals = np.atleast_1d(np.asarray(values, dtype=float))
@@ -91,8 +91,8 @@ def interpolate_at(branch: Any, name: str, values: ArrayLike) -> dict[str, np.nd
     out = np.empty((vals.size, Z.shape[1]))
     for j, v in enumerate(vals.tolist()):
         i = crossing_segment(x, name, v)
-        _check_segment(branch, i, errors[i + 1], rtol)
-        arc = _segment(Z, T, w, i)
+        check_segment(branch, i, errors[i + 1], rtol)
+        arc = segment(Z, T, w, i)
         out[j] = arc.sample(np.array([arc.root(k, v)]))[0]
         out[j, k] = v
     return _columns(branch, out)
@@ -111,13 +111,13 @@ def crossing_segment(x: np.ndarray, name: str, v: float) -> int:
     return int(hits[0])
 
 
-def _segment(Z: np.ndarray, T: np.ndarray, w: np.ndarray, i: int) -> HermiteArc:
+def segment(Z: np.ndarray, T: np.ndarray, w: np.ndarray, i: int) -> HermiteArc:
     """The arc between rows ``i`` and ``i + 1`` (unit tangents, the circular arc's length)."""
     length = arc_length(Z[i + 1] - Z[i], T[i], T[i + 1], w)
     return HermiteArc(Z[i], T[i], Z[i + 1], T[i + 1], length)
 
 
-def _check_segment(branch: Any, i: int, error: float, rtol: float) -> None:
+def check_segment(branch: Any, i: int, error: float, rtol: float) -> None:
     """Refuse segment ``i`` unless its arc's measured ``error`` is within ``rtol`` (the step
     accepts half of it; a point located inside a step splits it, each part with the step's
     error)."""
@@ -134,9 +134,19 @@ def _columns(branch: Any, out: np.ndarray) -> dict[str, np.ndarray]:
     cols = {v: out[:, j].copy() for j, v in enumerate(branch.variables)}
     n = out.shape[0]
     for key in branch.keys():
-        if key not in cols:
-            cols[key] = np.full(n, float(branch[key][0]))
+        column = branch[key]
+        # the fixed parameters; a column that varies but is not traced (n_unstable) has no
+        # value between rows: left out rather than given row 0's
+        if key not in cols and np.all(column == column[0]):
+            cols[key] = np.full(n, float(column[0]))
     return cols
 
 
-__all__ = ["crossing_segment", "interpolate", "interpolate_at"]
+__all__ = [
+    "arrays",
+    "check_segment",
+    "crossing_segment",
+    "interpolate",
+    "interpolate_at",
+    "segment",
+]

@@ -6,7 +6,6 @@ from __future__ import annotations
 
 import logging
 import math
-from dataclasses import replace
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -77,7 +76,7 @@ def advance(rules: StepRules, state: TracerState, work: StepWork) -> Trial | Fai
     while True:
         tried = try_step(rules, system, z, t, ds, direction, row, secant, work)
         if isinstance(tried, Trial):
-            return replace(tried, rejected=rejected) if rejected else tried
+            return tried.with_rejected(rejected) if rejected else tried
         res, reason = tried.res, tried.reason
         if isinstance(reason, Rejection) and reason.guard is Guard.CONTRACTION:
             # κ falls like ds² when the step is too long; a κ that stays put while the

@@ -181,7 +181,7 @@ def _first_state(
         details=details,
     )
     o = begin.options
-    first = Point(
+    first = Point.of(
         z=z0,
         t=t0,
         s=0.0,
@@ -194,7 +194,7 @@ def _first_state(
         interpolation_error=0.0,
     )
     _check_start_in_bounds(begin.tests, z0)
-    return TracerState(last=first, system=system, ds=o.ds, test_values=values, steps=0)
+    return TracerState.of(last=first, system=system, ds=o.ds, test_values=values, steps=0)
 
 
 def _e_last(z: np.ndarray) -> np.ndarray:

@@ -89,7 +89,7 @@ def confirm_step(
     # else the half step as a step of its own: the step to take instead if it is off the arc
     half = try_step(rules, system, z, t, 0.5 * ds, direction, row, pred.secant, work, Solve.HALF)
     if not isinstance(half, Trial):  # the half step fails where the whole one passed
-        shorter = advance(rules, state._replace(ds=max(0.25 * ds, o.ds_min)), work)
+        shorter = advance(rules, state.replaced(ds=max(0.25 * ds, o.ds_min)), work)
         if isinstance(shorter, Trial):
             return replace(shorter, rejected=trial.rejected + 1)
         return None

@@ -77,6 +77,17 @@ class Evaluation:
         self.crossings, self.bracket, self.deferred = crossings, bracket, deferred
         return self
 
+    def with_bracket(self, bracket: Bracket | None, deferred: bool = False) -> Evaluation:
+        """A copy with the step's ``bracket`` (and ``deferred``) set; this one unchanged."""
+        return Evaluation.of(
+            trial=self.trial,
+            system=self.system,
+            values=self.values,
+            crossings=self.crossings,
+            bracket=bracket,
+            deferred=deferred,
+        )
+
 
 class Found(NamedTuple):
     """A crossing located: the ``test``, the point (``located``) and the ``bracket`` it was

@@ -9,7 +9,9 @@ Both are built by keyword.
 from __future__ import annotations
 
 from collections.abc import Callable, Sequence
-from typing import Any, NamedTuple
+from dataclasses import dataclass
+from operator import attrgetter
+from typing import Any
 
 import numpy as np
 
@@ -19,8 +21,10 @@ from ..results._branch import Branch, SpecialPoint
 from ..systems._curve import CurveSystem
 
 
-class Point(NamedTuple):
-    """One row of a branch, linked to the row before it (``prev``)."""
+@dataclass(slots=True, eq=False)
+class Point:
+    """One row of a branch, linked to the row before it (``prev``); built by keyword
+    (:meth:`of`) and never changed after it is made."""
 
     z: np.ndarray
     """The curve vector (unknowns and free parameters)."""
@@ -61,16 +65,25 @@ class Point(NamedTuple):
     ) -> Point:
         """Built by keyword, fast: a class called with keywords first gathers them in a
         dict (three times the cost of this call, on every step)."""
-        return cls(
-            z, t, s, iterations, rejected, residual_norm, ds, special, prev, interpolation_error
+        self = object.__new__(cls)
+        self.z, self.t, self.s, self.iterations = z, t, s, iterations
+        self.rejected, self.residual_norm, self.ds, self.special = (
+            rejected,
+            residual_norm,
+            ds,
+            special,
         )
+        self.prev, self.interpolation_error = prev, interpolation_error
+        return self
 
 
-class TracerState(NamedTuple):
-    """Immutable solver state: the last point (with the branch behind it), the curve system
-    valid beyond it (augmented systems carry their bordering vectors here), the next step
-    size, the test functions' values at the last point, the step count and, once finished,
-    the status and message."""
+@dataclass(slots=True, eq=False)
+class TracerState:
+    """Immutable solver state (built by keyword, :meth:`of`; never changed after it is
+    made): the last point (with the branch behind it), the curve system valid beyond it
+    (augmented systems carry their bordering vectors here), the next step size, the test
+    functions' values at the last point, the step count and, once finished, the status and
+    message."""
 
     last: Point
     system: CurveSystem
@@ -100,7 +113,26 @@ class TracerState(NamedTuple):
     ) -> TracerState:
         """Built by keyword, fast: a class called with keywords first gathers them in a
         dict (three times the cost of this call, on every step)."""
-        return cls(last, system, ds, test_values, steps, status, message, n_points, stalled)
+        self = object.__new__(cls)
+        self.last, self.system, self.ds, self.test_values = last, system, ds, test_values
+        self.steps, self.status, self.message = steps, status, message
+        self.n_points, self.stalled = n_points, stalled
+        return self
+
+    def replaced(self, **changes: Any) -> TracerState:
+        """A copy with the fields given by keyword changed (this state is left as it is)."""
+        fields = {name: getattr(self, name) for name in self.__slots__}
+        fields.update(changes)
+        return TracerState.of(**fields)
+
+
+# the columns of a list of points, read in C (map over an attrgetter: no Python loop)
+_Z, _T, _S = attrgetter("z"), attrgetter("t"), attrgetter("s")
+_ITERATIONS, _REJECTED, _DS = attrgetter("iterations"), attrgetter("rejected"), attrgetter("ds")
+_RESIDUAL_NORM, _INTERPOLATION_ERROR = (
+    attrgetter("residual_norm"),
+    attrgetter("interpolation_error"),
+)
 
 
 def _rows(state: TracerState) -> list[Point]:
@@ -122,10 +154,10 @@ def assemble_branch(
     points = _rows(state)
     system = state.system
     n_pts = len(points)
-    zs = [p.z for p in points]
+    zs = list(map(_Z, points))
     Z = np.concatenate(zs).reshape(n_pts, -1)
-    T = np.concatenate([p.t for p in points]).reshape(n_pts, -1)
-    ss = [p.s for p in points]
+    T = np.concatenate(list(map(_T, points))).reshape(n_pts, -1)
+    ss = list(map(_S, points))
     names = system.names
     columns = {name: Z[:, i].copy() for i, name in enumerate(names)}
     fixed = {
@@ -169,11 +201,11 @@ def assemble_branch(
 def _statistics(points: Sequence[Point]) -> dict[str, np.ndarray]:
     """The per-point arrays of a branch's ``stats``."""
     return {
-        "newton_iterations": np.array([p.iterations for p in points]),
-        "rejected_steps": np.array([p.rejected for p in points]),
-        "residual_norm": np.array([p.residual_norm for p in points]),
-        "ds": np.array([p.ds for p in points]),
-        "interpolation_error": np.array([p.interpolation_error for p in points]),
+        "newton_iterations": np.array(list(map(_ITERATIONS, points))),
+        "rejected_steps": np.array(list(map(_REJECTED, points))),
+        "residual_norm": np.array(list(map(_RESIDUAL_NORM, points))),
+        "ds": np.array(list(map(_DS, points))),
+        "interpolation_error": np.array(list(map(_INTERPOLATION_ERROR, points))),
     }
 
 

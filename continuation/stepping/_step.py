@@ -176,6 +176,21 @@ class Trial:
         self.interpolation_error = interpolation_error
         return self
 
+    def with_rejected(self, rejected: int) -> Trial:
+        """A copy that counts ``rejected`` tries before it; this one unchanged."""
+        return Trial.of(
+            res=self.res,
+            t=self.t,
+            factor=self.factor,
+            ds=self.ds,
+            h=self.h,
+            rt=self.rt,
+            rejected=rejected,
+            corner=self.corner,
+            aimed=self.aimed,
+            interpolation_error=self.interpolation_error,
+        )
+
 
 @dataclass(slots=True)
 class Rejected:
@@ -197,10 +212,12 @@ class Failure(NamedTuple):
     error: ContinuationError
 
 
-class Predictor(NamedTuple):
+@dataclass(slots=True, eq=False)
+class Predictor:
     """The step's predictor: the unit ``secant`` through the last two points (None for the
     tangent predictor), the ``direction`` (the secant or the tangent) and the corrector's
-    border ``row`` (the direction times the arclength weights)."""
+    border ``row`` (the direction times the arclength weights); never changed after it is
+    made."""
 
     secant: np.ndarray | None
     direction: np.ndarray
@@ -216,7 +233,9 @@ class Predictor(NamedTuple):
     ) -> Predictor:
         """Built by keyword, fast: a class called with keywords first gathers them in a
         dict (three times the cost of this call, on every step)."""
-        return cls(secant, direction, row)
+        self = object.__new__(cls)
+        self.secant, self.direction, self.row = secant, direction, row
+        return self
 
 
 def predictor(
@@ -235,7 +254,7 @@ def predictor(
             secant = d / nd
     direction = t if secant is None else secant
     row = direction if system.unit_weights else system.weights * direction
-    return Predictor(secant=secant, direction=direction, row=row)
+    return Predictor.of(secant=secant, direction=direction, row=row)
 
 
 def try_step(

@@ -7,10 +7,13 @@ from collections.abc import Mapping, Sequence
 import numpy as np
 from numpy.typing import ArrayLike
 
-from .._options import KEEP, ContinuationOptions, Keep, with_overrides
+from .._errors import ProblemDefinitionError
+from .._options import KEEP, ContinuationOptions, Keep, StabilityOptions, with_overrides
+from ..detection._eigen import vector_field_mass
 from ..problem._events import Event
 from ..problem._problem import ContinuationProblem
 from ..results._branch import Branch, SpecialPoint
+from ..results._stability import with_stability
 from ._state import TracerState
 from ._tracer import DEFAULT_OPTIONS, Tracer
 
@@ -29,6 +32,7 @@ def trace(
     direction: int = 1,
     options: ContinuationOptions | None = None,
     throw: bool = True,
+    stability: bool | StabilityOptions = False,
     rtol: float | Keep = KEEP,
     ds: float | Keep = KEEP,
     ds_min: float | Keep = KEEP,
@@ -86,6 +90,12 @@ def trace(
         The numerical settings (default: ``ContinuationOptions()``).
     throw : bool
         If False, a failure returns the partial branch with its status instead of raising.
+    stability : bool or StabilityOptions
+        For a problem declared a vector field (``Problem(..., mass=...)``): the eigenvalues
+        of every point (``branch.eigenvalues``), the column ``"n_unstable"`` (the number
+        with positive real part) and the Hopf points located (``"hopf"`` special points
+        with ``details["omega"]`` and ``details["first_lyapunov"]``). ``True`` is
+        ``StabilityOptions()``; see docs/continuation.md, "Stability and Hopf".
 
     Other Parameters
     ----------------
@@ -111,6 +121,9 @@ detect_folds, detect_branch_points, locate_tol, max_locate_iterations
         A failure of the continuation (with ``throw=True``): :class:`ConvergenceError`,
         :class:`StepGuardError`, :class:`NonFiniteResidualError`, :class:`StalledError`.
     """
+    wanted = stability_options(stability)
+    if wanted is not None:
+        vector_field_mass(problem)  # (refused before tracing: no vector field, no stability)
     tracer = Tracer(
         problem,
         free=free,
@@ -124,7 +137,23 @@ detect_folds, detect_branch_points, locate_tol, max_locate_iterations
         options=with_overrides(options, DEFAULT_OPTIONS, locals()),
         throw=throw,
     )
-    return tracer.result(run(tracer, tracer.init(u0)))
+    branch = tracer.result(run(tracer, tracer.init(u0)))
+    if wanted is None:
+        return branch
+    return with_stability(tracer.system.problem, branch, wanted)
+
+
+def stability_options(stability: bool | StabilityOptions) -> StabilityOptions | None:
+    """The ``stability`` argument of an entry point as options (None: no stability)."""
+    if stability is False:
+        return None
+    if stability is True:
+        return StabilityOptions()
+    if not isinstance(stability, StabilityOptions):
+        raise ProblemDefinitionError(
+            f"stability must be True, False or a StabilityOptions, got {stability!r}"
+        )
+    return stability
 
 
 def run(tracer: Tracer, state: TracerState) -> TracerState:
@@ -136,4 +165,4 @@ def run(tracer: Tracer, state: TracerState) -> TracerState:
     return state
 
 
-__all__ = ["run", "trace"]
+__all__ = ["run", "stability_options", "trace"]

@@ -34,7 +34,6 @@ import logging
 import math
 import warnings
 from collections.abc import Mapping, Sequence
-from dataclasses import replace
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -392,10 +391,10 @@ class Tracer:
                 return judged
             br = step_bracket(self.options, state.system, state.last, trial)
             if all(tt.kind == Kind.FOLD for tt in confirm):
-                return replace(judged, bracket=br, deferred=True)
+                return judged.with_bracket(br, deferred=True)
             shorter = confirm_step(self._rules, state, trial, br, work)
             if shorter is None:
-                return replace(judged, bracket=br)
+                return judged.with_bracket(br)
             trial = shorter
 
     def _locate(
@@ -564,7 +563,7 @@ class Tracer:
         if self.throw:
             raise failure.error
         logger.warning("continuation stopped: %s", failure.message)
-        return state._replace(status=failure.status, message=failure.message)
+        return state.replaced(status=failure.status, message=failure.message)
 
     # ------------------------------------------------------------------ result
 

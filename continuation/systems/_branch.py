@@ -98,8 +98,7 @@ class BranchSystem(CurveSystem):
 
     def _residual_at(self, z):
         """The user's residual at ``z`` (its parameters with the free one at ``z[-1]``)."""
-        p = dict(self.params)
-        p[self.free] = z[-1]
+        p = {**self.params, self.free: z[-1]}
         try:
             return self._residual(z[:-1], p)
         except KeyError as exc:
@@ -108,8 +107,7 @@ class BranchSystem(CurveSystem):
     def _derivatives_at(self, z):
         """The user's ``(jacobian, param_jacobian)`` at ``z``, as they return them."""
         u = z[:-1]
-        p = dict(self.params)
-        p[self.free] = z[-1]
+        p = {**self.params, self.free: z[-1]}
         try:
             return self._jacobian(u, p), self._param_jacobian(u, p, self.free)
         except KeyError as exc:

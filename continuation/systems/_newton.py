@@ -408,14 +408,17 @@ def _on_floats(
     if g is None or not abs(g) < math.inf:
         return None
     x, lam = z0.tolist()
-    r0, r1 = row.tolist()
-    w0, w1 = system.weights.tolist()
+    (r0, r1), (w0, w1) = row.tolist(), system.weights.tolist()
     i0, i1 = inverse_magnitudes(system.scales, z0)
     rel_step_tol = floor_step_tol(system, settings)
     b2 = 0.0 if c is None else r0 * x + r1 * lam - c  # the border's residual, then 0
     z, rn, a11, lu = z0, abs(g), 0.0, None
     sn_prev = sn_first = math.inf
     reason, chord, k, theta = _MAX_ITERATIONS, False, 0, 0.0
+
+    def floor() -> float:  # CurveSystem.residual_floor of the Jacobian row at the new point
+        return 100 * _EPS * abs(a11) * abs(x)
+
     for k in range(1, settings.max_iterations + 1):
         if not chord:
             jac = system.scalar_jacobian(z)
@@ -443,8 +446,6 @@ def _on_floats(
             sn_first = sn
         elif k == 2:
             theta = sn / sn_first if sn_first > 0.0 else 0.0
-        # (CurveSystem.residual_floor of the Jacobian row at the new point)
-        floor = lambda a11=a11, x=x: 100 * _EPS * abs(a11) * abs(x)  # noqa: E731
         verdict = _verdict(k, sn, rn_new, rn, sn_prev, floor, settings, rel_step_tol)
         if verdict is not None:
             rn, reason = rn_new, verdict

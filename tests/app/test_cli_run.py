@@ -172,7 +172,7 @@ def test_cusp_without_a_subcommand_is_cusp_run(tmp_path, capsys, monkeypatch):
 # ------------------------------------------------------------------ other bodies
 @pytest.mark.parametrize("name", ["gaussian", "sphere"])
 def test_gaussian_and_sphere_scenes_match_mpmath(tmp_path, capsys, name):
-    from tests.models import _contact_oracles as oracles
+    from cusp.verification import oracles
 
     out = tmp_path / name
     status, _, err = _run(

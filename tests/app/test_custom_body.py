@@ -17,7 +17,6 @@ import pytest
 from cusp.app import cli
 from cusp.app.scene import SceneError, parse_scene
 from cusp.models import registry
-from tests.models import _toy_body as toy
 
 NAME = "toy-brush"
 FACTORY = "tests.models._toy_body:BrushBody"
@@ -46,8 +45,8 @@ reduced_normal_load = [850.0, 600.0]
 
 
 @pytest.fixture
-def toy_registered():
-    with registry.registered_body(NAME, FACTORY, required=toy.REQUIRED) as entry:
+def toy_registered(toy_body):
+    with registry.registered_body(NAME, FACTORY, required=toy_body.REQUIRED) as entry:
         yield entry
     assert NAME not in registry.body_names()
 
@@ -57,7 +56,7 @@ def _close(got: float, want, rtol: float) -> bool:
 
 
 def test_registered_toy_body_runs_from_a_scene_and_matches_its_closed_forms(
-    toy_registered, tmp_path, capsys
+    toy_registered, tmp_path, capsys, toy_body
 ):
     scene = tmp_path / "toy.toml"
     scene.write_text(SCENE, encoding="utf-8")
@@ -67,7 +66,7 @@ def test_registered_toy_body_runs_from_a_scene_and_matches_its_closed_forms(
     s = json.loads((out / "summary.json").read_text(encoding="utf-8"))
     assert [c["reduced_normal_load"]["value"] for c in s["cases"]] == list(REDUCTIONS)
     for case, F_Np in zip(s["cases"], REDUCTIONS):
-        pts, energy = toy.path_closed_forms(**BODY, **LOADING, F_Np=F_Np)
+        pts, energy = toy_body.path_closed_forms(**BODY, **LOADING, F_Np=F_Np)
         for key in "ABCD":
             if pts[key] is None:
                 assert case["points"][key] is None, (F_Np, key)
@@ -83,7 +82,7 @@ def test_registered_toy_body_runs_from_a_scene_and_matches_its_closed_forms(
         assert case["gross_sliding"]["force_control"] == (pts["C"] is None)
     # F_A = μF_N0(1 − q_A²) = 0.1·1000·(1 − 0.6²) = 64 N, also from the toy's loading curve
     assert s["points"]["A"]["F_T"] == pytest.approx(64.0, rel=1e-12)
-    assert float(toy.BrushBody(**BODY).tangential_force(0.2, 1000.0)) == pytest.approx(64.0)
+    assert float(toy_body.BrushBody(**BODY).tangential_force(0.2, 1000.0)) == pytest.approx(64.0)
     # the levels are the toy's own: a = a0 p, c = a0 q with a0 = 100 µm; at A p = 1, q = 0.6
     assert s["points"]["A"]["a"] == pytest.approx(100.0, rel=1e-12)
     assert s["points"]["A"]["c"] == pytest.approx(60.0, rel=1e-10)
@@ -152,8 +151,8 @@ def test_scene_schema_checks_the_toy_parameters(toy_registered, changes, expect)
     assert expect in str(err.value), str(err.value)
 
 
-def test_unregistering_removes_the_body_from_scenes():
-    entry = registry.register_body(NAME, FACTORY, required=toy.REQUIRED)
+def test_unregistering_removes_the_body_from_scenes(toy_body):
+    entry = registry.register_body(NAME, FACTORY, required=toy_body.REQUIRED)
     try:
         assert NAME in registry.body_names(with_path=True)
         assert "stiffness" in registry.surface_keys()
@@ -168,12 +167,12 @@ def test_unregistering_removes_the_body_from_scenes():
         parse_scene(_toy_scene(stiffness=None, compliance=None))
 
 
-def test_a_factory_that_builds_no_body_is_a_scene_error(tmp_path, capsys):
+def test_a_factory_that_builds_no_body_is_a_scene_error(tmp_path, capsys, toy_body):
     # the factory returns an object with mu only: exit 2, one line naming the protocol
     with registry.registered_body(
         "not-a-body",
         lambda mu, stiffness, compliance: types.SimpleNamespace(mu=mu),
-        required=toy.REQUIRED,
+        required=toy_body.REQUIRED,
     ):
         scene = tmp_path / "bad.toml"
         scene.write_text(SCENE.replace(NAME, "not-a-body"), encoding="utf-8")

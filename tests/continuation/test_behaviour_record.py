@@ -15,27 +15,14 @@ there from the revision it guards, then compare).
 
 from __future__ import annotations
 
-import importlib.util
 import json
-from pathlib import Path
 
 import pytest
 
-ROOT = Path(__file__).resolve().parents[2]
-
-
-def _recorder():
-    spec = importlib.util.spec_from_file_location(
-        "record_behaviour", ROOT / "scripts" / "record_behaviour.py"
-    )
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
-
 
 @pytest.mark.slow
-def test_the_engine_computes_the_recorded_points_bit_for_bit():
-    recorder = _recorder()
+def test_the_engine_computes_the_recorded_points_bit_for_bit(load_script):
+    recorder = load_script("record_behaviour")
     stored = json.loads(recorder.RECORD.read_text(encoding="utf-8"))
     if stored["environment"] != recorder.environment():
         pytest.skip(
@@ -48,13 +35,13 @@ def test_the_engine_computes_the_recorded_points_bit_for_bit():
     assert not diff, f"{len(diff)} differences, the first:\n" + "\n".join(diff[:30])
 
 
-def test_the_comparison_sees_one_changed_bit():
+def test_the_comparison_sees_one_changed_bit(load_script):
     """The reduction hashes every bit: a point moved by one ulp changes the record."""
     import numpy as np
 
     from cusp.examples import cusp_normal_form
 
-    recorder = _recorder()
+    recorder = load_script("record_behaviour")
     br = cusp_normal_form().trace()
     before = recorder.reduce_branch(br)
     x = br["x"]

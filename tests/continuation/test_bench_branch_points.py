@@ -3,25 +3,14 @@ from a clean trace, and writes its report."""
 
 from __future__ import annotations
 
-import importlib.util
 import math
-import pathlib
 
 import pytest
 
-ROOT = pathlib.Path(__file__).resolve().parents[2]
-
 
 @pytest.fixture
-def bench(monkeypatch):
-    # scripts import their siblings (`_report`) from scripts/, on sys.path when run as a script
-    monkeypatch.syspath_prepend(str(ROOT / "scripts"))
-    spec = importlib.util.spec_from_file_location(
-        "bench_branch_points", ROOT / "scripts" / "bench_branch_points.py"
-    )
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
+def bench(load_script):
+    return load_script("bench_branch_points")
 
 
 @pytest.mark.parametrize("jacobian", ["fd", "analytic"])

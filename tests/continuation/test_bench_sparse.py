@@ -2,20 +2,9 @@
 
 from __future__ import annotations
 
-import importlib.util
-import pathlib
 
-ROOT = pathlib.Path(__file__).resolve().parents[2]
-
-
-def test_bench_sparse_writes_its_table(tmp_path, monkeypatch):
-    # scripts import their siblings (`_report`) from scripts/, on sys.path when run as a script
-    monkeypatch.syspath_prepend(str(ROOT / "scripts"))
-    spec = importlib.util.spec_from_file_location(
-        "bench_sparse", ROOT / "scripts" / "bench_sparse.py"
-    )
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
+def test_bench_sparse_writes_its_table(tmp_path, load_script):
+    module = load_script("bench_sparse")
     out = tmp_path / "sparse.md"
     assert module.main(["--sizes", "31", "63", "--repeat", "1", "--out", str(out)]) == 0
     rows = [

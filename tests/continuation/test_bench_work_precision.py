@@ -6,10 +6,6 @@ from __future__ import annotations
 
 import importlib.metadata
 import importlib.util
-import pathlib
-import sys
-
-ROOT = pathlib.Path(__file__).resolve().parents[2]
 
 
 def _installed(name: str, prefix: str = "") -> bool:
@@ -30,15 +26,8 @@ def _rows(text: str, heading: str) -> list[list[str]]:
     return lines
 
 
-def test_quick_mode_writes_the_report_and_the_figures(tmp_path, monkeypatch):
-    # scripts import their siblings (`_report`, `_tools`, ...) from scripts/
-    monkeypatch.syspath_prepend(str(ROOT / "scripts"))
-    spec = importlib.util.spec_from_file_location(
-        "bench_work_precision", ROOT / "scripts" / "bench_work_precision.py"
-    )
-    module = importlib.util.module_from_spec(spec)
-    monkeypatch.setitem(sys.modules, spec.name, module)  # (its dataclasses look it up)
-    spec.loader.exec_module(module)
+def test_quick_mode_writes_the_report_and_the_figures(tmp_path, load_script):
+    module = load_script("bench_work_precision")
     out, figures = tmp_path / "wp.md", tmp_path / "figures"
     argv = ["--quick", "--only", "cusp,co", "--out", str(out), "--figures", str(figures)]
     assert module.main(argv) == 0

@@ -13,27 +13,27 @@ import cusp.continuation.stepping._tracer as tracer_module
 import cusp.examples as ex
 from cusp.continuation import trace
 from cusp.continuation.stepping._confirm import arc_limit, located_on_arc
-from tests.continuation.helpers import first_fold_step
 
 FOLD_B = 2.0 / (3.0 * np.sqrt(3.0))
 
 
-def _fold_step():
+@pytest.fixture
+def fold_step(first_fold_step):
     """A cusp tracer, the state before the first step that crosses the lower fold, that step,
     its bracket and the fold located in it."""
     tracer, state, trial, br, crossing = first_fold_step(ex.cusp_normal_form().problem, [-1.3247])
     return tracer, state, trial, br, crossing.test.locate(br, crossing.old, crossing.new)
 
 
-def test_a_located_fold_confirms_its_step():
-    tracer, state, trial, br, loc = _fold_step()
+def test_a_located_fold_confirms_its_step(fold_step):
+    tracer, state, trial, br, loc = fold_step
     assert loc.status == "converged"
     assert abs(loc.z[-1] - FOLD_B) < 1e-12  # the fold at b = +2/(3√3) (x = −1/√3)
     assert located_on_arc(tracer._rules, state, trial, br, [loc])
 
 
-def test_a_point_off_the_arc_or_not_located_does_not_confirm():
-    tracer, state, trial, br, loc = _fold_step()
+def test_a_point_off_the_arc_or_not_located_does_not_confirm(fold_step):
+    tracer, state, trial, br, loc = fold_step
     W = state.system.weights
     _, limit = arc_limit(W, state.last.z, state.last.t, trial)
     # moved across the arc (along the normal of the chord in the weighted metric) by twice

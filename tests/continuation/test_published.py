@@ -2,7 +2,8 @@
 references (mpmath at 40 digits or sympy, in `cusp.examples` or beside each literal).
 
 A fold's parameter is compared to 1e-12 relative (the solver promises Newton refinement on an
-augmented system to that accuracy); its state to `STATE_RTOL[strategy]`. Branch and special
+augmented system to that accuracy); its state to the strategy's tolerance (the fixture
+`state_rtol`: `STATE_RTOL` of tests/continuation/helpers.py). Branch and special
 points are also checked against the example's own residual, never the solver's.
 """
 
@@ -17,8 +18,6 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import cusp.examples as ex
-from tests.continuation import helpers
-from tests.continuation.helpers import STATE_RTOL, STRATEGIES, special
 
 MAX_STEPS = 5000  # generous: these tests are about accuracy, not about the default step budget
 
@@ -30,10 +29,17 @@ def trace(*args, **kwargs):
     return _trace(*args, **kwargs)
 
 
-def assert_on_branch(case, br, atol=1e-9):
-    res = helpers.branch_residual_norms(case, br)
-    assert res.max() <= atol, f"oracle residual up to {res.max():.3e} at point {res.argmax()}"
-    helpers.assert_special_points_consistent(case, br)
+@pytest.fixture
+def assert_on_branch(branch_residual_norms, assert_special_points_consistent):
+    """``assert_on_branch(case, br, atol=1e-9)``: every point solves the example's own
+    residual to ``atol``; the special points are the branch's columns."""
+
+    def check(case, br, atol=1e-9):
+        res = branch_residual_norms(case, br)
+        assert res.max() <= atol, f"oracle residual up to {res.max():.3e} at point {res.argmax()}"
+        assert_special_points_consistent(case, br)
+
+    return check
 
 
 def assert_fold(sp, free, ref_param, ref_state, state_rtol, wrt=None):
@@ -65,8 +71,7 @@ def test_cusp_references():
     assert ex.cusp_start() == -float(plastic) == -1.324717957244746
 
 
-@pytest.mark.parametrize("strategy", STRATEGIES)
-def test_cusp_both_folds_and_exact_bound(strategy):
+def test_cusp_both_folds_and_exact_bound(strategy, special, state_rtol, assert_on_branch):
     case = ex.cusp_normal_form(derivatives=strategy)
     br = trace(case.problem, u0=[-1.3247], free="b", bounds={"b": (-1.0, 1.0)})
     assert br.success, (br.status, br.message)
@@ -78,7 +83,7 @@ def test_cusp_both_folds_and_exact_bound(strategy):
     assert len(folds) == 2, [(sp.kind, sp.values) for sp in br.special_points]
     # path order: first the fold at x = -1/sqrt 3, b = +2/(3 sqrt 3), then its mirror image
     for sp, (x, b) in zip(folds, ex.cusp_folds(1.0), strict=True):
-        assert_fold(sp, "b", ("b", b), {"x": x}, STATE_RTOL[strategy])
+        assert_fold(sp, "b", ("b", b), {"x": x}, state_rtol)
     # the bound is hit to the last bit, and the branch says so
     assert br["b"][-1] == 1.0
     assert br["x"][-1] == pytest.approx(-ex.cusp_start(), rel=1e-12)  # b -> -b, x -> -x
@@ -88,7 +93,7 @@ def test_cusp_both_folds_and_exact_bound(strategy):
     assert_on_branch(case, br, atol=1e-10)
 
 
-def test_cusp_reverse_direction_finds_the_same_folds():
+def test_cusp_reverse_direction_finds_the_same_folds(special):
     case = ex.cusp_normal_form(b=1.0)  # start on the upper sheet at b = +1
     br = trace(
         case.problem, u0=[-ex.cusp_start()], free="b", bounds={"b": (-1.0, 1.0)}, direction=-1
@@ -101,10 +106,11 @@ def test_cusp_reverse_direction_finds_the_same_folds():
         assert_fold(sp, "b", ("b", b), {"x": x}, 1e-9)
 
 
-def trace_cusp_over_a(a):
+def trace_cusp_over_a(a, special):
     """Trace x³ − a x − b over b ∈ [−B, B], B = 2·2(a/3)^{3/2} + 0.1, from the lone real root
     at b = −B, and check both folds against the closed form b = ∓2 (a/3)^{3/2},
-    x = ±sqrt(a/3) (ex.cusp_folds). Returns the branch, B and the two folds."""
+    x = ±sqrt(a/3) (ex.cusp_folds). Returns the branch, B and the two folds (``special``:
+    the fixture)."""
     bmax = 2 * (a / 3) ** 1.5
     B = 2 * bmax + 0.1
     case = ex.cusp_normal_form(a=a, b=-B)  # u0: the lone real root at b = -B (numpy roots)
@@ -118,20 +124,20 @@ def trace_cusp_over_a(a):
 
 @settings(max_examples=12, deadline=None)
 @given(a=st.floats(min_value=0.02, max_value=5.0))
-def test_cusp_folds_over_a(a):
+def test_cusp_folds_over_a(a, special):
     """Property: at any a > 0 the folds are at b = -+2 (a/3)^(3/2), x = -+sqrt(a/3)."""
-    br, B, _ = trace_cusp_over_a(a)
+    br, B, _ = trace_cusp_over_a(a, special)
     assert br.success, (br.status, br.message)
     assert br["b"][-1] == B
 
 
-def test_cusp_fold_parameters_relative_over_a_grid():
+def test_cusp_fold_parameters_relative_over_a_grid(special):
     """Both folds to 1e-12 *relative* in b over a ∈ [0.02, 5] (b from 1.1e-3 to 4.3), where
     the fold Newton's mixed stopping tolerance 1e-12·(1 + |z|) alone would not be relative;
     a = 0.2890625 is the value at which an earlier stopping rule failed."""
     worst = 0.0
     for a in [*np.geomspace(0.02, 5.0, 60), 0.2890625]:
-        _, _, folds = trace_cusp_over_a(a)
+        _, _, folds = trace_cusp_over_a(a, special)
         for sp, (_, b) in zip(folds, ex.cusp_folds(a), strict=True):
             worst = max(worst, abs(sp.values["b"] - b) / abs(b))
     print(f"worst relative fold parameter error over the grid: {worst:.2g}")
@@ -188,9 +194,10 @@ def _trace_bratu(case, n, **kw):
     return trace(case.problem, u0=np.zeros(n), free="lam", bounds={mid: (-1.0, 2.5)}, **kw)
 
 
-@pytest.mark.parametrize("strategy", STRATEGIES)
 @pytest.mark.parametrize("n, lam_fold, u_fold", [(1, 8 / math.e, 1.0), (2, 9 / math.e, 1.0)])
-def test_bratu_fd_small_n_fold(n, lam_fold, u_fold, strategy):
+def test_bratu_fd_small_n_fold(
+    n, lam_fold, u_fold, strategy, special, state_rtol, assert_on_branch
+):
     case = ex.bratu(n, derivatives=strategy)
     br = _trace_bratu(case, n)
     assert br.success, (br.status, br.message)
@@ -202,16 +209,18 @@ def test_bratu_fd_small_n_fold(n, lam_fold, u_fold, strategy):
         "lam",
         ("lam", lam_fold),
         {f"u{i}": u_fold for i in range(n)},
-        STATE_RTOL[strategy],
+        state_rtol,
     )
     assert not special(br, "branch_point")
     assert_on_branch(case, br, atol=1e-8)
 
 
 @pytest.mark.parametrize(
-    "n, strategy", [(10, s) for s in STRATEGIES] + [(20, "analytic"), (20, "central")]
+    "n, strategy",
+    [(10, "analytic"), (10, "central"), (10, "forward"), (10, "complex")]
+    + [(20, "analytic"), (20, "central")],
 )
-def test_bratu_fd_fold_vs_discrete_shooting(n, strategy):
+def test_bratu_fd_fold_vs_discrete_shooting(n, strategy, special, state_rtol, assert_on_branch):
     lam_ref, u1_ref = ex.bratu_fd_fold(n)  # mpmath shooting, 40 digits
     case = ex.bratu(n, derivatives=strategy)
     br = _trace_bratu(case, n)
@@ -221,7 +230,7 @@ def test_bratu_fd_fold_vs_discrete_shooting(n, strategy):
     sp = folds[0]
     assert sp.status == "converged" and sp.with_respect_to == "lam"
     assert sp.values["lam"] == pytest.approx(lam_ref, rel=1e-10, abs=0)
-    assert sp.values["u0"] == pytest.approx(u1_ref, rel=max(STATE_RTOL[strategy], 1e-8))
+    assert sp.values["u0"] == pytest.approx(u1_ref, rel=max(state_rtol, 1e-8))
     # symmetric about the midpoint
     u = np.array([sp.values[f"u{i}"] for i in range(n)])
     assert np.allclose(u, u[::-1], rtol=0, atol=1e-7)
@@ -229,7 +238,7 @@ def test_bratu_fd_fold_vs_discrete_shooting(n, strategy):
 
 
 @pytest.mark.slow
-def test_bratu_fd_sparse_n99999_reaches_and_locates_its_fold():
+def test_bratu_fd_sparse_n99999_reaches_and_locates_its_fold(special):
     """N = 99999 (h = 1e-5, odd so that x = 1/2 is a grid point) with a scipy.sparse
     tridiagonal Jacobian and the parameter derivative supplied.
 
@@ -270,8 +279,7 @@ def test_bratu_fd_sparse_n99999_reaches_and_locates_its_fold():
 # ---------------------------------------------------------------------------------------------
 
 
-@pytest.mark.parametrize("strategy", STRATEGIES)
-def test_truss_green_both_limit_points(strategy):
+def test_truss_green_both_limit_points(strategy, special, state_rtol, assert_on_branch):
     H = 0.5
     case = ex.truss_green(H=H, derivatives=strategy)
     br = trace(case.problem, u0=[0.0], free="P", bounds={"v": (-0.5, 1.5)})
@@ -280,24 +288,23 @@ def test_truss_green_both_limit_points(strategy):
     folds = special(br, "fold")
     assert len(folds) == 2
     for sp, (v, P) in zip(folds, ex.truss_green_limits(H=H), strict=True):
-        assert_fold(sp, "P", ("P", P), {"v": v}, STATE_RTOL[strategy])
+        assert_fold(sp, "P", ("P", P), {"v": v}, state_rtol)
     # P_max = (2/(3 sqrt 3)) EA H^3/l0^3 = 0.3849001794597505 * 0.125 / 1.25^1.5
     assert folds[0].values["P"] == pytest.approx(0.3849001794597505 * 0.125 / 1.25**1.5, rel=1e-12)
     assert_on_branch(case, br, atol=1e-10)
 
 
-@pytest.mark.parametrize("strategy", STRATEGIES)
-def test_truss_rotated_strain_limit_points(strategy):
+def test_truss_rotated_strain_limit_points(strategy, special, state_rtol, assert_on_branch):
     case = ex.truss_rotated(derivatives=strategy)  # EA = L = H = 1
     br = trace(case.problem, u0=[0.0], free="P", bounds={"v": (-0.5, 2.5)})
     assert br.success, (br.status, br.message)
     folds = special(br, "fold")
     assert len(folds) == 2
     for sp, (v, P) in zip(folds, ex.truss_rotated_limits(), strict=True):
-        assert_fold(sp, "P", ("P", P), {"v": v}, STATE_RTOL[strategy])
+        assert_fold(sp, "P", ("P", P), {"v": v}, state_rtol)
         y = 1.0 - sp.values["v"]
         # l^3 = L^2 l0
-        assert (1.0 + y**2) ** 1.5 == pytest.approx(2**0.5, rel=STATE_RTOL[strategy])
+        assert (1.0 + y**2) ** 1.5 == pytest.approx(2**0.5, rel=state_rtol)
     # y_c = sqrt(2^(1/3) - 1) = 0.5098245285..., i.e. v = 0.4901754714...
     # (mpmath: mp.sqrt(mp.cbrt(2) - 1) at 30 digits = 0.509824528533958598086613462042)
     assert ex.truss_rotated_limits()[0][0] == pytest.approx(1 - math.sqrt(2 ** (1 / 3) - 1))
@@ -305,7 +312,9 @@ def test_truss_rotated_strain_limit_points(strategy):
 
 
 @pytest.mark.parametrize("strategy", ["analytic", "central", "complex"])
-def test_truss_2dof_branch_point_before_limit_and_switch(strategy):
+def test_truss_2dof_branch_point_before_limit_and_switch(
+    strategy, special, state_rtol, assert_on_branch
+):
     EA, L, H = 1.0, 1.0, 2.0  # H > sqrt(3) L: the branch point comes first
     ref = ex.truss_2dof_references(EA, L, H)
     # v_B = 2 - sqrt 2, P_B = 2 sqrt 2 / 5^1.5; v_L = 2 - 2/sqrt 3, P_L = (16/(3 sqrt 3))/5^1.5
@@ -323,7 +332,7 @@ def test_truss_2dof_branch_point_before_limit_and_switch(strategy):
     assert bp.values["P"] == pytest.approx(ref["bp_P"], rel=1e-10)
     assert bp.values["v"] == pytest.approx(ref["bp_v"], rel=1e-9)
     assert abs(bp.values["u"]) < 1e-10
-    assert_fold(lp, "P", ("P", ref["lp_P"]), {"v": ref["lp_v"]}, STATE_RTOL[strategy])
+    assert_fold(lp, "P", ("P", ref["lp_P"]), {"v": ref["lp_v"]}, state_rtol)
     assert np.max(np.abs(br["u"])) < 1e-10  # the primary path stays symmetric
     assert_on_branch(case, br, atol=1e-10)
 
@@ -364,8 +373,7 @@ def test_snapback_references():
         assert float(delta(mp.mpf(v1))) == pytest.approx(d1, rel=1e-15)
 
 
-@pytest.mark.parametrize("strategy", STRATEGIES)
-def test_snapback_turning_points_with_monitor(strategy):
+def test_snapback_turning_points_with_monitor(strategy, special, state_rtol, assert_on_branch):
     """Unknowns (v, delta), free P; delta-turning points reported as folds w.r.t. "delta"."""
     case = ex.snapback_monitor(derivatives=strategy)
     br = trace(
@@ -380,16 +388,17 @@ def test_snapback_turning_points_with_monitor(strategy):
     ):
         assert sp.status == "converged"
         assert sp.values["delta"] == pytest.approx(d, rel=1e-12, abs=0)
-        assert sp.values["v"] == pytest.approx(v, rel=max(STATE_RTOL[strategy], 1e-9))
+        assert sp.values["v"] == pytest.approx(v, rel=max(state_rtol, 1e-9))
         # P is not stationary at a delta-turning point (dP/dv * v/P = -0.9): a state variable
-        assert sp.values["P"] == pytest.approx(P, rel=STATE_RTOL[strategy])
+        assert sp.values["P"] == pytest.approx(P, rel=state_rtol)
     for sp, (v, P) in zip(special(br, "fold", "P"), ex.truss_green_limits(H=0.1), strict=True):
-        assert_fold(sp, "P", ("P", P), {"v": v}, STATE_RTOL[strategy])
+        assert_fold(sp, "P", ("P", P), {"v": v}, state_rtol)
     assert_on_branch(case, br, atol=1e-10)
 
 
-@pytest.mark.parametrize("strategy", STRATEGIES)
-def test_snapback_turning_points_as_folds_of_the_control(strategy):
+def test_snapback_turning_points_as_folds_of_the_control(
+    strategy, special, state_rtol, assert_on_branch
+):
     """Unknown v, free parameter delta: the snap-back points are ordinary folds in delta."""
     case = ex.snapback_control(derivatives=strategy)
     br = trace(case.problem, u0=[0.0], free="delta", bounds={"v": (-0.05, 0.25)})
@@ -397,8 +406,8 @@ def test_snapback_turning_points_as_folds_of_the_control(strategy):
     folds = special(br, "fold")
     assert len(folds) == 2
     for sp, (v, d, _) in zip(folds, ex.snapback_turning_points(), strict=True):
-        assert_fold(sp, "delta", ("delta", d), {"v": v}, STATE_RTOL[strategy])
-    assert folds[0].values["v"] == pytest.approx(0.05948328406145619, rel=STATE_RTOL[strategy])
+        assert_fold(sp, "delta", ("delta", d), {"v": v}, state_rtol)
+    assert folds[0].values["v"] == pytest.approx(0.05948328406145619, rel=state_rtol)
     assert_on_branch(case, br, atol=1e-10)
 
 
@@ -438,8 +447,7 @@ def test_arch_references_against_sympy(e):
     assert ref["bp"] == [(float(r.evalf(40)), float(pe.subs(x, r).evalf(40))) for r in bps]
 
 
-@pytest.mark.parametrize("strategy", STRATEGIES)
-def test_arch_e6_branch_point_before_limit_point(strategy):
+def test_arch_e6_branch_point_before_limit_point(strategy, special, state_rtol, assert_on_branch):
     e = 6.0
     ref = ex.arch_references(e)
     case = ex.shallow_arch(e, derivatives=strategy)
@@ -458,11 +466,11 @@ def test_arch_e6_branch_point_before_limit_point(strategy):
         assert sp.values["xi1"] == pytest.approx(x1, rel=1e-9)
         assert abs(sp.values["xi2"]) < 1e-10
     for sp, (x1, p) in zip(special(br, "fold"), ref["lp"], strict=True):
-        assert_fold(sp, "p", ("p", p), {"xi1": x1}, STATE_RTOL[strategy])
+        assert_fold(sp, "p", ("p", p), {"xi1": x1}, state_rtol)
     assert_on_branch(case, br, atol=1e-9)
 
 
-def test_arch_e6_switch_to_asymmetric_branch():
+def test_arch_e6_switch_to_asymmetric_branch(special, assert_on_branch):
     """Asymmetric path: Q = -16, i.e. (xi1 - e)^2 + 4 xi2^2 = e^2 - 16, and p = 8e - 6 xi1."""
     e = 6.0
     case = ex.shallow_arch(e)
@@ -477,8 +485,7 @@ def test_arch_e6_switch_to_asymmetric_branch():
     assert_on_branch(case, br2, atol=1e-9)
 
 
-@pytest.mark.parametrize("strategy", STRATEGIES)
-def test_arch_e3_limit_points_only(strategy):
+def test_arch_e3_limit_points_only(strategy, special, state_rtol, assert_on_branch):
     e = 3.0
     ref = ex.arch_references(e)
     case = ex.shallow_arch(e, derivatives=strategy)
@@ -488,7 +495,7 @@ def test_arch_e3_limit_points_only(strategy):
     folds = special(br, "fold")
     assert len(folds) == 2
     for sp, (x1, p) in zip(folds, ref["lp"], strict=True):
-        assert_fold(sp, "p", ("p", p), {"xi1": x1}, STATE_RTOL[strategy])
+        assert_fold(sp, "p", ("p", p), {"xi1": x1}, state_rtol)
     assert np.max(np.abs(br["xi2"])) < 1e-12
     assert_on_branch(case, br, atol=1e-9)
 
@@ -498,8 +505,7 @@ def test_arch_e3_limit_points_only(strategy):
 # ---------------------------------------------------------------------------------------------
 
 
-@pytest.mark.parametrize("strategy", STRATEGIES)
-def test_cohesive_exponential_smooth_fold(strategy):
+def test_cohesive_exponential_smooth_fold(strategy, special, state_rtol, assert_on_branch):
     """U = 2 e^{-W} + W from W = 0 (U = 2), U decreasing first: fold at W = ln 2."""
     case = ex.cohesive_exponential(2.0, derivatives=strategy)
     br = trace(case.problem, u0=[0.0], free="U", direction=-1, bounds={"W": (-1.0, 3.0)})
@@ -511,12 +517,12 @@ def test_cohesive_exponential_smooth_fold(strategy):
         2.0
     )  # 1 + ln 2 = 1.6931471805599453094172321214581765680755
     assert U == pytest.approx(1.693147180559945, rel=1e-15)  # docs/test-problems.md §6, 16 digits
-    assert_fold(folds[0], "U", ("U", U), {"W": W}, STATE_RTOL[strategy])
+    assert_fold(folds[0], "U", ("U", U), {"W": W}, state_rtol)
     assert_on_branch(case, br, atol=1e-10)
 
 
 @pytest.mark.parametrize("strategy", ["analytic", "central"])
-def test_cohesive_linear_softening_kinks_traced_through(strategy):
+def test_cohesive_linear_softening_kinks_traced_through(strategy, special, assert_on_branch):
     """Bilinear law (see cusp.examples.cohesive_bilinear): U(W) has a kinked maximum
     U = l + w0 = 2.01 at W = w0 = 0.01 and a kinked minimum U = 1 at W = 1. Tracing in U must
     pass both without failing; a turning point there has no smooth fold, so if one is reported
@@ -540,7 +546,7 @@ def test_cohesive_linear_softening_kinks_traced_through(strategy):
     assert_on_branch(case, br, atol=1e-10)
 
 
-def test_cohesive_linear_softening_under_crack_opening_control():
+def test_cohesive_linear_softening_under_crack_opening_control(special):
     """The same bilinear law with W as the free parameter and U the unknown (U - l s(W) - W = 0):
     W never turns, and the kinked maximum of U is a turning point w.r.t. the monitored U.
     The branch must pass it and both kinks; a converged fold w.r.t. U must sit on a kink."""
@@ -568,7 +574,7 @@ def test_cohesive_linear_softening_under_crack_opening_control():
 
 
 @pytest.mark.parametrize("H, bp_first", [(1.5, False), (2.0, True), (3.0, True)])
-def test_truss_2dof_order_of_branch_and_limit_point(H, bp_first):
+def test_truss_2dof_order_of_branch_and_limit_point(H, bp_first, special):
     """The branch point y^2 = H^2 - 2L^2 precedes the limit point y^2 = H^2/3 iff H > sqrt 3 L
     (here L = 1; H = 1.5 lies between sqrt 2 and sqrt 3: limit point first)."""
     ref = ex.truss_2dof_references(1.0, 1.0, H)
@@ -588,7 +594,7 @@ def test_truss_2dof_order_of_branch_and_limit_point(H, bp_first):
 
 
 @pytest.mark.parametrize("e, bp_first", [(4.5, False), (5.0, True), (6.0, True)])
-def test_arch_order_of_branch_and_limit_point(e, bp_first):
+def test_arch_order_of_branch_and_limit_point(e, bp_first, special):
     """The first branch point precedes the first limit point iff e > sqrt 22 = 4.690."""
     ref = ex.arch_references(e)
     case = ex.shallow_arch(e)

@@ -21,7 +21,6 @@ from cusp.continuation import BranchSystem, Problem
 from cusp.continuation.detection._folds import fold_newton
 from cusp.continuation.numerics._linalg import DenseLU, PairLU
 from cusp.continuation.systems._newton import NewtonSettings, _on_arrays, _on_floats, newton
-from tests.continuation.helpers import first_fold_step
 
 
 def _settings(tol, step_tol, max_iter, strict=False, contract=False):
@@ -192,7 +191,7 @@ FOLD_CASES = [
 
 
 @pytest.mark.parametrize("problem, u0, monitor, exact, tol", FOLD_CASES)
-def test_fold_located_in_floats_as_on_arrays(problem, u0, monitor, exact, tol):
+def test_fold_located_in_floats_as_on_arrays(problem, u0, monitor, exact, tol, first_fold_step):
     """A fold located by the float path and by the array path (the same bracket on the
     system with its scalar flag off): the same point, iterations and tangent to rounding,
     and at the exact fold."""

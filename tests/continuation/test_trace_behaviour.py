@@ -13,8 +13,6 @@ import numpy as np
 import pytest
 
 import cusp.examples as ex
-from tests.continuation import helpers
-from tests.continuation.helpers import special
 
 BOUNDS = {"b": (-1.0, 1.0)}
 
@@ -33,7 +31,7 @@ def _cusp(**kw):
 # ---------------------------------------------------------------------------------------------
 
 
-def test_user_event_located_and_inserted():
+def test_user_event_located_and_inserted(special, assert_special_points_consistent):
     from cusp.continuation import Event
 
     case, br = _cusp(events=[Event(lambda u, p: u[0], direction=0, label="x0", terminal=False)])
@@ -49,11 +47,11 @@ def test_user_event_located_and_inserted():
     assert br["x"][sp.index] == sp.values["x"]  # inserted as a point of the branch
     # the event does not end the branch (terminal=False)
     assert br["b"][-1] == 1.0
-    helpers.assert_special_points_consistent(case, br)
+    assert_special_points_consistent(case, br)
 
 
 @pytest.mark.parametrize("direction, count", [(0, 3), (+1, 2), (-1, 1)])
-def test_event_direction(direction, count):
+def test_event_direction(direction, count, special):
     """b - 0.25 changes sign three times: upward on the lower and upper sheets, downward on the
     middle one. direction=+1 keeps only negative-to-positive crossings (scipy convention)."""
     from cusp.continuation import Event
@@ -74,7 +72,7 @@ def test_event_direction(direction, count):
         assert abs(ev[0].values["x"]) < 1 / np.sqrt(3)
 
 
-def test_terminal_event_ends_the_branch_there():
+def test_terminal_event_ends_the_branch_there(special):
     from cusp.continuation import Event
 
     case, br = _cusp(events=[Event(lambda u, p: u[0], terminal=True, label="x0")])
@@ -91,7 +89,7 @@ def test_terminal_event_ends_the_branch_there():
 # ---------------------------------------------------------------------------------------------
 
 
-def test_targets_land_exactly():
+def test_targets_land_exactly(special, assert_special_points_consistent):
     case, br = _cusp(targets={"b": [0.1, 0.2]})
     tg = special(br, "target")
     # each of b = 0.1, 0.2 is crossed once on each of the three sheets
@@ -108,7 +106,7 @@ def test_targets_land_exactly():
     # on the three sheets: x1 < -1/sqrt3 < x2 < 1/sqrt3 < x3
     xs = sorted(sp.values["x"] for sp in tg if sp.values["b"] == 0.1)
     assert xs[0] < -0.58 < xs[1] < 0.57 < xs[2]
-    helpers.assert_special_points_consistent(case, br)
+    assert_special_points_consistent(case, br)
 
 
 # ---------------------------------------------------------------------------------------------
@@ -116,7 +114,7 @@ def test_targets_land_exactly():
 # ---------------------------------------------------------------------------------------------
 
 
-def test_max_steps_ends_incomplete_with_a_status_and_a_warning():
+def test_max_steps_ends_incomplete_with_a_status_and_a_warning(branch_residual_norms):
     from cusp.continuation import MaxStepsWarning
 
     with pytest.warns(MaxStepsWarning):
@@ -126,7 +124,7 @@ def test_max_steps_ends_incomplete_with_a_status_and_a_warning():
     assert br["b"][-1] < 1.0
     assert isinstance(br.status, str) and br.status
     assert re.search(r"step", f"{br.status} {br.message}", re.IGNORECASE), (br.status, br.message)
-    assert np.all(helpers.branch_residual_norms(case, br) <= 1e-10)
+    assert np.all(branch_residual_norms(case, br) <= 1e-10)
 
 
 def _nan_beyond_half():
@@ -140,7 +138,7 @@ def _nan_beyond_half():
     return Problem(residual, unknowns=["x"], params={"a": 1.0, "b": -1.0})
 
 
-def test_nan_residual_stops_the_branch_with_a_clear_status():
+def test_nan_residual_stops_the_branch_with_a_clear_status(special):
     from cusp.continuation import trace
 
     br = trace(

@@ -2,7 +2,7 @@
 
 Exponential heights: the sympy closed forms of :func:`cusp.verification.contact_loss_path`
 evaluated at 50+ digits (derived from the GW integrals, not from the traced path).
-Gaussian heights and spheres: the independent mpmath computations of ``_contact_oracles``.
+Gaussian heights and spheres: the independent mpmath computations of ``cusp.verification.oracles``.
 Tolerances are the issue's: points ≤ 1e-10 relative, energies ≤ 1e-8 relative.
 """
 
@@ -26,8 +26,8 @@ from cusp.models import (
     Sphere,
 )
 from cusp.models.contact_loss import ContactLoss
-from tests.models import _contact_oracles as oracles
-from tests.models._exponential_closed import closed_form
+from cusp.verification import oracles
+from cusp.verification.oracles import exponential_closed_form as closed_form
 
 POINT_RTOL = 1e-10
 ENERGY_RTOL = 1e-8
@@ -352,7 +352,7 @@ def test_sphere_at_small_slips_matches_mpmath(f):
     # g_A = f·g_lim(F_N0), F'_N = F_N0 − F_A/(2μ): a, c and a0 agree to ~f; the sphere's
     # levels are 1 − a/a0 and 1 − c/a0 so that a − c keeps its digits (as 1 − c/a0 = 1 − 1e-8
     # they had 8 fewer: the energies were 9.6 % off at f = 1e-7). Reference: the mpmath path
-    # of _contact_oracles (40 digits) at the same binary inputs.
+    # of cusp.verification.oracles (40 digits) at the same binary inputs.
     res, pts, energy = _sphere_small_slip(f)
     for key in "ABCD":
         for q in ("g_T", "F_T", "A_SL"):
@@ -386,7 +386,7 @@ def test_sphere_slipped_area_at_small_slips_keeps_its_digits(f, reading):
     # 8.3e-8 (1e-9) relative at the worst of A–D, either reading. The sphere's slip_area
     # ((q − p)(2 − p − q)/(1 − p)²) and area_loss (p(2 − p)) keep them: measured ≤ 2.1e-16
     # at every point and f here, both readings. Reference: the 40-digit mpmath path of
-    # _contact_oracles, its A_SL (printed) or 1 − (c/a0)² (consistent: A_ST/A_r(F_N0)).
+    # cusp.verification.oracles, its A_SL (printed) or 1 − (c/a0)² (consistent: A_ST/A_r(F_N0)).
     sph = Sphere(**SPHERE)
     g_A = f * float(sph.slip_limit(1000.0))
     F_Np = 1000.0 - 0.5 * float(sph.tangential_force(g_A, 1000.0)) / SPHERE["mu"]

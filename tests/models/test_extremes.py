@@ -20,7 +20,6 @@ import pytest
 
 from cusp.models import ContactLoss, ExponentialRoughSurface
 from cusp.models.manifold import point_loci
-from tests.models._loci_rows import integrated_rows
 
 pytest.importorskip("cusp.verification")
 from cusp.verification.extremes import FAST, Outcome, run_case  # noqa: E402
@@ -133,7 +132,7 @@ def test_gaussian_under_1e9_N():
     assert all(f["corner"] for f in res.folds)
 
 
-def test_exponential_mu_locus_below_1e_minus_16():
+def test_exponential_mu_locus_below_1e_minus_16(integrated_rows):
     # Fig 9's locus in μ continued down to μ = 1e-18: the snap-back energy was written as
     # 0.0 below μ = 1.2e-16 (true 28.8002098 μ² N·µm), then (as a gap between legs) 19
     # times too small below μ = 1e-7. Reference: the sympy closed form of the exponential

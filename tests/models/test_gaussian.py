@@ -21,8 +21,6 @@ from cusp.models import (
 )
 from cusp.models.errors import GrossSlidingError, MissingLoadScaleError, ModelParameterError
 
-from ._reference import rel_err, table
-
 SIGMA = 2.0
 SCALE = dict(E=0.2, radius=100.0, density=1e-4, nominal_area=1e6)
 
@@ -31,9 +29,9 @@ def surface(**kw):
     return GaussianRoughSurface(SIGMA, 0.3, 0.1, **kw)
 
 
-def test_stick_ratios_against_mpmath():
+def test_stick_ratios_against_mpmath(reference_table, rel_err):
     s = surface()
-    rows = table()["gaussian"]
+    rows = reference_table["gaussian"]
     assert {r[0] for r in rows} == {6.0, 3.0, 0.0, -3.0}
     worst = 0.0
     for t, Fhex, stick, area in rows:
@@ -47,17 +45,17 @@ def test_stick_ratios_against_mpmath():
     assert worst <= 5e-14
 
 
-def test_loading_curve_against_mpmath():
+def test_loading_curve_against_mpmath(reference_table, rel_err):
     s = surface()
-    for t, dhex, ref in table()["gaussian_loading"]:
+    for t, dhex, ref in reference_table["gaussian_loading"]:
         delta = float.fromhex(dhex)  # g_N0/σ*
         g_T = delta * SIGMA * s.mu * s.lam / SIGMA
         assert rel_err(s.force_ratio(g_T, separation=SIGMA * t), ref) <= 1e-14, (t, delta)
 
 
-def test_load_and_area_integrals_against_mpmath():
+def test_load_and_area_integrals_against_mpmath(reference_table, rel_err):
     s = surface()
-    for t, J, A in table()["gaussian_JA"]:
+    for t, J, A in reference_table["gaussian_JA"]:
         assert rel_err(s.load_integral(SIGMA * t) / SIGMA**1.5, J) <= 1e-14
         assert rel_err(s.area_integral(SIGMA * t) / SIGMA, A) <= 1e-14
 
@@ -136,12 +134,12 @@ def test_properties(F, t):
 
 def test_log_load_derivative_far_in_the_tail():
     # d log J/dh = −(3/2) F_{1/2}/(σ* F_{3/2}) against the parabolic-cylinder closed form of
-    # the GW integrals (tests/models/_contact_oracles.py, mpmath at 40 digits), out to
+    # the GW integrals (cusp.verification.oracles, mpmath at 40 digits), out to
     # h = 500σ*, where J and dJ/dh underflow (the logs are differences of numbers ~ −t²/2:
     # relative accuracy ~ ε t², so 1e-11 there)
     import mpmath as mp
 
-    from ._contact_oracles import gw
+    from cusp.verification.oracles import gw
 
     s = surface()
     for t, tol in ((-2.5, 1e-14), (0.0, 1e-14), (10.0, 1e-14), (38.0, 1e-13), (500.0, 1e-11)):

@@ -2,7 +2,7 @@
 (cusp.models.manifold): for exponential heights against the sympy closed forms of
 :func:`cusp.verification.contact_loss_path` (points, energies) and the closed-form events;
 for Gaussian heights and a sphere against single runs and the mpmath oracles of
-``tests/models/_contact_oracles.py``. Events:
+``cusp.verification.oracles``. Events:
 
 * C boundary, F_A = μF'_N with F_A = μF_N0(1 − exp(−g_A/(λμ))):
   μ_C = g_A / (λ ln(F_N0/ΔF_N)), or at fixed μ, F'_N = F_A/μ;
@@ -18,9 +18,8 @@ import pytest
 
 from cusp.models import ContactLoss, ExponentialRoughSurface, GaussianRoughSurface, Sphere
 from cusp.models.manifold import C_MARGIN, CSV_COLUMNS, LOCI_UNITS, point_loci
-from tests.models import _contact_oracles as oracles
-from tests.models._exponential_closed import closed_form
-from tests.models._loci_rows import integrated_rows
+from cusp.verification import oracles
+from cusp.verification.oracles import exponential_closed_form as closed_form
 
 pytest.importorskip("cusp.verification")  # (sympy: the closed forms)
 
@@ -130,7 +129,7 @@ def test_reduced_load_locus_follows_the_closed_forms():
         assert events[name]["reduced_normal_load"] == pytest.approx(want, rel=1e-10)
 
 
-def test_extremes_tiny_mu_and_tiny_reductions():
+def test_extremes_tiny_mu_and_tiny_reductions(integrated_rows):
     # μ down to 1e-4 (F̂_T(A) = 1 − e^{−1400}: A deep in the tail of the heights)
     loci = point_loci(_model(mu=0.01), "mu", (1e-4, 0.02))
     cols = loci.columns

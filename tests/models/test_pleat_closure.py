@@ -22,14 +22,10 @@ contact_loss_path`, printed beside it as sympy gives it, from (about 8 s, so not
 
 from __future__ import annotations
 
-import importlib.util
 import math
-import pathlib
 
 import numpy as np
 import pytest
-
-ROOT = pathlib.Path(__file__).resolve().parents[2]
 
 SIGMA, NU, MU, F_N0, G_A = 2.0, 0.3, 0.1, 1000.0, 0.34  # scenes/fig6.toml
 LAM = SIGMA * (2.0 - NU) / (2.0 * (1.0 - NU))  # λ = σ*(2 − ν)/(2(1 − ν)), the model's float
@@ -69,17 +65,9 @@ D_FIT = (1e-4, 1e-5, 1e-6, 1e-7, 1e-8)
 
 
 @pytest.fixture(scope="module")
-def script(request):
-    """``scripts/pleat_closure.py`` as a module (it imports ``_report`` from scripts/)."""
-    mp = pytest.MonkeyPatch()
-    request.addfinalizer(mp.undo)
-    mp.syspath_prepend(str(ROOT / "scripts"))
-    spec = importlib.util.spec_from_file_location(
-        "pleat_closure", ROOT / "scripts/pleat_closure.py"
-    )
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
+def script(load_script):
+    """``scripts/pleat_closure.py`` as a module."""
+    return load_script("pleat_closure")
 
 
 @pytest.fixture(scope="module")

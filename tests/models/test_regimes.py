@@ -18,7 +18,7 @@ import pytest
 from cusp.models import ContactLoss, ExponentialRoughSurface, Sphere
 from cusp.models.errors import ModelParameterError
 from cusp.models.regimes import REGIMES, regime_map
-from tests.models._exponential_closed import closed_form
+from cusp.verification.oracles import exponential_closed_form as closed_form
 
 pytest.importorskip("cusp.verification")  # (sympy: the closed forms)
 

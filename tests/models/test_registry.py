@@ -26,7 +26,6 @@ from cusp.models import (
 from cusp.models.contact_loss import ContactLoss
 from cusp.models.protocol import sliding_level
 from cusp.models.registry import Parameter
-from tests.models import _toy_body as toy
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 SCALE = dict(E=0.2, radius=10.0, density=0.01, nominal_area=1e6)
@@ -34,19 +33,33 @@ SCALE = dict(E=0.2, radius=10.0, density=0.01, nominal_area=1e6)
 
 # ------------------------------------------------------------------ the levels of every body
 def _bodies():
-    """(name, body, F_N0 [N], g_A [µm], a state (p, q) on the path's side of p = q)."""
+    """(name, make the body from the toy body's module, F_N0 [N], g_A [µm], a state (p, q) on
+    the path's side of p = q)."""
     return [
-        ("exponential", ExponentialRoughSurface(2.0, 0.3, 0.1), 1000.0, 0.34, (0.2, 1.1)),
-        ("exponential+scale", ExponentialRoughSurface(2.0, 0.3, 0.1, **SCALE), 1000.0, 0.34, None),
-        ("gaussian", GaussianRoughSurface(2.0, 0.3, 0.1, **SCALE), 1000.0, 0.1, None),
+        (
+            "exponential",
+            lambda toy: ExponentialRoughSurface(2.0, 0.3, 0.1),
+            1000.0,
+            0.34,
+            (0.2, 1.1),
+        ),
+        (
+            "exponential+scale",
+            lambda toy: ExponentialRoughSurface(2.0, 0.3, 0.1, **SCALE),
+            1000.0,
+            0.34,
+            None,
+        ),
+        ("gaussian", lambda toy: GaussianRoughSurface(2.0, 0.3, 0.1, **SCALE), 1000.0, 0.1, None),
         # (the sphere's levels are 1 − a/a0, 1 − c/a0: a = 0.95 a0, c = 0.7 a0)
-        ("sphere", Sphere(1000.0, 0.2, 0.3, 0.1), 1000.0, 2.0, (0.05, 0.3)),
-        ("toy", toy.BrushBody(0.1, 0.1, 0.05), 1000.0, 0.2, (0.9, 0.6)),
+        ("sphere", lambda toy: Sphere(1000.0, 0.2, 0.3, 0.1), 1000.0, 2.0, (0.05, 0.3)),
+        ("toy", lambda toy: toy.BrushBody(0.1, 0.1, 0.05), 1000.0, 0.2, (0.9, 0.6)),
     ]
 
 
-@pytest.mark.parametrize("name,body,F_N0,g_A,state", _bodies(), ids=[b[0] for b in _bodies()])
-def test_levels_follow_the_protocol_with_exact_derivatives(name, body, F_N0, g_A, state):
+@pytest.mark.parametrize("name,make,F_N0,g_A,state", _bodies(), ids=[b[0] for b in _bodies()])
+def test_levels_follow_the_protocol_with_exact_derivatives(name, make, F_N0, g_A, state, toy_body):
+    body = make(toy_body)
     assert isinstance(body, PathBody)
     L = body.contact_levels(F_N0, g_A)
     assert isinstance(L, ContactLevels)
@@ -82,12 +95,12 @@ def test_levels_follow_the_protocol_with_exact_derivatives(name, body, F_N0, g_A
             assert d == pytest.approx(fd, rel=1e-7, abs=1e-9), (name, method, i, d, fd)
 
 
-def test_slip_limit_is_the_slip_where_the_stick_zone_vanishes():
+def test_slip_limit_is_the_slip_where_the_stick_zone_vanishes(toy_body):
     # sphere: κ(1 − p)² = s(p, 1) (c = 0 at q = 1); toy: βa0 p = s(p, 0); rough surfaces
     # never slide as a whole
     for body, F_N0, g_A in (
         (Sphere(1000.0, 0.2, 0.3, 0.1), 1000.0, 2.0),
-        (toy.BrushBody(0.1, 0.1, 0.05), 1000.0, 0.2),
+        (toy_body.BrushBody(0.1, 0.1, 0.05), 1000.0, 0.2),
     ):
         L = body.contact_levels(F_N0, g_A)
         p = 0.2
@@ -111,27 +124,33 @@ def test_an_object_that_is_no_body_is_refused_naming_the_protocol():
         assert f"got {type(thing).__name__}, which lacks {lacks}" in msg
 
 
-class _BadLevelsBody(toy.BrushBody):
-    def __init__(self, levels):
-        super().__init__(0.1, 0.1, 0.05)
-        self._levels = levels
+@pytest.fixture
+def bad_levels_body(toy_body):
+    """A toy body whose ``contact_levels`` returns the levels it is given."""
 
-    def contact_levels(self, normal_load, max_slip):
-        return self._levels
+    class _BadLevelsBody(toy_body.BrushBody):
+        def __init__(self, levels):
+            super().__init__(0.1, 0.1, 0.05)
+            self._levels = levels
+
+        def contact_levels(self, normal_load, max_slip):
+            return self._levels
+
+    return _BadLevelsBody
 
 
-def test_levels_that_do_not_follow_the_protocol_are_refused():
+def test_levels_that_do_not_follow_the_protocol_are_refused(bad_levels_body, toy_body):
     with pytest.raises(
         ModelParameterError,
         match=r"_BadLevelsBody.contact_levels\(\) returned "
         r"SimpleNamespace, which lacks .*slip_limit; it must follow",
     ):
-        ContactLoss(_BadLevelsBody(types.SimpleNamespace(names=("a", "c"))), 1000.0, 0.2, 850.0)
-    good = toy.BrushBody(0.1, 0.1, 0.05).contact_levels(1000.0, 0.2)
+        ContactLoss(bad_levels_body(types.SimpleNamespace(names=("a", "c"))), 1000.0, 0.2, 850.0)
+    good = toy_body.BrushBody(0.1, 0.1, 0.05).contact_levels(1000.0, 0.2)
     for names in (("F_N", "c"), ("a", "a"), ("a",), ["a", "c"]):
         good.names = names
         with pytest.raises(ModelParameterError, match="names must be two distinct"):
-            ContactLoss(_BadLevelsBody(good), 1000.0, 0.2, 850.0)
+            ContactLoss(bad_levels_body(good), 1000.0, 0.2, 850.0)
 
 
 @pytest.mark.parametrize("body,name", [(Cylinder(), "Cylinder"), (FlatPlane(), "FlatPlane")])
@@ -179,11 +198,11 @@ def test_builtin_entries_are_the_scene_models_of_before():
     assert registry.SIGMA.allowed() == "a finite number > 0 [µm]"
 
 
-def test_register_twice_replace_and_context_manager_restore():
+def test_register_twice_replace_and_context_manager_restore(toy_body):
     with registry.registered_body("toy-a", "tests.models._toy_body:BrushBody") as first:
         with pytest.raises(ModelParameterError, match="'toy-a' is already registered"):
             registry.register_body("toy-a", "tests.models._toy_body:BrushBody")
-        with registry.registered_body("toy-a", toy.BrushBody, replace=True) as second:
+        with registry.registered_body("toy-a", toy_body.BrushBody, replace=True) as second:
             assert registry.body_entry("toy-a") is second
         assert registry.body_entry("toy-a") is first  # the replaced entry is back
     assert "toy-a" not in registry.body_names()

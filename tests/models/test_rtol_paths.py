@@ -15,7 +15,7 @@ from cusp.models._loci_energy import ENERGY_RTOL, QUAD_RTOL, flag_rtol, gauss_le
 from cusp.models.contact_loss import DEFAULT_OPTIONS
 from cusp.models.manifold import DEFAULT_OPTIONS as LOCI_OPTIONS
 from cusp.models.manifold import point_loci
-from tests.models._exponential_closed import closed_form
+from cusp.verification.oracles import exponential_closed_form as closed_form
 
 # the Fig 6 scene: σ* = 2 µm, ν = 0.3, μ = 0.1, F_N0 = 1000 N, g_A = 0.34 µm, F'_N = 850 N
 FIG6 = (2.0, 0.3, 0.1, 1000.0, 0.34, 850.0)

@@ -2,31 +2,11 @@
 
 from __future__ import annotations
 
-import importlib.util
-import pathlib
-
 import numpy as np
-import pytest
-
-ROOT = pathlib.Path(__file__).resolve().parents[2]
 
 
-@pytest.fixture(autouse=True)
-def scripts_on_path(monkeypatch):
-    """Scripts import their siblings (`_report`) from scripts/, on sys.path when run as
-    ``python scripts/<name>.py``."""
-    monkeypatch.syspath_prepend(str(ROOT / "scripts"))
-
-
-def load(name):
-    spec = importlib.util.spec_from_file_location(name, ROOT / "scripts" / f"{name}.py")
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
-
-
-def test_fig5_writes_png_and_svg(tmp_path):
-    fig5 = load("fig5")
+def test_fig5_writes_png_and_svg(tmp_path, load_script):
+    fig5 = load_script("fig5")
     assert fig5.main(["--out", str(tmp_path / "one")]) == 0
     assert fig5.main(["--out", str(tmp_path / "two")]) == 0
     for panel in "ab":
@@ -38,8 +18,8 @@ def test_fig5_writes_png_and_svg(tmp_path):
     assert not list(tmp_path.rglob("*.tmp"))  # written atomically
 
 
-def test_fig5_data_ordering():
-    data = load("fig5").curves()
+def test_fig5_data_ordering(load_script):
+    data = load_script("fig5").curves()
     order = ["spheres", "cylinders", "rough surfaces (exponential)", "flat planes"]
     F = data["spheres"][0]
     inner = (F > 0) & (F < 0.9)
@@ -53,9 +33,9 @@ def test_fig5_data_ordering():
         assert y[0] == 0 and y[-1] == 0 and 0.2 < np.argmax(y) / y.size < 0.9
 
 
-def test_bench_trace_phase_timer_wraps_the_engine_functions_it_names():
+def test_bench_trace_phase_timer_wraps_the_engine_functions_it_names(load_script):
     # the per-phase breakdown wraps engine functions by name; a function moved to another
     # module (the start's corrector did) must fail here, not four minutes into the benchmark
-    bench = load("bench_trace")
+    bench = load_script("bench_trace")
     total, parts = bench._phases_once(bench.PROBLEMS[0], 1)
     assert total > 0.0 and parts and all(v >= 0.0 for v in parts.values())

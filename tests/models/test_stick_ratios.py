@@ -7,16 +7,12 @@ reference_values.json); a few are recomputed live below to tie the table to that
 
 from __future__ import annotations
 
-import sys
-
 import numpy as np
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from cusp.models import Cylinder, ExponentialRoughSurface, FlatPlane, Sphere
-
-from ._reference import HERE, rel_err, table
 
 BODIES = {
     "exponential": ExponentialRoughSurface(sigma=2.0, nu=0.3, mu=0.1),
@@ -30,9 +26,9 @@ TOL = 1e-13
 
 
 @pytest.mark.parametrize("name", list(BODIES))
-def test_against_mpmath_table(name):
+def test_against_mpmath_table(name, reference_table, rel_err):
     body = BODIES[name]
-    rows = table()["bodies"][name]
+    rows = reference_table["bodies"][name]
     F = np.array([float.fromhex(r[0]) for r in rows])
     force, area = body.stick_force_ratio(F), body.stick_area_ratio(F)
     ef = [rel_err(v, r[1]) for v, r in zip(force, rows, strict=True)]
@@ -45,12 +41,7 @@ def test_against_mpmath_table(name):
 
 @pytest.mark.parametrize("name", ["exponential", "sphere", "cylinder"])
 @pytest.mark.parametrize("F", [1e-14, 0.3, 1 - 2.0**-52])
-def test_table_matches_reference_code(name, F):
-    sys.path.insert(0, str(HERE))
-    try:
-        import mp_reference
-    finally:
-        sys.path.remove(str(HERE))
+def test_table_matches_reference_code(name, F, rel_err, mp_reference):
     stick, area = mp_reference.BODIES[name](F)
     assert rel_err(BODIES[name].stick_force_ratio(F), stick) <= TOL
     assert rel_err(BODIES[name].stick_area_ratio(F), area) <= TOL

@@ -11,7 +11,6 @@ sp = pytest.importorskip("sympy")
 
 from cusp.verification import check_implementation, exact_value  # noqa: E402
 from cusp.verification.common import x  # noqa: E402
-from tests.verification._stand_ins import GoodRough, NaiveRough, fake_models  # noqa: E402
 
 
 def test_exact_value_survives_cancellation():
@@ -26,8 +25,8 @@ def test_exact_value_survives_cancellation():
 
 
 @pytest.fixture(scope="module")
-def good_verdicts():
-    return check_implementation(fake_models(GoodRough))
+def good_verdicts(stand_ins):
+    return check_implementation(stand_ins.fake_models(stand_ins.GoodRough))
 
 
 def test_correct_stand_in_implementation_agrees(good_verdicts):
@@ -52,8 +51,8 @@ def test_correct_stand_in_implementation_agrees(good_verdicts):
             assert v.points >= 8
 
 
-def test_naive_erf_implementation_is_reported():
-    verdicts = check_implementation(fake_models(NaiveRough))
+def test_naive_erf_implementation_is_reported(stand_ins):
+    verdicts = check_implementation(stand_ins.fake_models(stand_ins.NaiveRough))
     (v12,) = verdicts["12"]
     assert not v12.agrees
     # Fhat_ST -> 0 as Fhat_T -> 1 and the erf form loses the digits there

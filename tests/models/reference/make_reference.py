@@ -10,13 +10,13 @@ from __future__ import annotations
 
 import json
 import pathlib
-import sys
 
+# (run as a script, its own folder comes first on the import path: mp_reference, its
+# sibling, imports by name)
+import mp_reference as ref
 import numpy as np
 
 HERE = pathlib.Path(__file__).parent
-sys.path.insert(0, str(HERE))
-import mp_reference as ref  # noqa: E402
 
 EXTREMES = [
     1e-300,

@@ -15,8 +15,6 @@ from __future__ import annotations
 import functools
 import math
 
-import mpmath as mp
-
 from cusp.models.registry import build_body
 
 #: digits of the mpmath references (the energies at d = 1e-12 cancel about 24)
@@ -60,6 +58,8 @@ def reference(case: dict, F_Np: float, mu: float | None = None) -> dict[str, flo
             else math.nan
             for k, e in cf["exprs"].items()
         }
+    import mpmath as mp  # optional (the test extra): imported where it is used
+
     with mp.workdps(REF_DPS):
         if case["model"] == "sphere":
             return _sphere_reference(p, case["F_N0"], case["g_A"], F_Np)
@@ -68,12 +68,16 @@ def reference(case: dict, F_Np: float, mu: float | None = None) -> dict[str, flo
 
 def _gw(n, t):
     """F_n(t) = ∫_t^∞ (s − t)^n φ(s) ds by parabolic-cylinder functions."""
+    import mpmath as mp
+
     return mp.gamma(n + 1) * mp.exp(-t * t / 4) * mp.pcfd(-n - 1, t) / mp.sqrt(2 * mp.pi)
 
 
 def _gaussian_reference(p, F_N0, g_A, F_Np) -> dict[str, float]:
     """Gaussian heights: d0 = d + g_N0 frozen along AB, g_T = (μλ/σ*)(d0 − d),
     F_T = μK[J(d) − J(d0)], loop integrals with ∫J = (2/5)ΔJ_{5/2}."""
+    import mpmath as mp
+
     s, nu, mu = mp.mpf(p["sigma"]), mp.mpf(p["nu"]), mp.mpf(p["mu"])
     E_star = mp.mpf(p["E"]) / (2 * (1 - nu**2))
     K = 4 * E_star * mp.sqrt(mp.mpf(p["radius"])) * mp.mpf(p["density"]) * p["nominal_area"] / 3
@@ -113,6 +117,8 @@ def _gaussian_reference(p, F_N0, g_A, F_Np) -> dict[str, float]:
 def _sphere_reference(p, F_N0, g_A, F_Np) -> dict[str, float]:
     """Two spheres: F_N = k a³, F_T = μk(a³ − c³), g_T = μκ(a² − c²) with k = 4E*/(3R*),
     κ = (2 − ν)E*/(2GR*), R* = R/2; c frozen along AB; the loop integrals in closed form."""
+    import mpmath as mp
+
     R, E, nu, mu = (mp.mpf(p[k]) for k in ("radius", "E", "nu", "mu"))
     E_star, G, Rs = E / (2 * (1 - nu**2)), E / (2 * (1 + nu)), R / 2
     k, kap = 4 * E_star / (3 * Rs), (2 - nu) * E_star / (2 * G * Rs)

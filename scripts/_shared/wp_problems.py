@@ -3,11 +3,11 @@ settings of every tool (coarse to fine, so that a tool whose run grows too long 
 finer ones), and how the errors of a run are measured against an exact reference.
 
 (a) fold location (cusp normal form, Green truss, FD Bratu N = 999 and 99 999): ours,
-    contique, pacopy and the SciPy loop (`_tools`); errors: the folds' parameters, and for
+    contique, pacopy and the SciPy loop (`tools`); errors: the folds' parameters, and for
     the one-unknown problems the curve between the computed points (joined by straight
     lines, and ours' dense output `Branch.interpolate` where this build has it);
 (b) the fold curve of the CO model through its cusp (ours only): the cusp point, the curve.
-The contact-loss tasks, (c) and (d), are in `_wp_contact.py`."""
+The contact-loss tasks, (c) and (d), are in `wp_contact.py`."""
 
 from __future__ import annotations
 
@@ -20,11 +20,17 @@ from dataclasses import dataclass, field
 import numpy as np
 
 import cusp.examples as ex
+from cusp._scripts.tools import (
+    counted,
+    fold_errors,
+    run_contique,
+    run_ours,
+    run_pacopy,
+    run_scipy,
+    trace_problems,
+)
 from cusp.continuation import Problem, fold_curve, trace
 from cusp.examples.chemistry import CO_CUSP, co_quartic
-
-from _tools import counted, fold_errors, run_contique, run_ours, run_pacopy, run_scipy
-from bench_trace import PROBLEMS
 
 #: ours: every accuracy level the options allow, coarse to fine
 RTOLS = tuple(float(f"1e-{k}") for k in range(2, 14))
@@ -35,7 +41,7 @@ PER_SEGMENT = 16
 
 @dataclass
 class Setting:
-    """One run of one tool: ``run()`` solves and returns the summary function (`_tools`);
+    """One run of one tool: ``run()`` solves and returns the summary function (`tools`);
     ``family``: the runs joined by one line in the figures (a tool at one tolerance)."""
 
     tool: str
@@ -103,7 +109,7 @@ def _truss_curve(v, P):
 
 
 def bratu_problem(n: int) -> dict:
-    """The FD Bratu problem with ``n`` nodes as a problem of `_tools`: from u = 0 at λ = 0
+    """The FD Bratu problem with ``n`` nodes as a problem of `tools`: from u = 0 at λ = 0
     to u(½) = 2 past the fold (the SciPy loop sweeps λ over [0, 4])."""
     example = ex.bratu(n, sparse=True)
     if n == 99_999:
@@ -130,7 +136,7 @@ def bratu_problem(n: int) -> dict:
 
 def small_problems() -> list[dict]:
     """The cusp normal form and the Green truss of `bench_trace`, with their exact curves."""
-    cusp, truss = (dict(pb) for pb in PROBLEMS)
+    cusp, truss = trace_problems()
     cusp.update(
         key="cusp",
         curve=_cusp_curve,
@@ -221,7 +227,7 @@ def fold_measure(pb) -> Callable[[dict], dict[str, float]]:
 
 
 def _fold_error(found, exact) -> float:
-    """The largest relative error of the exact folds' parameters (:func:`_tools.fold_errors`,
+    """The largest relative error of the exact folds' parameters (:func:`tools.fold_errors`,
     each against the nearest estimate); inf if there is none."""
     errs = fold_errors(found, exact)
     if any(e is None for e in errs):

@@ -21,13 +21,12 @@ import math
 
 import numpy as np
 
+from cusp._scripts.wp_problems import Setting, Task
 from cusp.app.cases import build_body, make_model, solver_options
 from cusp.app.run import bundled_scene
 from cusp.app.scene import load_scene
 from cusp.continuation import ContinuationOptions
 from cusp.models import point_loci
-
-from _wp_problems import Setting, Task
 
 WORK = "F̂_T evaluations (leg residuals and quadrature nodes)"
 #: the values of μ the locus must pass through (rows located as targets), where its errors

@@ -8,11 +8,9 @@ import sys
 from datetime import datetime, timezone
 from pathlib import Path
 
+from cusp._scripts.report import commit_and_load, machine, write_report
+from cusp._scripts.wp_figures import GROUPS, MEASURES, draw_group
 from cusp.continuation import ContinuationOptions
-
-from _report import commit_and_load, write_report
-from _wp_figures import GROUPS, MEASURES, draw_group
-from bench_trace import machine
 
 #: errors below this are rounding: they compare equal
 FLOOR = 1e-15

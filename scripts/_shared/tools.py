@@ -1,7 +1,8 @@
 """The continuation tools the benchmark scripts compare, each run on one problem and counted:
 ours (`trace`), contique, pacopy 0.1.x and a SciPy natural-parameter loop; and the timing
-helpers (timeit-style best of interleaved rounds). Shared by `bench_trace.py` (the tools at
-their default settings) and `bench_work_precision.py` (the tools over their accuracy knobs).
+helpers (timeit-style best of interleaved rounds); and the problems of `bench_trace.py`
+(:func:`trace_problems`). Shared by `bench_trace.py` (the tools at their default settings),
+`bench_work_precision.py` (the tools over their accuracy knobs) and `bench_ab.py`.
 
 A problem ``pb`` is a dict: ``name``; ``example`` (an example of `cusp.examples`, whose own
 residual and derivatives every tool calls); ``x0`` (the start state, a number or an array),
@@ -27,12 +28,14 @@ import importlib.metadata
 import io
 import math
 import time
+from typing import Any
 
 import numpy as np
 import scipy.optimize
 import scipy.sparse.linalg as spla
 from scipy.linalg import lapack
 
+import cusp.examples as ex
 from cusp.continuation import Problem, trace
 
 TOL = 1e-10
@@ -266,7 +269,7 @@ def run_pacopy(pb, pacopy, *, newton_tol=TOL, stepsize_max=0.5, max_steps=2000):
             reached[0] = True
             raise _PacopyStop
 
-    module = importlib.import_module("pacopy.euler_newton")
+    module: Any = importlib.import_module("pacopy.euler_newton")  # (a private name, patched)
     corrector = module._newton_corrector
 
     def counted_corrector(*a):
@@ -477,10 +480,50 @@ def best_times(fns, repeat, numbers=None):
 
 def fold_errors(found, exact):
     """Error of each exact fold's parameter vs the nearest reported estimate (None if none)."""
-    errs = []
+    errs: list[float | None] = []
     for _, lam in exact:
         if not found:
             errs.append(None)
             continue
         errs.append(min(abs(v - lam) for v in found))
     return errs
+
+
+# ----------------------------------------------------------------------------- problems
+# Each problem: an example of `cusp.examples` with one unknown x and one free parameter lam
+# (its other parameters fixed), the start (x0, lam0), the end lam1, and the exact folds
+# [(x, lam), ...] in path order (the example's mpmath references). Every tool calls the
+# example's own residual and derivatives.
+
+
+def _cusp():
+    # mpmath, 40 digits: r = 1/sqrt(3), b = 2 r^3 = 2/(3 sqrt 3), correctly rounded (in float
+    # arithmetic 2*(1/sqrt(3))**3 is 2 ulp high); x0 = -1.324717957244746, the root of
+    # x^3 - x + 1 (minus the plastic number)
+    return {
+        "name": "cusp x³ − x − b, b ∈ [−1, 1]",
+        "example": ex.cusp_normal_form(a=1.0, b=-1.0),
+        "x0": ex.cusp_start(1.0, -1.0),
+        "lam0": -1.0,
+        "lam1": 1.0,
+        "folds": list(ex.cusp_folds(1.0)),
+    }
+
+
+def _truss():
+    H = 0.5
+    # mpmath, 40 digits: v = H(1 -+ 1/sqrt 3), P = K v (H - v)(2H - v), correctly rounded
+    return {
+        "name": "Green truss (EA = L = 1, H = 0.5), v ∈ [−0.5, 1.5]",
+        "example": ex.truss_green(EA=1.0, L=1.0, H=H),
+        "x0": -0.5,
+        "lam0": ex.truss_green_force(-0.5, 1.0, 1.0, H),
+        "lam1": ex.truss_green_force(1.5, 1.0, 1.0, H),
+        "folds": list(ex.truss_green_limits(1.0, 1.0, H)),
+    }
+
+
+def trace_problems() -> list[dict]:
+    """The problems of ``scripts/bench_trace.py`` (also timed by ``scripts/bench_ab.py`` and
+    the work–precision benchmark): the cusp normal form and the Green truss, built afresh."""
+    return [_cusp(), _truss()]

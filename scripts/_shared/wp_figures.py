@@ -7,7 +7,7 @@ from __future__ import annotations
 
 import math
 
-from _report import save_figure
+from cusp._scripts.report import save_figure
 
 #: group -> (title, file stem of its figures)
 GROUPS = {

@@ -1,0 +1,1 @@
+"""Whole bifurcation diagrams: recursive branch switching, each branch once, deflation."""

@@ -1,0 +1,92 @@
+"""The records of a whole bifurcation diagram: :class:`Diagram`, its branches
+(:class:`DiagramBranch`) and the branch points linking them (:class:`DiagramPoint`)."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any
+
+from ..results._branch import Branch, SpecialPoint
+from ._deflation import Deflation
+
+
+@dataclass(frozen=True)
+class DiagramBranch:
+    """One branch of a :class:`Diagram`.
+
+    ``branch``: the traced :class:`~cusp.continuation.Branch` (both ways from its start,
+    unless ``closed``). ``depth``: 0 for the start's branch and branches started from
+    deflated solutions, one more than its parent's for a branch switched into. ``origin``:
+    ``"start"``, ``"branch_point"`` or ``"deflation"``. ``source``: the index in
+    :attr:`Diagram.points` of the branch point it leaves (None otherwise). ``closed``: it
+    returned to its start (an isola, or a loop). ``ends``: how each half ended (the minus
+    half's status, then the plus half's; ``("closed",)`` for a closed branch).
+    """
+
+    branch: Branch
+    depth: int
+    origin: str
+    source: int | None
+    closed: bool
+    ends: tuple[str, ...]
+
+
+@dataclass(frozen=True)
+class DiagramPoint:
+    """A branch point of a :class:`Diagram`, once however many branches located it.
+
+    ``point``: the first located :class:`~cusp.continuation.SpecialPoint` (values, tangents
+    and switching data). ``on``: the indices of the branches it lies on (those that located
+    it, and the branches that leave it). ``leaving``: the branches switched into from it
+    (traced from it, or recognised as already traced). ``notes``: what was done at it, one
+    sentence per branch that located it (switched, recognised, not switched and why).
+    """
+
+    point: SpecialPoint
+    on: tuple[int, ...]
+    leaving: tuple[int, ...]
+    notes: tuple[str, ...]
+
+
+@dataclass(frozen=True)
+class Diagram:
+    """A whole bifurcation diagram (:func:`~cusp.continuation.diagram`).
+
+    ``branches`` and ``points`` (see :class:`DiagramBranch`, :class:`DiagramPoint`);
+    ``free``: the free parameter; ``tol``: the distance (weighted, relative to the typical
+    sizes) within which two branches or points are the same; ``recognised``: one sentence per
+    branch found again and not kept (before tracing, from a branch point whose other branch
+    is known; or after, a traced branch lying on a known one; or a deflated solution on a
+    known branch); ``deflation``: the :class:`~cusp.continuation.Deflation` runs, one per
+    parameter value; ``traces``: the branches traced (kept or not).
+    """
+
+    branches: tuple[DiagramBranch, ...]
+    points: tuple[DiagramPoint, ...]
+    free: str
+    tol: float
+    recognised: tuple[str, ...]
+    deflation: tuple[Deflation, ...]
+    traces: int
+
+    def __len__(self) -> int:
+        return len(self.branches)
+
+    def __repr__(self) -> str:
+        closed = sum(b.closed for b in self.branches)
+        return (
+            f"<Diagram {len(self.branches)} branches ({closed} closed), "
+            f"{len(self.points)} branch points, {len(self.recognised)} recognised, "
+            f"{self.traces} traces>"
+        )
+
+    def plot(self, x: str, y: str, ax: Any = None, *, points: bool = True) -> Any:
+        """Draw every branch (``y`` against ``x``) and the branch points (matplotlib imported
+        lazily); a branch carrying a column ``n_unstable`` is drawn solid where it is 0 and
+        dashed elsewhere. Returns the Axes."""
+        from ._plot import plot_diagram
+
+        return plot_diagram(self, x, y, ax=ax, points=points)
+
+
+__all__ = ["Diagram", "DiagramBranch", "DiagramPoint"]
