@@ -11,6 +11,7 @@ import pytest
 import scipy.sparse as sp
 import sympy as sy
 
+import cusp.examples as examples
 from cusp.continuation import Problem, ProblemDefinitionError, trace
 
 #: relative accuracy of a located Hopf parameter: rounding with an exact Jacobian; with a
@@ -73,25 +74,20 @@ SIGMA, BETA = 10.0, 8.0 / 3.0
 
 
 def lorenz(jac: str) -> Problem:
-    def residual(u, p):
-        x, y, z = u
-        return np.array([SIGMA * (y - x), p["r"] * x - y - x * z, x * y - BETA * z])
-
-    def jacobian(u, p):
-        x, y, z = u
-        return np.array([[-SIGMA, SIGMA, 0.0], [p["r"] - z, -1.0, -x], [y, x, -BETA]])
-
-    return Problem(residual, ["x", "y", "z"], {"r": 2.0},
-                   jacobian=jacobian if jac == "analytic" else None, mass=True)  # fmt: skip
+    """The Lorenz equilibria of :func:`cusp.examples.lorenz` (σ = 10, β = 8/3) declared a
+    vector field, from ρ = 2."""
+    ex = examples.lorenz()
+    return Problem(ex.residual, list(ex.unknowns), {**ex.params, "rho": 2.0},
+                   jacobian=ex.jacobian if jac == "analytic" else None, mass=True)  # fmt: skip
 
 
 @pytest.mark.parametrize("jac", ["analytic", "central"])
 def test_lorenz_subcritical_hopf(jac, hopf_l1):
     x0 = math.sqrt(BETA * 1.0)  # C+ at r = 2: x = y = sqrt(β(r − 1)), z = r − 1
-    br = trace(lorenz(jac), [x0, x0, 1.0], free="r", bounds={"r": (2.0, 30.0)}, stability=True)
+    br = trace(lorenz(jac), [x0, x0, 1.0], free="rho", bounds={"rho": (2.0, 30.0)}, stability=True)
     (hopf,) = br.special("hopf")
     r_h = SIGMA * (SIGMA + BETA + 3) / (SIGMA - BETA - 1)  # 24.736842105263158 = 470/19
-    assert abs(hopf.values["r"] - r_h) <= PARAM_RTOL[jac] * r_h
+    assert abs(hopf.values["rho"] - r_h) <= PARAM_RTOL[jac] * r_h
     x, y, z, r = sy.symbols("x y z r")
     s, b = sy.Integer(10), sy.Rational(8, 3)
     R = s * (s + b + 3) / (s - b - 1)
