@@ -27,14 +27,15 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from cusp.continuation import ChainPoint, ContinuationOptions, PointChain, locus
+from cusp.continuation import AccuracyError, ChainPoint, ContinuationOptions, PointChain, locus
 
+from .contact_loss import DEFAULT_OPTIONS as PATH_OPTIONS
 from .contact_loss import ContactLoss
 from .errors import ModelParameterError
 from .manifold import DEFAULT_OPTIONS, point_loci, trace_loci
-from .protocol import sliding_level
+from .protocol import sliding_level, stick_bounds
 
-__all__ = ["REGIMES", "RegimeMap", "regime_map"]
+__all__ = ["REGIMES", "RegimeBoundaries", "RegimeMap", "regime_boundaries", "regime_map"]
 
 #: the regimes, in the order of their codes in :attr:`RegimeMap.regimes`
 REGIMES = (
@@ -79,12 +80,7 @@ def regime_map(
     μ logarithmically, or the values). The model's own μ must lie in ``mu_span``.
     ``options``: of the loci (default :data:`cusp.models.manifold.DEFAULT_OPTIONS`; for
     another accuracy, ``DEFAULT_OPTIONS.replace(rtol=...)``)."""
-    lo, hi = (float(x) for x in load_span)
-    if not 0.0 < lo < hi <= model.F_N0:
-        raise ModelParameterError(
-            f"load_span must be two increasing loads in (0, F_N0 = {model.F_N0!r}] N, got "
-            f"{load_span!r}"
-        )
+    lo, hi = _load_span(model, load_span)
     mu_grid = _grid(mus, mu_span, log=True, name="mus")
     load_grid = _grid(loads, (lo, hi), log=False, name="loads")
     # the spine: the shallowest reduction of the map, admissible over the widest range of μ
@@ -133,6 +129,96 @@ def regime_map(
         boundaries["D disappears"] = d_curve
     regimes = _classify(spine_model, mu_grid, load_grid, mu_s, F_A, dict(d_gone))
     return RegimeMap(mu_grid, load_grid, back, through, regimes, boundaries, messages)
+
+
+def _load_span(model: ContactLoss, load_span) -> tuple[float, float]:
+    lo, hi = (float(x) for x in load_span)
+    if not 0.0 < lo < hi <= model.F_N0:
+        raise ModelParameterError(
+            f"load_span must be two increasing loads in (0, F_N0 = {model.F_N0!r}] N, got "
+            f"{load_span!r}"
+        )
+    return lo, hi
+
+
+@dataclass(frozen=True)
+class RegimeBoundaries:
+    """The boundaries of the regime map without its energies (:func:`regime_boundaries`).
+
+    ``mu`` (n,) [-] and ``F_A`` (n,) [N]: the locus of A in μ along its dense output (A does
+    not depend on F'_N), from which ``boundaries["C boundary"]`` F'_N = F_A/μ and
+    ``boundaries["F'_T = 0"]`` F'_N = F_N0 − F_A/μ follow (name -> (μ, F'_N) arrays, as in
+    :class:`RegimeMap`, with ``"D disappears"`` for a body that slides as a whole).
+    ``F_N0`` [N]: the normal load before the reduction. ``messages``: how the loci ended."""
+
+    mu: np.ndarray
+    F_A: np.ndarray
+    F_N0: float
+    boundaries: dict[str, tuple[np.ndarray, np.ndarray]]
+    messages: list[str]
+
+
+def regime_boundaries(
+    model: ContactLoss,
+    mu_span: tuple[float, float],
+    load_span: tuple[float, float],
+    *,
+    options: ContinuationOptions | None = None,
+    per_step: int = 4,
+) -> RegimeBoundaries:
+    """The boundaries between the regimes of :func:`regime_map` over ``mu_span`` ×
+    ``load_span`` [N], traced as curves, without the energies on a grid: the locus of A in μ
+    alone (one point, no reduction), sampled along its dense output (``per_step`` points
+    per traced step, within the locus' rtol); for a body that slides as a whole (a sphere)
+    also the curve where D disappears (as :func:`regime_map`, from the loci of A, B, D).
+    ``options``: of the loci (default :data:`cusp.models.manifold.DEFAULT_OPTIONS`)."""
+    lo, hi = _load_span(model, load_span)
+    mus = tuple(float(x) for x in mu_span)
+    if not 0.0 < mus[0] < mus[1]:
+        raise ModelParameterError(
+            f"mu_span must be two increasing positive values, got {mu_span!r}"
+        )
+    o = options or DEFAULT_OPTIONS
+    res = model.run(PATH_OPTIONS.replace(rtol=o.rtol))  # (as point_loci)
+    leg, row = res.point_rows["A"]
+    oa = model.problem("OA", start=1.0)
+    chain = PointChain([ChainPoint("A", oa, "g", ("g", 1.0))], {"mu": model.mu0})
+    bounds: dict[str, tuple[float, float]] = {"mu": mus}
+    slides = math.isfinite(model.levels.slip_limit(model.levels.p0))
+    if slides:
+        bounds["A.q"] = stick_bounds(model.levels)
+    scales = {"A.m": 1.0, "A.p": max(1.0, abs(model.levels.p0)), "mu": model.mu0}
+    br = locus(
+        chain,
+        {"A": res.legs[leg].point(row)},
+        free="mu",
+        bounds=bounds,
+        scales=scales,
+        options=o,
+        throw=False,
+    )
+    m_lo, m_hi = float(br["mu"].min()), float(br["mu"].max())
+    messages = [f"locus of A in mu: {br.status}, mu in [{m_lo!r}, {m_hi!r}]"]
+    S = np.asarray(br.s, dtype=float)
+    theta = np.arange(per_step) / per_step
+    try:
+        dense = br.interpolate(
+            np.append((S[:-1, None] + np.diff(S)[:, None] * theta).ravel(), S[-1])
+        )
+    except AccuracyError as exc:  # a step without an arc within rtol: the rows alone
+        dense, messages = {k: br[k] for k in ("mu", "A.t")}, [*messages, str(exc)]
+    mu, F_A = np.asarray(dense["mu"]), np.asarray(dense["A.t"]) * res.scales["t"]
+    boundaries = {"C boundary": (mu, F_A / mu), "F'_T = 0": (mu, model.F_N0 - F_A / mu)}
+    if slides:
+        top = min(hi, model.F_N0 * (1.0 - 1e-3))
+        spine_model = ContactLoss(
+            model.body, model.F_N0, model.g_A, top, area_reading=model.area_reading
+        )
+        spine = point_loci(spine_model, "mu", mus, options=options)
+        d_curve = _d_boundary(spine_model, spine, mus, (lo, top), options)
+        if d_curve is not None:
+            boundaries["D disappears"] = d_curve
+    return RegimeBoundaries(mu, F_A, float(model.F_N0), boundaries, messages)
 
 
 def _d_boundary(model: ContactLoss, spine, mu_span, load_span, options):

@@ -189,11 +189,13 @@ class Branch:
 
         return interpolate_at(self, name, values)
 
-    def plot(self, x: str, y: str, ax=None, *, special: bool = True, **kwargs):
-        """Plot column ``y`` against ``x`` (matplotlib imported lazily); returns the Axes."""
+    def plot(self, x: str, y: str, ax=None, *, special: bool = True, points: bool = True, **kwargs):
+        """Plot column ``y`` against ``x`` along the dense output (:meth:`interpolate`; the
+        chords where there is none), the rows marked as dots (``points``) and the special
+        points by kind (matplotlib imported lazily); returns the Axes."""
         from ._plotting import plot_branch
 
-        return plot_branch(self, x, y, ax=ax, special=special, **kwargs)
+        return plot_branch(self, x, y, ax=ax, special=special, points=points, **kwargs)
 
 
 def join_halves(

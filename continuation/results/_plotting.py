@@ -1,9 +1,11 @@
 """Plotting helpers (matplotlib imported lazily). Each takes ``ax=None`` and returns the Axes.
 
-A branch traced with stability (a column ``"n_unstable"``) is drawn along its dense output
-(the cubic Hermite arcs between its rows, :data:`SAMPLES` points each, not the chords),
-stable parts solid and unstable ones dashed; a segment with a fold or Hopf row at one end
-takes the stability of its other end.
+A branch is drawn along its dense output (the cubic Hermite arcs between its rows,
+:data:`SAMPLES` points each, not the chords; a segment without an arc within the branch's
+rtol, or a branch without an interpolant, by its chord), its rows marked with small dots
+(``points=False`` leaves them out). A branch traced with stability (a column
+``"n_unstable"``) has its stable parts solid and unstable ones dashed; a segment with a fold
+or Hopf row at one end takes the stability of its other end.
 """
 
 from __future__ import annotations
@@ -29,17 +31,23 @@ _MARKERS = {
 }
 
 
-def plot_branch(branch, x: str, y: str, ax=None, *, special: bool = True, **kwargs):
-    """Plot ``branch[y]`` against ``branch[x]`` with its special points marked."""
+def plot_branch(
+    branch, x: str, y: str, ax=None, *, special: bool = True, points: bool = True, **kwargs
+):
+    """Plot ``branch[y]`` against ``branch[x]`` along its dense output, its rows (``points``)
+    and special points marked (see the module)."""
     import matplotlib.pyplot as plt
 
     if ax is None:
         _, ax = plt.subplots()
     kwargs.setdefault("lw", 1.5)
-    if "n_unstable" in branch and x in branch.variables and y in branch.variables:
-        _plot_stability(branch, x, y, ax, kwargs)
-    else:
-        ax.plot(branch[x], branch[y], **kwargs)
+    if x in branch.variables and y in branch.variables and len(branch) > 1:
+        color = _plot_stability(branch, x, y, ax, kwargs)
+    else:  # a column not traced (no interpolant): the rows joined
+        (line,) = ax.plot(branch[x], branch[y], **kwargs)
+        color = line.get_color()
+    if points:
+        ax.plot(branch[x], branch[y], ".", color=color, ms=3.5, ls="none")
     if special:
         seen = set()
         for sp in branch.special_points:
@@ -53,7 +61,9 @@ def plot_branch(branch, x: str, y: str, ax=None, *, special: bool = True, **kwar
 
 
 def _segment_unstable(branch, i: int) -> bool:
-    """Whether segment ``i`` is unstable (see the module)."""
+    """Whether segment ``i`` is unstable (see the module; False without stability)."""
+    if "n_unstable" not in branch:
+        return False
     n = branch["n_unstable"]
     changes = {sp.index for sp in branch.special_points if sp.kind in _CHANGES}
     a, b = int(n[i]), int(n[i + 1])
@@ -80,8 +90,9 @@ def _samples(branch, i: int, cols: tuple[int, int], arcs) -> np.ndarray:
     return z0 + theta[:, None] * (z1 - z0)
 
 
-def _plot_stability(branch, x: str, y: str, ax, kwargs: dict) -> None:
-    """Runs of equally stable segments, one line each: solid stable, dashed unstable."""
+def _plot_stability(branch, x: str, y: str, ax, kwargs: dict):
+    """Runs of equally stable segments, one line each: solid stable, dashed unstable (one
+    run, in the given style, for a branch without stability); returns the colour used."""
     try:
         arcs = arrays(branch)
     except AccuracyError:
@@ -93,16 +104,19 @@ def _plot_stability(branch, x: str, y: str, ax, kwargs: dict) -> None:
         if not runs or runs[-1][0] != unstable:
             runs.append((unstable, []))
         runs[-1][1].append(_samples(branch, i, cols, arcs))
-    for key in ("ls", "linestyle"):  # (the style says the stability)
-        kwargs.pop(key, None)
+    stability = "n_unstable" in branch
+    if stability:
+        for key in ("ls", "linestyle"):  # (the style says the stability)
+            kwargs.pop(key, None)
     color = kwargs.pop("color", kwargs.pop("c", None))
     label = kwargs.pop("label", None)
     seen: set[bool] = set()
     for unstable, pieces in runs:
         pts = np.vstack(pieces)
-        style = "--" if unstable else "-"
-        name = None if unstable in seen else ("unstable" if unstable else "stable")
+        style = {"ls": "--" if unstable else "-"} if stability else {}
+        name = None if unstable in seen or not stability else ("unstable" if unstable else "stable")
         name = name if label is None else (label if not seen else None)
         seen.add(unstable)
-        (line,) = ax.plot(pts[:, 0], pts[:, 1], ls=style, color=color, label=name, **kwargs)
+        (line,) = ax.plot(pts[:, 0], pts[:, 1], color=color, label=name, **style, **kwargs)
         color = line.get_color()
+    return color

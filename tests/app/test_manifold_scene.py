@@ -120,7 +120,6 @@ def test_a_manifold_scene_renders_its_figures(tmp_path, capsys, monkeypatch):
     from cusp.app import manifold_figures
 
     monkeypatch.setattr(manifold_figures, "SURFACE_PATHS", 3)
-    monkeypatch.setattr(manifold_figures, "REGIME_GRID", (3, 6))
     scene = tmp_path / "m.toml"
     scene.write_text(
         _manifold_scene(mu="mu = [0.1, 0.2]").replace("figures = []\n", ""), encoding="utf-8"
