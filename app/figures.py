@@ -46,7 +46,6 @@ _OFFSETS = {
     "C": ((0, 6), "center", "bottom"),
     "D": ((5, -4), "left", "top"),
 }
-_POINT_LABELS = {k: f"$\\mathrm{{{k}}}$" for k in "OABCD"}
 
 
 def render(cases, names, *, title: str = "") -> dict[str, dict[str, bytes]]:
@@ -155,7 +154,7 @@ def _label_points(ax, res, x: str, which=("O", "A", "B", "C", "D"), color="k") -
         offset, ha, va = _OFFSETS[key]
         ax.plot(pt[x], pt["F_T"], "o", color=color, ms=4, zorder=5)
         ax.annotate(
-            _POINT_LABELS[key],
+            key,
             (pt[x], pt["F_T"]),
             textcoords="offset points",
             xytext=offset,

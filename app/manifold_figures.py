@@ -252,13 +252,18 @@ def _control_planes(fig, run) -> None:
 
 
 def _energies(fig, run) -> None:
-    """The snap-back and snap-through energies along the loci."""
+    """The snap-back and snap-through energies along the loci, at the rows where they were
+    integrated (:data:`cusp.models.manifold.ENERGY_ROWS` of them at most, the others
+    NaN), marked and joined."""
     loci = run.loci
     p, cols = loci.parameter, loci.columns
     ax = fig.add_subplot()
     for kind, color in (("snap_back", _POINT_COLORS["D"]), ("snap_through", _POINT_COLORS["C"])):
         label = f"{kind.replace('_', '-')} energy (area AB{'D' if kind == 'snap_back' else 'C'})"
-        ax.plot(cols[p], cols[f"{kind}_energy"], color=color, label=label)
+        # (integrated at some rows only, ENERGY_ROWS: the others are NaN) those rows, marked
+        x, e = np.asarray(cols[p], dtype=float), np.asarray(cols[f"{kind}_energy"], dtype=float)
+        ok = np.isfinite(x) & np.isfinite(e)
+        ax.plot(x[ok], e[ok], ".-", color=color, ms=4, label=label)
     for ev in loci.events:
         ax.axvline(ev[p], color="0.45", lw=0.8, ls=":")
         ax.annotate(

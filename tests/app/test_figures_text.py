@@ -137,6 +137,26 @@ def test_no_text_overlaps_in_any_bundled_figure(scene_figures):
     assert {k: v for k, v in found.items() if v} == {}
 
 
+def test_every_labelled_curve_is_drawn(scene_figures):
+    # a curve whose rows are NaN between a few finite ones (the loci's energies, integrated
+    # at some rows only) draws nothing: each labelled line has two consecutive finite points
+    # (a marker-only line, one finite point)
+    import numpy as np
+
+    empty = []
+    for name, fig in scene_figures.items():
+        for ax in fig.axes:
+            for line in ax.get_lines():
+                if line.get_label().startswith("_") or ax.name == "3d":
+                    continue
+                x, y = (np.asarray(v, dtype=float) for v in line.get_data())
+                ok = np.isfinite(x) & np.isfinite(y)
+                drawn = ok.any() if line.get_linestyle() == "None" else (ok[:-1] & ok[1:]).any()
+                if not drawn:
+                    empty.append((name, line.get_label()))
+    assert empty == []
+
+
 def test_every_label_names_its_quantities_in_mathtext(scene_figures):
     found = {name: plain_math(fig) for name, fig in scene_figures.items()}
     assert {k: v for k, v in found.items() if v} == {}

@@ -17,7 +17,8 @@ import pytest
 
 from cusp.models import ContactLoss, ExponentialRoughSurface, Sphere
 from cusp.models.errors import ModelParameterError
-from cusp.models.regimes import REGIMES, regime_map
+from cusp.models.manifold import DEFAULT_OPTIONS
+from cusp.models.regimes import REGIMES, regime_boundaries, regime_map
 from cusp.verification.oracles import exponential_closed_form as closed_form
 
 pytest.importorskip("cusp.verification")  # (sympy: the closed forms)
@@ -45,6 +46,28 @@ def test_boundaries_follow_the_closed_forms(exp_map):
     x = np.exp(-G_A / (LAM * mu))
     assert np.allclose(load, F_N0 * x, rtol=1e-10, atol=0.0)
     assert "D disappears" not in exp_map.boundaries  # a rough surface never slides whole
+
+
+def test_boundaries_alone_follow_the_closed_forms_along_the_dense_output():
+    # regime_boundaries (the regime-map figure's polygons): the locus of A in μ alone,
+    # sampled along its dense output; the arcs are within rtol of the locus in its weighted
+    # norm, t = F_A/(μ0·F_N0) of size 1, so F_A to rtol·μ0·F_N0 and F'_N = F_A/μ (or
+    # F_N0 − F_A/μ) to rtol·μ0·F_N0/μ
+    model = ContactLoss(ExponentialRoughSurface(SIGMA, NU, 0.1), F_N0, G_A, 850.0)
+    rb = regime_boundaries(model, (0.02, 1.0), (100.0, 1000.0))
+    mu = rb.mu
+    assert mu.size > 100 and mu[0] == pytest.approx(0.02) and mu[-1] == pytest.approx(1.0)
+    assert np.all(np.diff(mu) > 0)
+    x = np.exp(-G_A / (LAM * mu))
+    bound = DEFAULT_OPTIONS.rtol * 0.1 * F_N0 / mu
+    m, load = rb.boundaries["C boundary"]
+    assert np.array_equal(m, mu) and np.all(np.abs(load - F_N0 * (1.0 - x)) <= bound)
+    m, load = rb.boundaries["F'_T = 0"]
+    assert np.array_equal(m, mu) and np.all(np.abs(load - F_N0 * x) <= bound)
+    assert np.allclose(rb.F_A, mu * F_N0 * (1.0 - x), rtol=0.0, atol=DEFAULT_OPTIONS.rtol * 100)
+    assert set(rb.boundaries) == {"C boundary", "F'_T = 0"}  # no D boundary: never slides
+    with pytest.raises(ModelParameterError, match="mu_span"):
+        regime_boundaries(model, (1.0, 0.02), (100.0, 1000.0))
 
 
 def test_regimes_and_energies_on_the_grid(exp_map):
@@ -77,6 +100,11 @@ def test_sphere_boundary_where_d_disappears():
     g = [m / 0.1 * sphere.slip_limit(f) for m, f in zip(mu, load)]
     assert np.allclose(g, 2.0, rtol=1e-10, atol=0.0)
     assert 2 in rm.regimes  # gross sliding under both controls below that load
+    # the figure's boundaries alone: the same curve where D disappears
+    rb = regime_boundaries(model, (0.02, 1.0), (100.0, 1000.0))
+    mu_b, load_b = rb.boundaries["D disappears"]
+    g = [m / 0.1 * sphere.slip_limit(f) for m, f in zip(mu_b, load_b)]
+    assert mu_b.size > 5 and np.allclose(g, 2.0, rtol=1e-10, atol=0.0)
 
 
 def test_bad_spans_are_refused():
