@@ -171,6 +171,7 @@ def _surface(fig, run) -> None:
     ax.set_ylabel(r"$F_T$ [N]")
     ax.set_zlabel(_label(p))
     ax.view_init(*SURFACE_VIEW)
+    ax.set_box_aspect(None, zoom=0.88)  # (room for the axis labels)
     ax.legend(frameon=False, loc="upper left", fontsize=9)
 
 
