@@ -29,6 +29,8 @@ _EXPORTS = {
     "trace_loci": "manifold",
     "RegimeMap": "regimes",
     "regime_map": "regimes",
+    "RegimeBoundaries": "regimes",
+    "regime_boundaries": "regimes",
     "ContactLevels": "protocol",
     "PathBody": "protocol",
     "Parameter": "registry",
