@@ -173,7 +173,7 @@ def regime_boundaries(
     also the curve where D disappears (as :func:`regime_map`, from the loci of A, B, D).
     ``options``: of the loci (default :data:`cusp.models.manifold.DEFAULT_OPTIONS`)."""
     lo, hi = _load_span(model, load_span)
-    mus = tuple(float(x) for x in mu_span)
+    mus = (float(mu_span[0]), float(mu_span[1]))
     if not 0.0 < mus[0] < mus[1]:
         raise ModelParameterError(
             f"mu_span must be two increasing positive values, got {mu_span!r}"
