@@ -305,9 +305,11 @@ def _c_seeds(model, start, params, main: Branch, o):
     limit = main["mu"] * (1.0 - main["m_B"])  # μF'_N/(μ0 F_N0)
     depth = (limit - main["A.t"] * model.mu0) / limit  # > 0 where C exists
     rows = sorted(np.flatnonzero(depth > 0.0), key=lambda i: -depth[i])
+    if not rows:
+        return
     # (spread over the region: a branch point at one row is often one at its neighbours)
     picks = dict.fromkeys(rows[len(rows) * k // (2 * _C_SEEDS - 2)] for k in range(_C_SEEDS))
-    for i in picks if len(rows) else ():
+    for i in picks:
         seed = _c_at_row(model, main.point(int(i)), o)
         if seed is not None:
             yield seed
