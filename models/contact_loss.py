@@ -108,6 +108,8 @@ __all__ = [
 VARIABLES = ("g", "t", "m", "A_SL", "p", "q")
 #: leg -> its control (the free parameter of the leg problem)
 LEG_CONTROLS = {"OA": "g", "AB": "m", "BC": "g"}
+_MEMO = 4
+"""Evaluations a leg's problem keeps (its latest points: C and D share the reloading leg)."""
 AREA_READINGS = ("printed", "consistent")
 
 #: default solver settings for the legs (nondimensional arclength; the default ``rtol``)
@@ -360,26 +362,38 @@ class ContactLoss:
             params[const_name] = float(constant)
         cols = [i for i in range(6) if i != ci]
 
-        def full(u, p):
-            x = list(u)
-            x.insert(ci, p[control])
-            return x, (p[const_name] if const_name else None)
+        memo: dict = {}  # the latest points evaluated -> (R, J)
+
+        def evaluated(u, p):
+            # The engine asks for the residual, the Jacobian and a parameter column at the
+            # same point, and a locus's chain evaluates C and D on this one leg in turn;
+            # _equations yields all three, so the latest points' are kept (the same numbers,
+            # bit for bit; a Gaussian or general-density evaluation costs ~1 ms).
+            c = p[const_name] if const_name else None
+            u = np.asarray(u, dtype=float)
+            key = (u.tobytes(), p[control], p["mu"], c)
+            out = memo.get(key)
+            if out is None:
+                x = list(u)
+                x.insert(ci, p[control])
+                out = self._equations(x, p["mu"], leg, c)
+                if len(memo) >= _MEMO:
+                    del memo[next(iter(memo))]
+                memo[key] = out
+            return out
 
         def residual(u, p):
-            x, c = full(u, p)
-            return self._equations(x, p["mu"], leg, c)[0]
+            return evaluated(u, p)[0].copy()
 
         def jacobian(u, p):
-            x, c = full(u, p)
-            return self._equations(x, p["mu"], leg, c)[1][:, cols]
+            return evaluated(u, p)[1][:, cols]
 
         def param_jacobian(u, p, name):
-            x, c = full(u, p)
-            J = self._equations(x, p["mu"], leg, c)[1]
+            J = evaluated(u, p)[1]
             if name == control:
-                return J[:, ci]
+                return J[:, ci].copy()
             if name == "mu":
-                return J[:, 6]
+                return J[:, 6].copy()
             col = np.zeros(5)
             col[4] = -1.0  # d/d q_A (AB) and d/d m_B (BC) of the leg constraint
             return col

@@ -6,6 +6,8 @@ Every message names the parameter, its value and what is allowed, e.g.
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 __all__ = [
@@ -101,6 +103,10 @@ def check_finite_array(name: str, value, lower: float | None = None, unit: str =
             f"{value!r:.80}"
         )
     arr = raw.astype(float)
+    if arr.size == 1:  # (a level at a time: the checks in Python floats)
+        x = float(arr.flat[0])
+        if math.isfinite(x) and (lower is None or x >= lower):
+            return arr
     bad = ~np.isfinite(arr)
     if lower is not None:
         bad |= arr < lower

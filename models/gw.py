@@ -64,7 +64,7 @@ def _check_order(n: float, allowed=(-0.5, 0, 0.5, 1, 1.5)) -> float:
 
 def _finite(t) -> np.ndarray:
     t = np.asarray(t, dtype=float)
-    if not np.all(np.isfinite(t)):
+    if not (math.isfinite(t.flat[0]) if t.size == 1 else np.all(np.isfinite(t))):
         from .errors import ModelParameterError
 
         bad = t[~np.isfinite(t)].ravel()[0] if t.ndim else t
@@ -137,10 +137,23 @@ def _far_left_series(n: float, t: np.ndarray) -> np.ndarray:
     F_n(t) = E[(S + |t|)^n; S > t] for a standard normal S; for t ≤ −20 the mass of S below
     t is < 1e-87, and the binomial series of (1 + S/|t|)^n averaged over S (odd moments
     vanish, E S^{2k} = (2k − 1)!!) is asymptotic with terms below 1e-18 by k = 14."""
+    if t.size <= 4:  # (one level at a time: Python floats, the same IEEE operations)
+        return np.array([_far_left_scalar(n, x) for x in t.tolist()]).reshape(t.shape)
     inv2 = 1.0 / (t * t)
     total = np.ones_like(t)
     term = np.ones_like(t)
     coef = 1.0  # C(n, 2k) (2k − 1)!!, from the previous one
+    for k in range(1, _K_LEFT):
+        coef *= (n - 2 * k + 2) * (n - 2 * k + 1) / ((2 * k) * (2 * k - 1)) * (2 * k - 1)
+        term = term * inv2
+        total = total + coef * term
+    return total
+
+
+def _far_left_scalar(n: float, t: float) -> float:
+    """:func:`_far_left_series` at one t, in Python floats."""
+    inv2 = 1.0 / (t * t)
+    total = term = coef = 1.0
     for k in range(1, _K_LEFT):
         coef *= (n - 2 * k + 2) * (n - 2 * k + 1) / ((2 * k) * (2 * k - 1)) * (2 * k - 1)
         term = term * inv2

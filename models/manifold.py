@@ -37,6 +37,7 @@ from cusp.continuation import (
     Branch,
     ContinuationOptions,
     Event,
+    SingularPointError,
     locus,
     point_tol,
     points_at,
@@ -233,23 +234,11 @@ def trace_loci(
         )
     branches = {"-".join(names): main}
     chains = {"-".join(names): chain}
-    seed = _c_seed(model, start, params, main, o)
-    if seed is not None and "D" in start:
-        chain_c = path_chain(model, seed[1], seed[0]["A"]["q"], "ABCD")
-        ic = chain_c.unknowns.index("A.t")
-        near = Event(
-            lambda u, p: 1.0 - u[ic] * mu0 / (p["mu"] * (1.0 - p["m_B"])) - C_MARGIN,
-            direction=-1,
-            label="C unresolved",
-            terminal=True,
-        )
-        with quiet_stops():
-            branches["A-B-C-D"] = locus(
-                chain_c, seed[0], free=free, events=[near], scales=_sizes(model, "ABCD", free), **kw
-            )
-        chains["A-B-C-D"] = chain_c
+    notes: list[str] = []
+    if "D" in start:
+        _locus_c(model, parameter, (start, params, main), kw, branches, chains, notes)
     keep = {_chain_value(model, free, float(v)) for v in at}
-    return _assemble(model, parameter, free, branches, chains, o, keep)
+    return _assemble(model, parameter, free, branches, chains, o, keep, notes)
 
 
 def _sizes(model: ContactLoss, names: str, free: str) -> dict[str, float]:
@@ -257,24 +246,78 @@ def _sizes(model: ContactLoss, names: str, free: str) -> dict[str, float]:
     at A, where A.m and A.p = p0 + O(A.m) carry a rounding that would set their sizes; tiny
     for a tiny reduction)."""
     out = {f"{x}.m": 1.0 for x in names} | {"A.p": max(1.0, abs(model.levels.p0))}
+    # Â_SL: 1, a share of the real contact area. Taken from its value, a share that rounding
+    # leaves as noise (A's -1e-24 on a Gaussian surface of σ* = 0.01 µm: error bound inf)
+    # sized itself to the noise, and the locus of C crept after it (400 steps, work limit)
+    out |= {f"{x}.A_SL": 1.0 for x in names}
     # μ: its value at the start, not the width of its span (a span up to 1e9 sized μ 1e9:
     # steps of 1e8 in μ from μ = 0.1, and a derivative check across them that failed the
     # locus at its start); a size only grows along the locus
     return out | ({"m_B": 1.0} if free == "m_B" else {"mu": model.mu0})
 
 
-def _c_seed(model, start, params, main: Branch, o):
-    """Where the chain with C starts: the given C, or (if there is none) C traced on the
-    reloading leg at the row of the first locus farthest inside the region where C exists;
-    None where C exists nowhere along it. Returns (start values, chain parameters)."""
+def _locus_c(model: ContactLoss, parameter, at, kw, branches, chains, notes) -> None:
+    """The locus of the chain with C (``branches["A-B-C-D"]``), from the first of its seeds
+    (:func:`_c_seeds`) where it can start: a seed where the chain's Jacobian is singular
+    (:class:`~cusp.continuation.SingularPointError`) is passed over for the next; ``notes``
+    says so when none starts."""
+    free, o = LOCUS_PARAMETERS[parameter], kw["options"]
+    mu0, tried = model.mu0, []
+    for pt, params in _c_seeds(model, *at, o):
+        chain_c = path_chain(model, params, pt["A"]["q"], "ABCD")
+        ic = chain_c.unknowns.index("A.t")
+        near = Event(
+            lambda u, p, ic=ic: 1.0 - u[ic] * mu0 / (p["mu"] * (1.0 - p["m_B"])) - C_MARGIN,
+            direction=-1,
+            label="C unresolved",
+            terminal=True,
+        )
+        try:
+            with quiet_stops():
+                branches["A-B-C-D"] = locus(
+                    chain_c, pt, free=free, events=[near], scales=_sizes(model, "ABCD", free), **kw
+                )
+        except SingularPointError:
+            tried.append(repr(_user_value(model, free, params[free])))
+            continue
+        chains["A-B-C-D"] = chain_c
+        return
+    if tried:
+        notes.append(
+            f"the locus of C is not traced: where C exists, each start tried ({parameter} = "
+            f"{', '.join(tried)}) is a branch point of the loci's equations"
+        )
+
+
+_C_SEEDS = 3
+"""How many rows of the first locus are tried as the start of the locus of C."""
+
+
+def _c_seeds(model, start, params, main: Branch, o):
+    """Where the chain with C may start: the given C, or (if there is none) C traced on the
+    reloading leg at the rows of the first locus farthest inside the region where C exists
+    (at most :data:`_C_SEEDS`: the farthest, then rows a quarter and half way down the
+    rows where C exists, ordered by depth); none where C exists nowhere along it.
+    Yields (start values, chain parameters)."""
     if "C" in start and "D" in start:
-        return {x: start[x] for x in "ABCD"}, dict(params)
+        yield {x: start[x] for x in "ABCD"}, dict(params)
+        return
     limit = main["mu"] * (1.0 - main["m_B"])  # μF'_N/(μ0 F_N0)
-    margin = limit - main["A.t"] * model.mu0  # > 0 where C exists
-    if not np.any(margin > 0.0):
-        return None
-    i = int(np.argmax(margin / limit))
-    row = main.point(i)
+    depth = (limit - main["A.t"] * model.mu0) / limit  # > 0 where C exists
+    rows = sorted(np.flatnonzero(depth > 0.0), key=lambda i: -depth[i])
+    if not rows:
+        return
+    # (spread over the region: a branch point at one row is often one at its neighbours)
+    picks = dict.fromkeys(rows[len(rows) * k // (2 * _C_SEEDS - 2)] for k in range(_C_SEEDS))
+    for i in picks:
+        seed = _c_at_row(model, main.point(int(i)), o)
+        if seed is not None:
+            yield seed
+
+
+def _c_at_row(model: ContactLoss, row, o):
+    """C traced on the reloading leg at a row of the first locus (None if that leg does not
+    reach F'_T = F_A there), with the row's A, B and D."""
     params = {"mu": row["mu"], "m_B": row["m_B"]}
     pt = {x: {k[2:]: v for k, v in row.items() if k.startswith(x + ".")} for x in "ABD"}
     prob = model.problem("BC", start=pt["B"]["g"], constant=params["m_B"], mu=params["mu"])
@@ -290,7 +333,9 @@ def _c_seed(model, start, params, main: Branch, o):
     return pt, params
 
 
-def _assemble(model: ContactLoss, parameter: str, free: str, branches, chains, o, keep=()):
+def _assemble(
+    model: ContactLoss, parameter: str, free: str, branches, chains, o, keep=(), notes=()
+):
     """The rows of the loci (the chain with C where it ran, the other beyond), polished to
     rounding, their physical columns, error bounds and energies (to the options'
     ``quad_tol``; at most :data:`ENERGY_ROWS` rows besides those at the values ``keep`` of
@@ -300,6 +345,7 @@ def _assemble(model: ContactLoss, parameter: str, free: str, branches, chains, o
     rows: list[tuple[dict[str, float], Any]] = []  # (row, its chain)
     events: list[tuple[dict[str, Any], Any]] = []
     messages = [_ending(model, parameter, free, name, br) for name, br in branches.items()]
+    messages += notes
     inside = (math.inf, -math.inf)
     if with_c is not None and len(with_c) > 1:
         # (widened by rounding: both loci end at a common bound, F'_T = 0, located twice)

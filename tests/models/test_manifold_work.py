@@ -41,3 +41,65 @@ def test_locus_endings_name_the_path_events_not_the_chain_variables(monkeypatch)
     assert endings and all("B.t" not in m and "reached bound" not in m for m in endings)
     assert any("to the end of the range, mu = 0.05" in m for m in endings), endings
     assert any("where F'_T = 0" in m for m in endings), endings
+
+
+def _sliding_start_loci():
+    # (g_A = 1 µm: at μ = 0.1 the block slides, F_A >= μF'_N, so the path has no C and C's
+    # locus starts from rows of the first locus where C exists, at larger μ)
+    model = ContactLoss(ExponentialRoughSurface(2.0, 0.3, 0.1), 1000.0, 1.0, 850.0)
+    return point_loci(model, "mu", (0.05, 1.0))
+
+
+def test_the_locus_of_c_passes_over_a_start_on_a_branch_point(monkeypatch):
+    """A start of C's locus where the chain's Jacobian is singular is passed over for the next
+    row; when every start is, the loci keep the first locus and say why C's is missing (they
+    used to end the scene: exit 1 with the engine's advice in the chain's variables)."""
+    from cusp.continuation import SingularPointError
+
+    real, starts = manifold.locus, []
+
+    def first_with_c_singular(chain, start, **kw):
+        if "C" in start:
+            starts.append(start["C"]["g"])
+            if len(starts) == 1:
+                raise SingularPointError("a branch point", values={})
+        return real(chain, start, **kw)
+
+    monkeypatch.setattr(manifold, "locus", first_with_c_singular)
+    loci = _sliding_start_loci()
+    assert "A-B-C-D" in loci.branches and len(starts) == 2 and starts[0] != starts[1]
+    assert not [m for m in loci.messages if "not traced" in m]
+
+    def always_singular(chain, start, **kw):
+        if "C" in start:
+            raise SingularPointError("a branch point", values={})
+        return real(chain, start, **kw)
+
+    monkeypatch.setattr(manifold, "locus", always_singular)
+    loci = _sliding_start_loci()
+    assert "A-B-C-D" not in loci.branches and len(loci.branches) == 1
+    (note,) = [m for m in loci.messages if m.startswith("the locus of C is not traced")]
+    tried = note.split("(mu = ")[1].split(")")[0].split(", ")
+    assert len(set(tried)) == manifold._C_SEEDS, note
+    assert np.all(np.isnan(loci.columns["g_C"]))  # (no C reported where none was traced)
+
+
+def test_a_slip_area_at_rounding_level_does_not_set_its_own_size():
+    """On a Gaussian surface of σ* = 0.0117 µm, A's Â_SL is rounding noise (about ±1e-24,
+    error bound inf, as the loci's messages say). Sized from its value, it made C's locus in
+    μ start on a branch point (its scaled column was 1e-24 of the others: exit 1) and, once
+    started, creep after the noise to the 400-step work limit. Its size is now 1 (a share of
+    the real contact area): C's locus runs from F'_T = 0 down to the C boundary."""
+    from cusp.models import registry
+
+    body = registry.build_body(
+        "rough-gaussian", sigma=0.0117, nu=0.3, mu=0.1, E=0.2, radius=10.0, density=0.01,
+        nominal_area=1e6,
+    )  # fmt: skip
+    model = ContactLoss(body, 1000.0, 0.1, 850.0)
+    loci = point_loci(model, "mu", (0.1, 1000.0))
+    with_c = loci.branches["A-B-C-D"]
+    assert with_c.status == "bound" and len(with_c) < manifold.LOCUS_STEPS  # 208 rows here
+    assert any("where C is no longer resolved" in m for m in loci.messages), loci.messages
+    assert any("A_SL of A along the loci is resolved only to its error bound" in m
+               for m in loci.messages)  # fmt: skip
