@@ -268,6 +268,15 @@ class ContinuationOptions:
             "a finite number >= 1",
         )
 
+    def as_dict(self) -> dict[str, Any]:
+        """The fields as a dict, a tolerance that follows ``rtol`` as None:
+        ``ContinuationOptions(**options.as_dict())`` equals ``options`` (a saved branch's
+        ``info["options"]``)."""
+        return {
+            name: None if name in self._from_rtol else getattr(self, name)
+            for name in OPTION_KEYWORDS
+        }
+
     def replace(self, **changes) -> ContinuationOptions:
         """A copy with some fields changed (validated again)."""
         names = {f.name for f in fields(self) if f.init}
