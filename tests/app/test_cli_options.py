@@ -50,6 +50,7 @@ def test_verbose_shows_the_cusp_loggers(tmp_path, capsys, where):
     assert cli.main(argv) == 0
     err = capsys.readouterr().err
     assert "INFO cusp.app: mu = 0.1, F'_N = 850 N: " in err  # fig6.toml's case, and its time
+    assert "INFO cusp.models: leg OA: " in err  # the physics' logger: each leg
     assert all(line.startswith(("INFO cusp.", "WARNING cusp.")) for line in err.splitlines())
 
 
