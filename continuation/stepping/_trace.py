@@ -160,8 +160,8 @@ detect_folds, detect_branch_points, locate_tol, max_locate_iterations
         u0, params = point_start(as_problem(problem), u0, params)
     tracer = Tracer(
         problem, free=free, params=params, bounds=bounds, targets=targets, events=events,
-        monitor=monitor, scales=scales, direction=direction or 1, throw=throw,
-        options=with_overrides(options, DEFAULT_OPTIONS, locals()),
+        monitor=monitor, scales=scales, direction=1 if direction is None else direction,
+        throw=throw, options=with_overrides(options, DEFAULT_OPTIONS, locals()),
     )  # fmt: skip
     branch = tracer.result(run(tracer, first_state(tracer, u0), watch))
     if wanted is None:

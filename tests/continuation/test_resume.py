@@ -166,6 +166,12 @@ def test_restart_from_a_row_of_a_branch():
     assert fold.values["x"] == pytest.approx(-((b / 2.0) ** (1.0 / 3.0)), rel=1e-9)
 
 
+def test_direction_is_still_checked():
+    """direction=None is the default (+1); 0 is refused as before."""
+    with pytest.raises(ProblemDefinitionError, match="direction must be"):
+        cusp_normal_form().trace(direction=0)
+
+
 def test_restart_from_a_point_refusals():
     ex = cusp_normal_form()
     row = ex.trace().point(3)
