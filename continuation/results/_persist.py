@@ -7,8 +7,9 @@ member ``metadata.json`` (bytes, UTF-8 JSON) holding the format (``"cusp-results
 version (:data:`FORMAT_VERSION`), what the file holds (``"type"``), the cusp and numpy
 versions and the object itself as a JSON tree whose arrays name their members
 (``{"$array": "columns/x"}``). Floats in the tree are written by ``repr``, which reads back
-to the same double; tuples, enumerations, complex numbers, numpy scalars and dataclasses are
-tagged (``{"$tuple": [...]}``, ...) so that they come back as they were.
+to the same double (a NaN or an infinity as its 8 bytes in hex, ``{"$float": "7ff8..."}``:
+the JSON is strict); tuples, enumerations, complex numbers, numpy scalars and dataclasses
+are tagged (``{"$tuple": [...]}``, ...) so that they come back as they were.
 
 Saving is atomic: the archive is written to a temporary file in the target's directory
 and moved over the target (:func:`os.replace`), so a reader sees the old file or the new
@@ -21,7 +22,9 @@ from __future__ import annotations
 
 import dataclasses
 import json
+import math
 import os
+import struct
 import tempfile
 import zipfile
 from collections.abc import Callable, Mapping
@@ -75,6 +78,8 @@ class Writer:
 
     def encode(self, obj: Any, where: str) -> Any:
         """``obj`` as a JSON tree (arrays stored as members named after ``where``)."""
+        if type(obj) is float and not math.isfinite(obj):  # strict JSON, every bit kept
+            return {"$float": struct.pack(">d", obj).hex()}
         if obj is None or type(obj) in (bool, int, float, str):
             return obj
         if isinstance(obj, (Status, Kind, PointStatus, Convergence, Guard)):
@@ -84,7 +89,7 @@ class Writer:
         if isinstance(obj, np.generic):
             return {"$scalar": self.add(where, np.asarray(obj))["$array"]}
         if isinstance(obj, complex):
-            return {"$complex": [obj.real, obj.imag]}
+            return {"$complex": [self.encode(obj.real, where), self.encode(obj.imag, where)]}
         if isinstance(obj, self.branch_type):
             return {"$branch": encode_branch(self, obj, where + "/")}
         if isinstance(obj, (list, tuple, frozenset)):
@@ -156,7 +161,8 @@ _TAGS: dict[str, Callable[[Reader, Any], Any]] = {
     "$enum": lambda r, t: _ENUMS[t["$enum"]](t["value"]),
     "$array": lambda r, t: r.array(t),
     "$scalar": lambda r, t: r.array({"$array": t["$scalar"]})[()],
-    "$complex": lambda r, t: complex(*t["$complex"]),
+    "$float": lambda r, t: struct.unpack(">d", bytes.fromhex(t["$float"]))[0],
+    "$complex": lambda r, t: complex(*(r.decode(v) for v in t["$complex"])),
     "$tuple": lambda r, t: tuple(r.decode(v) for v in t["$tuple"]),
     "$frozenset": lambda r, t: frozenset(r.decode(v) for v in t["$frozenset"]),
     "$items": lambda r, t: {r.decode(k): r.decode(v) for k, v in t["$items"]},
@@ -224,7 +230,7 @@ def write_results(path: str | os.PathLike[str], kind: str, tree: Any, w: Writer)
         "numpy_version": np.__version__,
         "data": tree,
     }
-    text = json.dumps(meta, indent=1, allow_nan=True)
+    text = json.dumps(meta, indent=1, allow_nan=False)  # (non-finite floats are tagged)
     fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent or ".")
     try:
         with os.fdopen(fd, "wb") as f:

@@ -89,6 +89,8 @@ def same_bits(a, b, where: str = "") -> None:
         assert a.tobytes() == b.tobytes(), where
     elif isinstance(a, float):
         assert struct.pack("<d", a) == struct.pack("<d", b), (where, a, b)
+    elif isinstance(a, complex):
+        assert struct.pack("<dd", a.real, a.imag) == struct.pack("<dd", b.real, b.imag), where
     elif isinstance(a, np.generic):
         same_bits(np.asarray(a), np.asarray(b), where)
     elif isinstance(a, dict):

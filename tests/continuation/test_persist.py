@@ -104,6 +104,29 @@ def test_diagram_round_trip(tmp_path, same_bits):
     same_bits(dg, back)
 
 
+def test_non_finite_floats_keep_their_bits_in_strict_json(cusp_branch, tmp_path, same_bits):
+    """NaN (both signs), infinities and complex numbers holding them, in a branch's info,
+    come back with the same bits; metadata.json stays strict JSON (no NaN literal)."""
+    import struct
+
+    negative_nan = struct.unpack("<d", struct.pack("<Q", 0xFFF8000000000000))[0]
+    odd = Branch(
+        {k: cusp_branch[k] for k in cusp_branch.keys()},
+        variables=cusp_branch.variables,
+        s=cusp_branch.s,
+        tangents=cusp_branch.tangents,
+        special_points=list(cusp_branch.special_points),
+        status=cusp_branch.status,
+        message=cusp_branch.message,
+        stats=cusp_branch.stats,
+        info={"values": [math.nan, negative_nan, math.inf, -math.inf, complex(math.nan, 1.0)]},
+    )
+    path = odd.save(tmp_path / "odd.npz")
+    same_bits(odd, load(path))
+    with np.load(path, allow_pickle=False) as f:
+        json.loads(f["metadata.json"], parse_constant=lambda c: pytest.fail(f"JSON has {c}"))
+
+
 def test_numpy_alone_reads_the_file(cusp_branch, tmp_path):
     """``np.load(path, allow_pickle=False)`` reads every array and the JSON metadata: the
     format, its version, the type, the versions and the options."""
