@@ -30,6 +30,7 @@ from ._errors import (
     NonFiniteResidualError,
     OptionsError,
     ProblemDefinitionError,
+    ResultsFileError,
     SingularMatrixError,
     SingularPointError,
     StalledError,
@@ -47,7 +48,7 @@ from ._options import (
 from .detection._tests import TestFunction
 from .diagram._deflation import Deflation, deflate
 from .diagram._diagram import DeflationStarts, diagram
-from .diagram._records import Diagram, DiagramBranch, DiagramPoint
+from .diagram._records import Diagram, DiagramBranch, DiagramPoint, load
 from .loci._chain import ChainPoint, PointChain
 from .loci._foldcurve import fold_curve
 from .loci._hopfcurve import hopf_curve
@@ -87,6 +88,7 @@ __all__ = [
     "PointChain",
     "Problem",
     "ProblemDefinitionError",
+    "ResultsFileError",
     "SingularMatrixError",
     "SingularPointError",
     "StepGuardError",
@@ -101,6 +103,7 @@ __all__ = [
     "diagram",
     "fold_curve",
     "hopf_curve",
+    "load",
     "locus",
     "point_locus",
     "point_tol",

@@ -149,6 +149,17 @@ class AccuracyError(ContinuationError):
     segment it could not bring within ``rtol``, or a branch with no interpolant)."""
 
 
+class ResultsFileError(ValueError):
+    """A file that :func:`~cusp.continuation.load` cannot read back: not a zip archive
+    (``.npz``), not a cusp results file, truncated or damaged, written in a newer format, or
+    holding another type than asked. Attributes: ``path`` and ``reason`` (the message is
+    ``"cannot load PATH: REASON"``)."""
+
+    def __init__(self, path: object, reason: str) -> None:
+        super().__init__(f"cannot load {str(path)!r}: {reason}")
+        self.path, self.reason = path, reason
+
+
 class MaxStepsWarning(UserWarning):
     """A branch ended because it took ``max_steps`` steps, before reaching a bound or a
     terminal event: it is incomplete (its status ``"max_steps"`` is not a success)."""
@@ -168,6 +179,7 @@ for _cls in (
     SingularMatrixError,
     SingularPointError,
     AccuracyError,
+    ResultsFileError,
     MaxStepsWarning,
 ):
     _cls.__module__ = "cusp.continuation"

@@ -182,6 +182,8 @@ class ContinuationOptions:
     max_locate_iterations: int = 40
     _from_rtol: frozenset[str] = field(default=frozenset(), init=False, repr=False, compare=False)
     """The tolerances that were not given and so follow ``rtol``."""
+    _saved: dict[str, Any] | None = field(default=None, init=False, repr=False, compare=False)
+    """:meth:`as_dict`, once computed."""
 
     @property
     def quad_tol(self) -> float:
@@ -267,6 +269,19 @@ class ContinuationOptions:
             and self.growth >= 1.0,
             "a finite number >= 1",
         )
+
+    def as_dict(self) -> dict[str, Any]:
+        """The fields as a dict, a tolerance that follows ``rtol`` as None:
+        ``ContinuationOptions(**options.as_dict())`` equals ``options`` (a saved branch's
+        ``info["options"]``)."""
+        saved = self._saved
+        if saved is None:  # (once per options object: every trace records them)
+            saved = {
+                name: None if name in self._from_rtol else getattr(self, name)
+                for name in OPTION_KEYWORDS
+            }
+            object.__setattr__(self, "_saved", saved)
+        return dict(saved)
 
     def replace(self, **changes) -> ContinuationOptions:
         """A copy with some fields changed (validated again)."""

@@ -33,6 +33,9 @@ from ._loci_energy import _invert
 from ._loci_energy import polish_point as _polish
 from .protocol import sliding_level, slipped_area
 
+#: the physics' logger (``cusp -v`` shows it): each leg of a path as it is traced
+logger = logging.getLogger("cusp.models")
+
 __all__ = [
     "PathError",
     "SIZES",
@@ -122,6 +125,9 @@ def trace_leg(
         raise PathError(
             f"{LEGS[leg]} stopped{_where(model, exc.values)} before reaching {what}: {_cause(exc)}"
         ) from exc
+    logger.info(
+        "leg %s: %d points, %s, %d special points", leg, len(br), br.status, len(br.special_points)
+    )
     if br.status != "bound" and not partial:
         raise stopped(model, leg, br, what)
     return br

@@ -1,12 +1,18 @@
 """The records of a whole bifurcation diagram: :class:`Diagram`, its branches
-(:class:`DiagramBranch`) and the branch points linking them (:class:`DiagramPoint`)."""
+(:class:`DiagramBranch`) and the branch points linking them (:class:`DiagramPoint`); saving
+a diagram, and :func:`load` of any results file (the format of
+:mod:`~..results._persist`)."""
 
 from __future__ import annotations
 
+import os
 from dataclasses import dataclass
+from pathlib import Path
 from typing import Any
 
+from .._errors import ResultsFileError
 from ..results._branch import Branch, SpecialPoint
+from ..results._persist import Writer, decode_results, read_results, write_results
 from ._deflation import Deflation
 
 
@@ -80,6 +86,12 @@ class Diagram:
             f"{self.traces} traces>"
         )
 
+    def save(self, path: Any) -> Any:
+        """Save the diagram to one ``.npz`` file (as :meth:`Branch.save
+        <cusp.continuation.Branch.save>`: atomic, readable by numpy alone); read it back
+        with :func:`~cusp.continuation.load`. Returns the path."""
+        return save_diagram(self, path)
+
     def plot(self, x: str, y: str, ax: Any = None, *, points: bool = True) -> Any:
         """Draw every branch (``y`` against ``x``) and the branch points (matplotlib imported
         lazily); a branch carrying a column ``n_unstable`` is drawn solid where it is 0 and
@@ -89,4 +101,38 @@ class Diagram:
         return plot_diagram(self, x, y, ax=ax, points=points)
 
 
-__all__ = ["Diagram", "DiagramBranch", "DiagramPoint"]
+# ---------------------------------------------------------------- files
+
+#: the records a diagram file may hold, by name
+_CLASSES: dict[str, type] = {
+    cls.__name__: cls
+    for cls in (Branch, SpecialPoint, Diagram, DiagramBranch, DiagramPoint, Deflation)
+}
+#: what :func:`load` reads, by the file's ``type``
+_TYPES = {"Branch": "a branch (Branch.save)", "Diagram": "a diagram (Diagram.save)"}
+
+
+def save_diagram(diagram: Diagram, path: str | os.PathLike[str]) -> Path:
+    """:meth:`Diagram.save <._records.Diagram.save>`."""
+    w = Writer(Branch)
+    return write_results(path, "Diagram", w.encode(diagram, "diagram"), w)
+
+
+def load(path: str | os.PathLike[str]) -> Any:
+    """Load a results file written by :meth:`Branch.save` (a branch, a fold curve, a locus)
+    or :meth:`Diagram.save`: the object as it was saved, bit for bit.
+
+    Raises :class:`~cusp.continuation.ResultsFileError` (naming the path and what is wrong)
+    for a file that is not a zip archive, not a cusp results file, truncated or damaged,
+    or written in a newer format; :class:`FileNotFoundError` for no file.
+    """
+    meta, arrays = read_results(path)
+    kind = meta.get("type")
+    if kind not in _TYPES:
+        raise ResultsFileError(
+            path, f"it holds {kind!r}; this cusp loads {', '.join(_TYPES.values())}"
+        )
+    return decode_results(path, meta, arrays, _CLASSES)
+
+
+__all__ = ["Diagram", "DiagramBranch", "DiagramPoint", "load", "save_diagram"]

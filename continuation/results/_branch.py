@@ -189,6 +189,35 @@ class Branch:
 
         return interpolate_at(self, name, values)
 
+    def save(self, path) -> Any:
+        """Save the branch to one ``.npz`` file at ``path`` (atomically: a temporary file
+        beside it, then moved over it), readable by numpy alone
+        (``np.load(path, allow_pickle=False)``: its arrays, and ``"metadata.json"`` with
+        the rest); :func:`~cusp.continuation.load` reads it back bit for bit. Returns the
+        path (a :class:`pathlib.Path`). See docs/continuation.md, "Saving, loading and
+        resuming".
+
+        >>> import tempfile, pathlib
+        >>> from cusp.continuation import Problem, load, trace
+        >>> prob = Problem(lambda u, p: [u[0]**2 - p["p"]], ["x"], {"p": 1.0})
+        >>> br = trace(prob, [1.0], free="p", bounds={"p": (0.5, 2.0)})
+        >>> path = br.save(pathlib.Path(tempfile.mkdtemp()) / "branch.npz")
+        >>> again = load(path)
+        >>> bool((again["x"] == br["x"]).all()), [sp.kind for sp in again.special_points]
+        (True, ['endpoint', 'endpoint'])
+        """
+        from ._persist import save_branch
+
+        return save_branch(self, path)
+
+    def to_pandas(self) -> Any:
+        """The branch as a :class:`pandas.DataFrame`: one row a point; its columns, ``s``,
+        the statistics (``stats.ds``, ...) and ``special`` (the kinds of special point at
+        the row, comma-separated). Needs pandas (``pip install 'cusp[pandas]'``)."""
+        from ._persist import to_pandas
+
+        return to_pandas(self)
+
     def plot(self, x: str, y: str, ax=None, *, special: bool = True, points: bool = True, **kwargs):
         """Plot column ``y`` against ``x`` along the dense output (:meth:`interpolate`; the
         chords where there is none), the rows marked as dots (``points``) and the special

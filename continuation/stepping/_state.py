@@ -15,8 +15,10 @@ from typing import Any
 
 import numpy as np
 
+from .._errors import ProblemDefinitionError
 from .._outcomes import Kind, PointStatus, Status
-from ..detection._tests import Record
+from ..detection._spectrum import PartialSign, SignWithSpectrum
+from ..detection._tests import Record, TestFunction
 from ..results._branch import Branch, SpecialPoint
 from ..systems._curve import CurveSystem
 
@@ -263,4 +265,170 @@ def _special_points(
     return specials
 
 
-__all__ = ["Point", "TracerState", "assemble_branch"]
+# ---------------------------------------------------------------- resume
+
+#: the statuses of a branch that can be continued: unfinished, or stopped short (a failure
+#: may pass with other options); a bound or a terminal event ended it for good
+RESUMABLE = frozenset(Status) - {Status.BOUND, Status.TERMINAL_EVENT}
+
+
+def resume_record(state: TracerState, tests: Sequence[TestFunction]) -> dict[str, Any]:
+    """What a state holds beyond its branch's rows, for ``branch.info["resume"]``: the next
+    step size, the step counts and the test functions' values at the last point (their
+    labels, to check that a continuation has the same tests)."""
+    return {
+        "ds": state.ds,
+        "steps": state.steps,
+        "stalled": state.stalled,
+        "tests": test_signatures(tests),
+        "values": [_saved_value(v) for v in state.test_values],
+    }
+
+
+def test_signatures(tests: Sequence[TestFunction]) -> list[list[Any]]:
+    """What tells test functions apart: type, label, value (a bound's, a target's),
+    direction and whether terminal."""
+    out = []
+    for t in tests:
+        at = getattr(t, "value_at", None)
+        value = None if at is None else float(at)
+        out.append([type(t).__name__, t.label, value, t.direction, t.terminal])
+    return out
+
+
+def _saved_value(v: Any) -> Any:
+    """A test function's value as plain data (the branch-point test's sign carries the
+    spectrum of its matrix, or the means to compute a partial one)."""
+    if v is None or type(v) in (float, int):
+        return v
+    if type(v) is SignWithSpectrum:
+        return {"sign": float(v), "spectrum": v.spectrum}
+    if type(v) is PartialSign:
+        return {"sign": float(v), "partial": True}
+    if isinstance(v, float):
+        return float(v)
+    return {"unsupported": type(v).__name__}
+
+
+def _restored_value(saved: Any, system: CurveSystem, last: Point) -> Any:
+    """The test function value :func:`_saved_value` saved."""
+    if saved is None or type(saved) in (float, int):
+        return saved
+    if "spectrum" in saved:
+        value = float.__new__(SignWithSpectrum, saved["sign"])
+        spectrum = saved["spectrum"]
+        value.spectrum = None if spectrum is None else tuple(spectrum)
+        return value
+    if saved.get("partial"):
+        return PartialSign(saved["sign"], system, last.z, last.t, None)
+    raise ProblemDefinitionError(
+        f"the branch's last point holds a test function value of type "
+        f"{saved.get('unsupported')!r}, which cannot be restored: start from its last point "
+        f"instead, trace(problem, branch.point(-1), ...)"
+    )
+
+
+def resumable(branch: Branch, names: Sequence[str], max_steps: int) -> dict[str, Any]:
+    """The resume record of a branch that ``trace(problem, branch, ...)`` can continue with
+    curve components ``names``; ProblemDefinitionError saying why not otherwise."""
+    record = branch.info.get("resume")
+    why = None
+    if record is None:
+        why = (
+            "it carries no resume data (only branches made by trace() do; a curve traced "
+            "both ways, a fold curve or a locus does not)"
+        )
+    elif branch.eigenvalues is not None:
+        why = (
+            "it was analysed for stability (its Hopf rows are inserted): continue the "
+            "branch traced without stability= (a checkpoint holds it), then add stability"
+        )
+    elif branch.status not in RESUMABLE:
+        why = (
+            f"it ended for good (status {str(branch.status)!r}); to go further, start from "
+            f"its last point with other bounds: trace(problem, branch.point(-1), ...)"
+        )
+    elif tuple(branch.variables) != tuple(names):
+        why = (
+            f"its components are {list(branch.variables)}, this trace's are {list(names)} "
+            f"(the same free parameter is needed)"
+        )
+    elif record["steps"] >= max_steps:
+        why = (
+            f"it has taken {record['steps']} steps and max_steps={max_steps}: raise "
+            f"max_steps to continue it"
+        )
+    if why is not None or record is None:
+        raise ProblemDefinitionError(f"cannot continue this branch: {why}")
+    return dict(record)
+
+
+def resumed_state(
+    branch: Branch, system: CurveSystem, tests: Sequence[TestFunction], max_steps: int
+) -> TracerState:
+    """The state a trace left ``branch`` in (:func:`resume_record`, the rows, the typical
+    sizes), so that stepping on from it gives the points the uninterrupted trace gave, bit
+    for bit. ``system``: the curve system of the continuing tracer at its start."""
+    record = resumable(branch, system.names, max_steps)
+    labels = test_signatures(tests)
+    if [list(t) for t in record["tests"]] != labels:
+        raise ProblemDefinitionError(
+            f"cannot continue this branch with other test functions: it was traced with "
+            f"{record['tests']}, this trace has {labels} (give the same bounds, targets, "
+            f"events, monitor and detect_* options)"
+        )
+    last_row = branch.point(-1)
+    z = np.column_stack([branch[name] for name in system.names])
+    system = system.with_values(last_row).checked(z[0].copy())
+    scales = branch.info["scales"]
+    system = system.with_scales(np.array([scales[name] for name in system.names]))
+    last = _rows_of(branch, z)
+    values = tuple(_restored_value(v, system, last) for v in record["values"])
+    return TracerState.of(
+        last=last,
+        system=system,
+        ds=float(record["ds"]),
+        test_values=values,
+        steps=int(record["steps"]),
+        n_points=len(branch),
+        stalled=int(record["stalled"]),
+    )
+
+
+def _rows_of(branch: Branch, z: np.ndarray) -> Point:
+    """The linked points of a branch's rows (their special records as the tracer made
+    them: the end point that assembling the branch added is left out); the last one."""
+    n = len(branch)
+    records: list[list[Record]] = [[] for _ in range(n)]
+    for sp in branch.special_points:
+        if sp.kind == Kind.ENDPOINT and sp.index == n - 1 and sp.label in _STATUSES:
+            continue
+        records[sp.index].append(
+            Record(
+                kind=sp.kind,
+                label=sp.label,
+                with_respect_to=sp.with_respect_to,
+                status=sp.status,
+                interval=sp.interval,
+                details=dict(sp.details),
+            )
+        )
+    st = branch.stats
+    columns = [st[k].tolist() for k in _STAT_ORDER]
+    prev = None
+    for i in range(n):
+        it, rej, res, ds, err = (c[i] for c in columns)
+        prev = Point.of(
+            z=z[i].copy(), t=branch.tangents[i].copy(), s=float(branch.s[i]), iterations=it,
+            rejected=rej, residual_norm=res, ds=ds, special=tuple(records[i]) or None,
+            prev=prev, interpolation_error=err,
+        )  # fmt: skip
+    assert prev is not None
+    return prev
+
+
+_STATUSES = frozenset(s.value for s in Status)
+_STAT_ORDER = ("newton_iterations", "rejected_steps", "residual_norm", "ds", "interpolation_error")
+
+
+__all__ = ["Point", "TracerState", "assemble_branch", "resume_record", "resumed_state"]

@@ -64,7 +64,7 @@ from ._crossings import (
     step_bracket,
 )
 from ._insert import Linked, endpoint_record, located_point
-from ._state import Point, TracerState, assemble_branch
+from ._state import Point, TracerState, assemble_branch, resume_record
 from ._step import STALL_FACTOR, Failure, StepRules, Trial, wnorm
 from ._work import OutOfWork, StepWork, stalled
 
@@ -570,7 +570,12 @@ class Tracer:
     def result(self, state: TracerState) -> Branch:
         """Assemble the :class:`~..results._branch.Branch` (column arrays and special points)
         of a state (finished or not)."""
-        info = {"direction": self.direction, "rtol": self.options.rtol}
+        info = {
+            "direction": self.direction,
+            "rtol": self.options.rtol,
+            "options": self.options.as_dict(),
+            "resume": {**resume_record(state, self.tests), "given_scales": dict(self._scales)},
+        }
         kinds = frozenset(t.kind for t in self.tests)
         return assemble_branch(state, info, kinds)
 

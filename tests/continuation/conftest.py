@@ -58,3 +58,10 @@ def hopf_l1():
     """``hopf_l1(f, variables, point, ...)``: ω and the first Lyapunov coefficient at a Hopf
     point, by Kuznetsov's formula at 50 digits (:func:`tests.continuation.hopf_oracle.hopf_l1`)."""
     return hopf_oracle.hopf_l1
+
+
+@pytest.fixture(scope="session")
+def same_bits():
+    """``same_bits(a, b)``: two results equal bit for bit (arrays, floats, records,
+    branches; :func:`tests.continuation.helpers.same_bits`)."""
+    return helpers.same_bits

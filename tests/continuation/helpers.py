@@ -71,3 +71,46 @@ def first_fold_step(problem, u0, free: str = "b", bounds=(-1.0, 1.0), monitor=()
             br = step_bracket(tracer.options, state.system, state.last, trial)
             return tracer, state, trial, br, folds[0]
         state = tracer.step(state)
+
+
+def same_bits(a, b, where: str = "") -> None:
+    """Assert that ``a`` and ``b`` are the same bit for bit: arrays of one dtype and shape
+    with the same bytes, floats with the same bits (``-0.0`` is not ``0.0``; a NaN equals
+    itself), containers of the same type holding such values, dataclasses of one type with
+    such fields, branches (:class:`~cusp.continuation.Branch`) in every attribute."""
+    import dataclasses
+    import struct
+
+    from cusp.continuation import Branch
+
+    assert type(a) is type(b), (where, type(a), type(b))
+    if isinstance(a, np.ndarray):
+        assert (a.dtype, a.shape) == (b.dtype, b.shape), (where, a.dtype, b.dtype)
+        assert a.tobytes() == b.tobytes(), where
+    elif isinstance(a, float):
+        assert struct.pack("<d", a) == struct.pack("<d", b), (where, a, b)
+    elif isinstance(a, complex):
+        assert struct.pack("<dd", a.real, a.imag) == struct.pack("<dd", b.real, b.imag), where
+    elif isinstance(a, np.generic):
+        same_bits(np.asarray(a), np.asarray(b), where)
+    elif isinstance(a, dict):
+        assert list(a) == list(b), (where, list(a), list(b))
+        for k in a:
+            same_bits(a[k], b[k], f"{where}/{k}")
+    elif isinstance(a, (list, tuple)):
+        assert len(a) == len(b), (where, len(a), len(b))
+        for i, (x, y) in enumerate(zip(a, b)):
+            same_bits(x, y, f"{where}/{i}")
+    elif isinstance(a, Branch):
+        for name in ("variables", "s", "tangents", "special_points", "status", "message"):
+            same_bits(getattr(a, name), getattr(b, name), f"{where}.{name}")
+        same_bits(a.stats, b.stats, f"{where}.stats")
+        same_bits(a.info, b.info, f"{where}.info")
+        same_bits(a.eigenvalues, b.eigenvalues, f"{where}.eigenvalues")
+        same_bits({k: a[k] for k in a.keys()}, {k: b[k] for k in b.keys()}, f"{where}[]")
+        assert a.kinds == b.kinds, where
+    elif dataclasses.is_dataclass(a):
+        for f in dataclasses.fields(a):
+            same_bits(getattr(a, f.name), getattr(b, f.name), f"{where}.{f.name}")
+    else:
+        assert a == b, (where, a, b)
