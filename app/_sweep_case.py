@@ -10,6 +10,7 @@ that fails numerically ``failed`` (the message is ``cusp run``'s), anything else
 
 from __future__ import annotations
 
+import functools
 import math
 import time
 import warnings
@@ -66,7 +67,9 @@ def _result_cells(result: Any) -> dict[str, Any]:
     return row
 
 
+@functools.cache
 def _version() -> str:
+    """The installed version of cusp (read once a process)."""
     from .run import _version as version
 
     return version()
