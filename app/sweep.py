@@ -24,6 +24,7 @@ import os
 import sys
 import time
 from collections.abc import Iterator
+from contextlib import contextmanager
 from pathlib import Path
 from typing import Any
 
@@ -176,6 +177,29 @@ def _write_manifest(out: Path, scene: Any, sweep: Sweep) -> None:
     os.replace(tmp, out / "sweep.json")
 
 
+@contextmanager
+def _exclusive(out: Path) -> Iterator[None]:
+    """Hold ``out/.lock`` (flock) for the whole run: a second sweep into ``out`` is refused,
+    not run beside the first (both would compute the same missing cases)."""
+    try:
+        import fcntl
+    except ImportError:  # pragma: no cover - not POSIX: no lock
+        yield
+        return
+    fd = os.open(out / ".lock", os.O_RDWR | os.O_CREAT, 0o644)
+    try:
+        try:
+            fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except BlockingIOError:
+            raise StoreError(
+                f"{out}: another cusp sweep is writing into it; allowed: one sweep at a time "
+                "into a directory (wait for it, or use another --out)"
+            ) from None
+        yield
+    finally:
+        os.close(fd)  # releases the lock
+
+
 def sweep(
     scene: Any,
     out: Path,
@@ -193,6 +217,13 @@ def sweep(
     t0 = time.perf_counter()
     keys = [case_key(sw.case_data(i)) for i in range(len(sw))]
     out.mkdir(parents=True, exist_ok=True)
+    with _exclusive(out):
+        return _sweep(scene, out, keys, workers, chunk, client, quiet, t0)
+
+
+def _sweep(scene, out, keys, workers, chunk, client, quiet, t0) -> dict[str, Any]:
+    """:func:`sweep` with the directory locked."""
+    sw: Sweep = scene.sweep
     prune_loci(out)
     done = done_cases(out, keys)
     _write_manifest(out, scene, sw)

@@ -363,3 +363,19 @@ def test_cusp_run_runs_a_sweep_scene_as_written(grid, tmp_path):
     assert cli.main(["run", str(scene), "--out", str(tmp_path / "r"), "--no-plots", "--quiet"]) == 0
     summary = json.loads((tmp_path / "r" / "summary.json").read_text(encoding="utf-8"))
     assert summary["points"]["C"]["g_T"] == _rows(out)[0]["g_C"]  # mu 0.1, F'_N 850 N
+
+
+def test_a_second_sweep_into_a_directory_in_use_is_refused(grid, tmp_path, capsys):
+    import fcntl
+
+    scene, _ = grid
+    out = tmp_path / "out"
+    out.mkdir()
+    fd = os.open(out / ".lock", os.O_RDWR | os.O_CREAT)
+    try:
+        fcntl.flock(fd, fcntl.LOCK_EX)  # as a running sweep holds it
+        assert _sweep(scene, out, "--workers", "0") == 2
+    finally:
+        os.close(fd)
+    assert "another cusp sweep is writing into it" in capsys.readouterr().err
+    assert not (out / "results.parquet").exists()
