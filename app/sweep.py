@@ -232,7 +232,8 @@ def _sweep(scene, out, keys, workers, chunk, client, quiet, t0) -> dict[str, Any
     size = chunk if chunk is not None else chunk_size(len(todo), parallel)
     groups = [todo[k : k + size] for k in range(0, len(todo), size)]
     chunks = [[(i, keys[i], sw.case_data(i)) for i in g] for g in groups]
-    schema = results_schema([(f, sw.numeric(f)) for f in sw.fields])
+    numeric = {f: sw.numeric(f) for f in sw.fields}  # once: each call reads every case
+    schema = results_schema(list(numeric.items()))
     if client is not None:
         results = _dask(chunks, scene.source, client)
     elif workers > 0 and chunks:
@@ -245,7 +246,7 @@ def _sweep(scene, out, keys, workers, chunk, client, quiet, t0) -> dict[str, Any
         for rows, loci in results:
             for row in rows:
                 for name, value in zip(sw.fields, sw.values[row["index"]]):
-                    row[name] = float(value) if sw.numeric(name) else str(value)
+                    row[name] = float(value) if numeric[name] else str(value)
                 statuses[row["status"]] += 1
             write_part(out, schema, rows, loci if scene.manifold is not None else None)
             if bar is not None:
