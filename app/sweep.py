@@ -57,7 +57,7 @@ MAX_CHUNK = 100
 def add_arguments(parser) -> None:
     parser.add_argument("scene", help="scene file (TOML) with a [sweep] section, or its name")
     parser.add_argument(
-        "--out", default=None, metavar="DIR", help="output directory (default: cusp-out/NAME)"
+        "--out", default=None, metavar="DIR", help="output directory (default: cusp-out/NAME-sweep)"
     )
     parser.add_argument(
         "--workers",
@@ -283,7 +283,7 @@ def main(args) -> int:
             )
         workers = _count("--workers", args.workers, 0, os.cpu_count() or 1)
         chunk = None if args.chunk_size is None else _count("--chunk-size", args.chunk_size, 1, 1)
-        out = Path(args.out) if args.out is not None else Path("cusp-out") / scene.name
+        out = Path(args.out) if args.out is not None else Path("cusp-out") / f"{scene.name}-sweep"
         out = check_out_dir(out)
         if args.scheduler is not None:
             client = _dask_client(args.scheduler)
