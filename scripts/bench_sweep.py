@@ -251,8 +251,9 @@ def report(results, costs, commit, load0, load1, args) -> list[str]:
         f"2-worker rates are lower bounds); Python {platform.python_version()}.",
         "",
         f"Reproduce: `python scripts/bench_sweep.py --exponential {args.exponential} --sphere "
-        f"{args.sphere} --sample {args.sample}` (the defaults, 10⁴ and 10³, are the issue's sizes). Each row is one "
-        "run into a fresh directory; wall time after imports, worker start-up included.",
+        f"{args.sphere} --sample {args.sample}` (the defaults, 10⁴ and 10³, are the issue's "
+        "sizes). Each row is one run into a fresh directory; wall time after imports, worker "
+        "start-up included.",
         "",
         *_table(results),
         "",
