@@ -24,6 +24,10 @@ COMMANDS: dict[str, tuple[str, str]] = {
         "cusp.app.run",
         "trace the contact-loss path of a scene (TOML); default: the paper's Fig 6 scene",
     ),
+    "sweep": (
+        "cusp.app.sweep",
+        "run every case of a scene's [sweep] section into a Parquet dataset (resumable)",
+    ),
     "demo": ("cusp.app.demo", "trace the cusp normal form x^3 - a x - b = 0 and print its folds"),
     "verify": (
         "cusp.app.verify",

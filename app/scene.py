@@ -46,6 +46,10 @@ Schema (units in brackets)::
     range = [0.01, 1.0]           # [low, high], 0 < low < high (F'_N: high <= normal_load),
                                   #  holding the scene's value (the first listed, for a list)
 
+    [sweep]                       # optional: the fields ``cusp sweep`` varies, by dotted
+    "surface.mu" = [0.05, 0.1]    #  names (cusp.app._sweep_spec); ``cusp run`` runs the
+                                  #  scene as written
+
     [output]
     figures = ["force-slip", "force-slip-detail", "force-area"]
                                   # default; with [manifold]: fig9, manifold-surface,
@@ -102,6 +106,7 @@ __all__ = [
     "parse_scene",
     "check_title",
     "with_rtol",
+    "scene_from_data",
     "FIGURES",
     "MANIFOLD_FIGURES",
 ]
@@ -139,6 +144,7 @@ _SECTIONS = {
     "solver": {"ds_max", "tol", "rtol"},
     "output": {"figures"},
     "manifold": {"parameter", "range"},
+    "sweep": set(),  # dotted field names, checked by cusp.app._sweep_spec
 }
 _REQUIRED_SECTIONS = ("surface", "loading")
 
@@ -174,6 +180,8 @@ class Scene:
     #: units of the [surface] numbers, from the body's registry entry
     surface_units: dict[str, str] = field(default_factory=dict)
     manifold: dict[str, Any] | None = None
+    #: the checked [sweep] section (:class:`cusp.app._sweep_spec.Sweep`), or None
+    sweep: Any = None
 
     @property
     def reduced_normal_loads(self) -> tuple[float, ...]:
@@ -234,11 +242,14 @@ def load_scene(path: str | Path, *, source: str | None = None) -> Scene:
         raise SceneError(
             f"{path}: not UTF-8 text (byte {exc.start}); a scene is a UTF-8 TOML text file"
         ) from None
-    return parse_scene(text, source=label, default_name=path.stem)
+    return parse_scene(text, source=label, default_name=path.stem, base_dir=path.parent)
 
 
-def parse_scene(text: str, *, source: str = "<scene>", default_name: str = "scene") -> Scene:
-    """Parse and check scene text (see the module docstring for the schema)."""
+def parse_scene(
+    text: str, *, source: str = "<scene>", default_name: str = "scene", base_dir: Path | None = None
+) -> Scene:
+    """Parse and check scene text (see the module docstring for the schema); ``base_dir``:
+    where a ``[sweep] cases`` file is looked for (default: the working directory)."""
     text = text.removeprefix("\ufeff")  # a UTF-8 byte-order mark
     if not text.strip():
         raise SceneError(f"{source}: empty scene; it needs at least [surface] and [loading]")
@@ -251,6 +262,17 @@ def parse_scene(text: str, *, source: str = "<scene>", default_name: str = "scen
         raise SceneError(f"{source}: malformed TOML: {exc}") from None
     except RecursionError:  # pragma: no cover - check_text bounds the nesting first
         raise SceneError(f"{source}: nested too deep; see docs/limits.md") from None
+    return scene_from_data(data, source=source, default_name=default_name, base_dir=base_dir)
+
+
+def scene_from_data(
+    data: dict[str, Any],
+    *,
+    source: str = "<scene>",
+    default_name: str = "scene",
+    base_dir: Path | None = None,
+) -> Scene:
+    """Check parsed scene data (the TOML tables; :func:`parse_scene`)."""
     chk = _Checker(source)
     _check_sections(chk, data)
 
@@ -283,6 +305,11 @@ def parse_scene(text: str, *, source: str = "<scene>", default_name: str = "scen
     if "manifold" in data:
         manifold = _check_manifold(chk, data["manifold"], surface, loading)
     figs = _check_figures(chk, data.get("output", {}), manifold is not None)
+    sweep = None
+    if "sweep" in data:
+        from ._sweep_spec import check_sweep
+
+        sweep = check_sweep(data, chk.fail, _SECTIONS, surface, loading, base_dir=base_dir)
     return Scene(
         source=source,
         name=name,
@@ -294,6 +321,7 @@ def parse_scene(text: str, *, source: str = "<scene>", default_name: str = "scen
         figures=tuple(dict.fromkeys(figs)),
         surface_units=surface_units,
         manifold=manifold,
+        sweep=sweep,
     )
 
 
@@ -434,7 +462,7 @@ def _check_sections(chk: _Checker, data: dict[str, Any]) -> None:
                 f"write it as a section [{section}]",
             )
         keys = _section_keys(section)
-        unknown = set(value) - keys
+        unknown = set(value) - keys if section != "sweep" else set()
         if unknown:
             key = sorted(unknown)[0]
             chk.fail(
