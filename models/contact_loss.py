@@ -81,6 +81,7 @@ from cusp.continuation import Branch, ContinuationOptions, Problem, point_tol, p
 
 from . import _path_guards as guards
 from ._loci_energy import path_energies, path_points
+from ._memo import Latest
 from ._path_folds import path_folds
 from ._path_guards import PathError
 from ._point_errors import point_bounds, point_messages, underflow_messages
@@ -108,8 +109,7 @@ __all__ = [
 VARIABLES = ("g", "t", "m", "A_SL", "p", "q")
 #: leg -> its control (the free parameter of the leg problem)
 LEG_CONTROLS = {"OA": "g", "AB": "m", "BC": "g"}
-_MEMO = 4
-"""Evaluations a leg's problem keeps (its latest points: C and D share the reloading leg)."""
+_MEMO = 4  # evaluations a leg's problem keeps (its latest points)
 AREA_READINGS = ("printed", "consistent")
 
 #: default solver settings for the legs (nondimensional arclength; the default ``rtol``)
@@ -362,25 +362,15 @@ class ContactLoss:
             params[const_name] = float(constant)
         cols = [i for i in range(6) if i != ci]
 
-        memo: dict = {}  # the latest points evaluated -> (R, J)
+        def evaluate(key):  # (key: the unknowns' bits, the control, mu, the leg constant)
+            x = np.insert(np.frombuffer(key[0]), ci, key[1])
+            return self._equations(x, key[2], leg, key[3])
+
+        kept = Latest(evaluate, _MEMO)  # (C and D share the reloading leg: see Latest)
 
         def evaluated(u, p):
-            # The engine asks for the residual, the Jacobian and a parameter column at the
-            # same point, and a locus's chain evaluates C and D on this one leg in turn;
-            # _equations yields all three, so the latest points' are kept (the same numbers,
-            # bit for bit; a Gaussian or general-density evaluation costs ~1 ms).
             c = p[const_name] if const_name else None
-            u = np.asarray(u, dtype=float)
-            key = (u.tobytes(), p[control], p["mu"], c)
-            out = memo.get(key)
-            if out is None:
-                x = list(u)
-                x.insert(ci, p[control])
-                out = self._equations(x, p["mu"], leg, c)
-                if len(memo) >= _MEMO:
-                    del memo[next(iter(memo))]
-                memo[key] = out
-            return out
+            return kept((np.asarray(u, dtype=float).tobytes(), p[control], p["mu"], c))
 
         def residual(u, p):
             return evaluated(u, p)[0].copy()

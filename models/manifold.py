@@ -263,15 +263,11 @@ def _locus_c(model: ContactLoss, parameter, at, kw, branches, chains, notes) -> 
     says so when none starts."""
     free, o = LOCUS_PARAMETERS[parameter], kw["options"]
     mu0, tried = model.mu0, []
-    for pt, params in _c_seeds(model, *at, o):
+    start, params0, main = at
+    for pt, params in _c_seeds(model, start, params0, main, o):
         chain_c = path_chain(model, params, pt["A"]["q"], "ABCD")
-        ic = chain_c.unknowns.index("A.t")
-        near = Event(
-            lambda u, p, ic=ic: 1.0 - u[ic] * mu0 / (p["mu"] * (1.0 - p["m_B"])) - C_MARGIN,
-            direction=-1,
-            label="C unresolved",
-            terminal=True,
-        )
+        near = Event(_c_margin(chain_c.unknowns.index("A.t"), mu0), direction=-1,
+                     label="C unresolved", terminal=True)  # fmt: skip
         try:
             with quiet_stops():
                 branches["A-B-C-D"] = locus(
@@ -287,6 +283,15 @@ def _locus_c(model: ContactLoss, parameter, at, kw, branches, chains, notes) -> 
             f"the locus of C is not traced: where C exists, each start tried ({parameter} = "
             f"{', '.join(tried)}) is a branch point of the loci's equations"
         )
+
+
+def _c_margin(ic: int, mu0: float):
+    """The event function of "C unresolved": F_A/(μF'_N) = 1 − :data:`C_MARGIN`."""
+
+    def margin(u, p) -> float:
+        return 1.0 - u[ic] * mu0 / (p["mu"] * (1.0 - p["m_B"])) - C_MARGIN
+
+    return margin
 
 
 _C_SEEDS = 3
