@@ -130,3 +130,64 @@ def test_api_reference_lists_every_public_name(module):
     listed = _autosummary_names(page)
     public = importlib.import_module(module).__all__
     assert sorted(listed) == sorted(public)
+
+
+# --- numbers in the prose: each quoted as the page prints it, from a run of the code --------
+
+
+def _page(name: str) -> str:
+    """A page with its whitespace collapsed (a phrase may break across lines)."""
+    return " ".join((DOCS / name).read_text(encoding="utf-8").split())
+
+
+def _exponential(mu: float, load: float):
+    from cusp.models import ContactLoss, ExponentialRoughSurface
+
+    return ContactLoss(ExponentialRoughSurface(2.0, 0.3, mu), 1000.0, 0.34, load).run()
+
+
+def test_the_figures_numbers_are_the_codes():
+    """docs/contact_loss.md's reading of Figs 6, 8 and 9 quotes the points and energies the
+    model computes (the Fig 6 scene: σ* = 2 µm, ν = 0.3, F_N0 = 1000 N, g_A = 0.34 µm),
+    rounded as printed."""
+    text = _page("contact_loss.md")
+    fig6 = _exponential(0.1, 850.0)
+    A, B, C, D = (fig6.points[k] for k in "ABCD")
+    high = _exponential(0.5, 850.0)
+    deep = _exponential(0.1, 400.0)
+    quoted = [
+        f"up to {A['F_T']:.1f} N at {A['g_T']:.2f} µm",
+        f"B ({B['g_T']:.4f} µm, {B['F_T']:.1f} N)",
+        f"D ({D['g_T']:.2f} µm, {D['F_T']:.1f} N)",
+        f"C ({C['g_T']:.3f} µm, {C['F_T']:.1f} N)",
+        f"B drops to {high.points['B']['g_T']:.3f} µm, {high.points['B']['F_T']:.1f} N",
+        f"grows from {fig6.energy['snap_back']:.3f} to {high.energy['snap_back']:.3f} N·µm",
+        f"(snap-through {fig6.energy['snap_through']:.3f} to "
+        f"{high.energy['snap_through']:.3f} N·µm)",
+        # the floor F'_N = F_N0 − F_A/μ, where F'_T = F_A − μΔF_N reaches 0
+        f"near the floor {1000.0 - A['F_T'] / 0.1:.1f} N",
+        f"F'_N = 400 N (Fig 8) it reaches {deep.points['D']['A_SL']:.2f} at D",
+    ]
+    missing = [q for q in quoted if q not in text]
+    assert not missing, missing
+
+
+def test_the_manifold_events_quoted_are_the_codes():
+    """The events of the Fig 9 loci (C boundary μ_C, F'_T = 0 at μ_0) as docs/contact_loss.md
+    and docs/manifold.md quote them, from a trace of the loci; and the snap-through energy
+    is least inside the range (contact_loss.md's reading of loci-energies)."""
+    import numpy as np
+
+    from cusp.models import ContactLoss, ExponentialRoughSurface, point_loci
+
+    model = ContactLoss(ExponentialRoughSurface(2.0, 0.3, 0.1), 1000.0, 0.34, 850.0)
+    loci = point_loci(model, "mu", (0.01, 1.0))
+    events = {e["event"]: e["mu"] for e in loci.events}
+    mu_c, mu_0 = events["C boundary"], events["F'_T = 0"]
+    contact_loss, manifold = _page("contact_loss.md"), _page("manifold.md")
+    for phrase in (f"μ_C = {mu_c:.4f}", f"μ_0 = {mu_0:.4f}"):
+        assert phrase in contact_loss, phrase
+    assert f"C boundary {mu_c:.10f}, F'_T = 0 {mu_0:.10f}" in manifold
+    through = loci.columns["snap_through_energy"]
+    finite = through[np.isfinite(through)]
+    assert 0 < int(np.argmin(finite)) < len(finite) - 1
