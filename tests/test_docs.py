@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import importlib
 import importlib.util
+import math
 import re
 import runpy
 from pathlib import Path
@@ -191,3 +192,75 @@ def test_the_manifold_events_quoted_are_the_codes():
     through = loci.columns["snap_through_energy"]
     finite = through[np.isfinite(through)]
     assert 0 < int(np.argmin(finite)) < len(finite) - 1
+
+
+def test_the_frictionless_limit_numbers_are_the_codes():
+    """docs/manifold.md, "μ → 0 does not close the pleat": the widths over μ at every μ from
+    0.1 to 1e-4, the limit of ABD/μ² (closed form λ[ΔF_N − F'_N ln(F_N0/F'_N)],
+    λ = σ*(2 − ν)/(2(1 − ν))), and the C boundary of each body and the sphere's loss of D and
+    sliding of A (where F_A = μF'_N, where g_A is the sliding slip under F'_N and under F_N0:
+    the slip limit of a sphere is proportional to μ), as the page rounds them."""
+    from scipy.optimize import brentq
+
+    from cusp.app.cases import build_body
+    from cusp.app.run import resolve_scene
+    from cusp.app.scene import load_scene
+
+    text = _page("manifold.md")
+    widths = set()
+    for mu in (0.1, 1e-2, 1e-4):
+        res = _exponential(mu, 850.0)
+        A, B = res.points["A"], res.points["B"]
+        widths.add(f"(g_A − g_B)/μ = {(A['g_T'] - B['g_T']) / mu:.12f} µm")
+        widths.add(f"(F_A − F_B)/μ = {(A['F_T'] - B['F_T']) / mu:.0f} N")
+    assert len(widths) == 2 and all(w in text for w in widths), widths
+    lam = 2.0 * (2.0 - 0.3) / (2.0 * (1.0 - 0.3))
+    limit = lam * (150.0 - 850.0 * math.log(1000.0 / 850.0))
+    assert f"= {limit:.8f} N·µm" in text
+    assert abs(res.energy["snap_back"] / 1e-4**2 - limit) < 1e-3 * limit  # at μ = 1e-4
+
+    def scene(name):
+        path, source = resolve_scene(name)
+        return load_scene(path, source=source)
+
+    def c_boundary(sc):  # F_A(μ) = μ F'_N at the scene's g_A, F_N0 and F'_N = 850 N
+        g_A, F_N0 = sc.loading["max_slip"], sc.loading["normal_load"]
+
+        def gap(mu):
+            return build_body(sc, mu).tangential_force(g_A, F_N0) - mu * 850.0
+
+        return brentq(gap, 0.02, 0.5, xtol=1e-12)
+
+    bounds = [c_boundary(scene(n)) for n in ("fig6", "gaussian", "sphere")]
+    phrase = "μ = {:.4f} exponential, {:.4f} Gaussian, {:.4f} sphere".format(*bounds)
+    assert phrase in text, phrase
+    sph = scene("sphere")
+    per_mu = build_body(sph, 1.0).slip_limit  # sliding slip at μ = 1, ∝ μ
+    g_A = sph.loading["max_slip"]
+    d_lost, a_slides = g_A / per_mu(850.0), g_A / per_mu(sph.loading["normal_load"])
+    assert f"loses D at μ = {d_lost:.4f} and A slides at μ = {a_slides:.4f}" in text
+
+
+def test_the_readmes_numbers_are_the_codes():
+    """README.md's comments quote C of the Fig 6 path, the CO-oxidation cusp and the range
+    of ``rtol`` as the code computes and allows them."""
+    from cusp.continuation import RTOL_DEFAULT, RTOL_MAX, RTOL_MIN, fold_curve
+    from cusp.examples import co_oxidation
+
+    def cut(x: float, digits: int) -> str:  # "0.528..." : the digits shown, then "..."
+        return f"{math.floor(x * 10**digits) / 10**digits:.{digits}f}..."
+
+    text = " ".join((ROOT / "README.md").read_text(encoding="utf-8").split())
+    C = _exponential(0.1, 850.0).points["C"]
+    assert f"{{'g_T': {cut(C['g_T'], 3)}, 'F_T': {cut(C['F_T'], 2)}, ...}}" in text
+    ex = co_oxidation()
+    br = ex.trace(ds_max=0.01)
+    assert len(br.special("fold")) == 2  # "two folds"
+    fc = fold_curve(ex.problem, br.special("fold")[0], free=("q2", "k"), bounds={"k": (0, 2.2)})
+    k = fc.special("cusp")[0].values["k"]
+    assert f"k = {cut(k, 14)}" in text, k
+
+    def e(x: float) -> str:  # 1e-3 as the README writes it
+        return f"{x:.0e}".replace("e-0", "e-")
+
+    assert f"(default {e(RTOL_DEFAULT)}; [{e(RTOL_MIN)}, {e(RTOL_MAX)}])" in text
