@@ -79,7 +79,6 @@ sphinx_gallery_conf = {
     "image_scrapers": ("matplotlib",),
     "reset_modules": ("matplotlib",),
     "show_memory": False,
-    "plot_gallery": "True",
 }
 
 html_theme = "pydata_sphinx_theme"

@@ -264,3 +264,32 @@ def test_the_readmes_numbers_are_the_codes():
         return f"{x:.0e}".replace("e-0", "e-")
 
     assert f"(default {e(RTOL_DEFAULT)}; [{e(RTOL_MIN)}, {e(RTOL_MAX)}])" in text
+
+
+def test_the_limits_table_is_the_codes():
+    """docs/limits.md's table of limits quotes the constants the code enforces."""
+    from cusp.app import limits, output, scene
+    from cusp.continuation import RTOL_MAX, RTOL_MIN
+    from cusp.models import manifold
+
+    text = _page("limits.md")
+    ds_max, tol = scene._NUMBERS["ds_max"], scene._NUMBERS["tol"]
+    quoted = [
+        f"at most {limits.MAX_SCENE_BYTES:,} bytes",
+        f'"limit of {limits.MAX_SCENE_BYTES} bytes"',
+        f"at most {limits.MAX_LINE_CHARS:,} characters",
+        f"at most {limits.MAX_NESTING} levels",
+        f"1 to {limits.MAX_LIST} values",
+        f"at most {limits.MAX_CASES} (listed μ times listed F'_N)",
+        f"1 to {limits.MAX_NAME_CHARS} printable characters",
+        f"at most {limits.MAX_TITLE_CHARS} characters",
+        f"at most {output.MAX_NAME_BYTES} bytes (UTF-8; the staging names add "
+        f"{output.NAME_MAX - output.MAX_NAME_BYTES})",
+        f"`[solver] ds_max` | [{ds_max.lower:g}, {ds_max.upper:g}]",
+        f"`[solver] tol` | ({tol.lower:g}, {tol.upper:.0e}]".replace("e-0", "e-"),
+        f"[{RTOL_MIN:.0e}, {RTOL_MAX:.0e}]".replace("e-0", "e-"),
+        f"`LOCUS_STEPS` = {manifold.LOCUS_STEPS} steps",
+        f"`ENERGY_ROWS` = {manifold.ENERGY_ROWS} rows",
+    ]
+    missing = [q for q in quoted if q not in text]
+    assert not missing, missing
