@@ -293,3 +293,27 @@ def test_the_limits_table_is_the_codes():
     ]
     missing = [q for q in quoted if q not in text]
     assert not missing, missing
+
+
+def test_the_physics_pages_fig6_values_are_the_codes():
+    """docs/physics.md's Fig 6 table (the closed forms evaluated to 16 digits) and the values
+    around it, against the traced model: to 1e-13 relative (the table's 16 digits and the
+    model's rounding), and the rounded ones as printed."""
+    text = _page("physics.md")
+    res = _exponential(0.1, 850.0)
+    rows = re.findall(r"\| ([ABCD]) \| ([0-9.]+) \| ([0-9.]+) \| ([0-9.]+) \|", text)
+    assert [r[0] for r in rows] == list("ABCD"), rows
+    for name, g, f, a in rows:
+        point = res.points[name]
+        for key, quoted in (("g_T", g), ("F_T", f), ("A_SL", a)):
+            assert abs(point[key] - float(quoted)) <= 1e-13 * abs(point[key]), (name, key)
+    for kind, label in (("snap_back", "(area ABD)"), ("snap_through", "(area ABC)")):
+        quoted = re.search(re.escape(label) + r" ([0-9.]+) N·µm", text)
+        assert quoted is not None, label
+        assert abs(res.energy[kind] - float(quoted.group(1))) <= 1e-13 * res.energy[kind]
+    F_A = res.points["A"]["F_T"]
+    assert f"= {1000.0 - F_A / 0.1:.3f} N" in text and f"F'_N > {F_A / 0.1:.3f} N" in text
+    deep = _exponential(0.1, 400.0).points["D"]["A_SL"]
+    assert f"= {deep:.4f} (`docs/gallery/fig8/summary.json`)" in text
+    energies = [_exponential(mu, 850.0).energy["snap_back"] for mu in (0.5, 0.1, 0.01)]
+    assert "{:.6g}, {:.6g} and {:.6g} N·µm for μ = 0.5, 0.1 and 0.01".format(*energies) in text
