@@ -70,6 +70,22 @@ def test_snippets_run(page, quiet_matplotlib):
         registry._REGISTRY.update(bodies)
 
 
+def test_toml_snippets_are_scenes():
+    """The README's ```toml blocks are valid scenes: a block with [surface] on its own, a
+    block of further sections (the [manifold] example) added to the scene before it."""
+    from cusp.app.scene import parse_scene
+
+    blocks = re.findall(r"^```toml\n(.*?)^```", (ROOT / "README.md").read_text(), re.M | re.S)
+    assert len(blocks) >= 2
+    base = ""
+    for i, block in enumerate(blocks):
+        text = block if "[surface]" in block else base + block
+        scene = parse_scene(text, source=f"README.md[toml block {i}]")
+        base = text if "[surface]" in block else base
+        if "[manifold]" in block:
+            assert scene.manifold is not None
+
+
 def test_the_scripts_are_found():
     """At least five tutorials and ten gallery examples."""
     assert len(list(DOCS.glob("tutorials/tutorial_*.py"))) >= 5
