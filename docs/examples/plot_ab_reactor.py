@@ -19,6 +19,8 @@ for sp in br.special("fold"):
 for ref in refs:
     print("reference", dict(ref.values))
 assert len(br.special("fold")) == len(refs) == 2
+for sp, ref in zip(br.special("fold"), refs):  # closed forms in mpmath, in path order
+    assert abs(sp.values["p1"] - ref.values["p1"]) < 1e-9 * ref.values["p1"]
 
 fig, ax = plt.subplots(figsize=(5.5, 4))
 br.plot(ex.free, ex.unknowns[0], ax=ax)

@@ -20,6 +20,9 @@ other = ex.trace(u0=bp, bounds={"u": (-1.0, 1.0)})
 print(bp)
 for ref in ex.references():
     print(ref.kind, dict(ref.values))
+(ref_bp,) = [r for r in ex.references() if r.kind == "branch_point"]
+assert abs(bp.values["v"] - ref_bp.values["v"]) < 1e-9
+assert abs(other["u"]).max() > 0.1  # the switched branch does leave u = 0
 
 fig, ax = plt.subplots(figsize=(5.5, 4))
 br.plot("v", "P", ax=ax, label="symmetric path")

@@ -18,6 +18,8 @@ d = diagram(two_modes(), [0.0, 0.0], free="lam", bounds={"lam": (0.0, 6.0)})
 for point in sorted(d.points, key=lambda p: p.point.values["lam"]):
     print("branch point at lam =", round(point.point.values["lam"], 10))
 print(len(d.branches), "branches")
+found = sorted(round(p.point.values["lam"], 9) for p in d.points)
+assert found == [1.0, 2.0, 3.0, 3.0] and len(d.branches) == 5  # the closed forms
 
 fig, ax = plt.subplots(figsize=(5.5, 4))
 d.plot("lam", "x", ax=ax)
