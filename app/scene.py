@@ -128,14 +128,23 @@ RTOL_RANGE = (1e-13, 1e-2)
 _NUMBERS: dict[str, Parameter] = {
     p.name: p
     for p in (
-        Parameter("normal_load", "N"),
-        Parameter("max_slip", "µm"),
-        Parameter("reduced_normal_load", "N"),
-        Parameter("ds_max", "", 1e-10, 1.0, lower_inclusive=True, upper_inclusive=True),
-        Parameter("tol", "", 0.0, 1e-4, upper_inclusive=True),
-        Parameter("rtol", "", RTOL_RANGE[0], RTOL_RANGE[1], True, True),
+        Parameter("normal_load", "N", description="F_N0, the normal load on OA"),
+        Parameter("max_slip", "µm", description="g_A, the slip at A (below gross sliding)"),
+        Parameter(
+            "reduced_normal_load",
+            "N",
+            description="F'_N at B, or a list (one case each); F_N0 - F_A/mu <= F'_N < F_N0",
+        ),
+        Parameter("ds_max", "", 1e-10, 1.0, True, True, description="largest step of the paths"),
+        Parameter("tol", "", 0.0, 1e-4, upper_inclusive=True, description="Newton tolerance"),
+        Parameter(
+            "rtol", "", *RTOL_RANGE, True, True, description="relative accuracy (default 1e-3)"
+        ),
     )
 }
+
+#: the readings of Eq 32 for [options] area_reading (the first is the default)
+AREA_READINGS = ("printed", "consistent")
 
 _SECTIONS = {
     "scene": {"name", "title"},
@@ -285,8 +294,8 @@ def scene_from_data(
     loading = _check_loading(chk, data["loading"])
 
     opts_in = data.get("options", {})
-    reading = chk.string("options", "area_reading", opts_in.get("area_reading", "printed"))
-    if reading not in ("printed", "consistent"):
+    reading = chk.string("options", "area_reading", opts_in.get("area_reading", AREA_READINGS[0]))
+    if reading not in AREA_READINGS:
         chk.fail(f"[options] area_reading = {show(reading)}", "'printed' or 'consistent'")
     solver = {k: chk.number("solver", k, v) for k, v in data.get("solver", {}).items()}
     mus = surface.get("mu")

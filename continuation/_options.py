@@ -156,7 +156,7 @@ class ContinuationOptions:
     """Degrees: the nominal tangent turn per step (a step turning more than twice this is
     rejected, and the step size aims at it)."""
     target_contraction: float = 0.05
-    """Nominal first contraction |Δz₂|/|Δz₁| of the corrector (Deuflhard): a step whose
+    """Nominal first contraction ‖Δz₂‖/‖Δz₁‖ of the corrector (Deuflhard): a step whose
     contraction exceeds four times this is rejected, and the step size aims at it."""
     target_distance: float = 0.2
     """Nominal distance from the predictor to the corrected point, as a fraction of ds (how

@@ -39,11 +39,13 @@ class ChainPoint:
 
 
 class PointChain:
-    """The points of a :class:`ChainPoint` sequence as one problem (:class:`~..problem._problem.
-    ContinuationProblem`): unknowns ``"point.variable"`` (each point's problem unknowns, then
-    its control), parameters every parameter of the legs that is neither a control nor
-    linked, plus the names conditions hold variables at; the residual stacks each point's
-    ``R`` and its condition, and the Jacobian is assembled from the legs' own derivatives."""
+    """The points of a :class:`ChainPoint` sequence as one problem.
+
+    A :class:`~cusp.continuation.ContinuationProblem` with unknowns ``"point.variable"``
+    (each point's problem unknowns, then its control), parameters every parameter of the
+    legs that is neither a control nor linked, plus the names conditions hold variables at;
+    the residual stacks each point's ``R`` and its condition, and the Jacobian is assembled
+    from the legs' own derivatives."""
 
     def __init__(self, points: Sequence[ChainPoint], params: Mapping[str, float] | None = None):
         self.points = tuple(points)

@@ -1,0 +1,335 @@
+"""The documentation runs: every ```python block of the Markdown pages and the README, every
+tutorial and gallery script (the ones the site executes at build time), and the generated
+references list exactly what the code defines.
+
+The scripts and snippets run in-process with matplotlib's Agg backend, from a scratch
+working directory (anything they write lands there), with ``plt.show`` a no-op (the gallery
+shows figures by scraping them; Agg would warn).
+"""
+
+from __future__ import annotations
+
+import importlib
+import importlib.util
+import math
+import re
+import runpy
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[1]
+DOCS = ROOT / "docs"
+PAGES = sorted([ROOT / "README.md", *DOCS.glob("*.md"), *DOCS.glob("benchmarks/*.md")])
+SCRIPTS = sorted([*DOCS.glob("tutorials/*.py"), *DOCS.glob("examples/*.py")])
+_FENCE = re.compile(r"^```python\n(.*?)^```", re.MULTILINE | re.DOTALL)
+
+
+def python_blocks(path: Path) -> list[str]:
+    """The ```python blocks of a Markdown page, in order."""
+    return _FENCE.findall(path.read_text(encoding="utf-8"))
+
+
+@pytest.fixture
+def quiet_matplotlib(tmp_path, monkeypatch):
+    """Agg, ``plt.show`` a no-op, a scratch working directory, every figure closed after."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    monkeypatch.setattr(plt, "show", lambda *a, **k: None)
+    monkeypatch.chdir(tmp_path)
+    yield
+    plt.close("all")
+
+
+def test_the_pages_have_snippets():
+    """The pages do hold python blocks (a broken pattern would otherwise run nothing)."""
+    counted = {p.name: len(python_blocks(p)) for p in PAGES}
+    assert counted["README.md"] >= 4 and counted["continuation.md"] >= 5, counted
+    assert sum(counted.values()) >= 15, counted
+
+
+@pytest.mark.parametrize(
+    "page", [p for p in PAGES if python_blocks(p)], ids=lambda p: str(p.relative_to(ROOT))
+)
+def test_snippets_run(page, quiet_matplotlib):
+    """Each page's python blocks run in order, in one namespace (a later block may use what
+    an earlier one defined, as a reader would)."""
+    from cusp.models import registry
+
+    bodies = dict(registry._REGISTRY)  # a snippet may register a body: put the list back
+    namespace: dict = {"__name__": "__doc_snippet__"}
+    try:
+        for i, block in enumerate(python_blocks(page)):
+            code = compile(block, f"{page.name}[python block {i}]", "exec")
+            exec(code, namespace)  # noqa: S102 (the project's own documentation)
+    finally:
+        registry._REGISTRY.clear()
+        registry._REGISTRY.update(bodies)
+
+
+def test_toml_snippets_are_scenes():
+    """The README's ```toml blocks are valid scenes: a block with [surface] on its own, a
+    block of further sections (the [manifold] example) added to the scene before it."""
+    from cusp.app.scene import parse_scene
+
+    blocks = re.findall(r"^```toml\n(.*?)^```", (ROOT / "README.md").read_text(), re.M | re.S)
+    assert len(blocks) >= 2
+    base = ""
+    for i, block in enumerate(blocks):
+        text = block if "[surface]" in block else base + block
+        scene = parse_scene(text, source=f"README.md[toml block {i}]")
+        base = text if "[surface]" in block else base
+        if "[manifold]" in block:
+            assert scene.manifold is not None
+
+
+def test_the_scripts_are_found():
+    """At least five tutorials and ten gallery examples."""
+    assert len(list(DOCS.glob("tutorials/tutorial_*.py"))) >= 5
+    assert len(list(DOCS.glob("examples/plot_*.py"))) >= 10
+
+
+@pytest.mark.parametrize("script", SCRIPTS, ids=lambda p: f"{p.parent.name}/{p.name}")
+def test_script_runs(script, quiet_matplotlib):
+    """Each tutorial and gallery script runs to its end, as the site build runs it."""
+    runpy.run_path(str(script), run_name="__main__")
+
+
+def _schema_module():
+    path = DOCS / "_ext" / "scene_schema.py"
+    spec = importlib.util.spec_from_file_location("cusp_docs_scene_schema", path)
+    assert spec is not None and spec.loader is not None
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+def test_scene_schema_reference_lists_every_key():
+    """The generated schema reference names every section, key, body (with each of its
+    parameters and their ranges), figure and reading the scene parser accepts."""
+    from cusp.app import scene
+    from cusp.models import registry
+
+    text = "\n".join(_schema_module().schema_rst())
+    for section in (*scene._SECTIONS, "surface"):
+        assert f"``[{section}]``" in text, section
+        for key in scene._section_keys(section):
+            assert f"``{key}``" in text or f"] {key}``" in text, (section, key)
+    for name in registry.body_names():
+        entry = registry.body_entry(name)
+        assert f"``{name}``" in text, name
+        if entry.has_path:
+            table = text.split(f'of model = "{name}"')[1].split(".. list-table::")[0]
+            for p in entry.parameters.values():
+                assert f"``{p.name}``" in table and p.range_text() in table, (name, p.name)
+        else:
+            assert entry.refusal in text
+    for word in (*scene.FIGURES, *scene.AREA_READINGS, *scene.MANIFOLD_PARAMETERS):
+        assert word in text, word
+
+
+def _autosummary_names(page: Path) -> list[str]:
+    names = []
+    for block in re.findall(
+        r"\.\. autosummary::\n(?:   :.*\n)*\n((?:   \S.*\n)+)", page.read_text()
+    ):
+        names += block.split()
+    return names
+
+
+@pytest.mark.parametrize("module", ["cusp.continuation", "cusp.models"])
+def test_api_reference_lists_every_public_name(module):
+    """docs/api/<name>.rst documents each name of the module's ``__all__`` exactly once."""
+    page = DOCS / "api" / f"{module.split('.')[1]}.rst"
+    listed = _autosummary_names(page)
+    public = importlib.import_module(module).__all__
+    assert sorted(listed) == sorted(public)
+
+
+# --- numbers in the prose: each quoted as the page prints it, from a run of the code --------
+
+
+def _page(name: str) -> str:
+    """A page with its whitespace collapsed (a phrase may break across lines)."""
+    return " ".join((DOCS / name).read_text(encoding="utf-8").split())
+
+
+def _exponential(mu: float, load: float):
+    from cusp.models import ContactLoss, ExponentialRoughSurface
+
+    return ContactLoss(ExponentialRoughSurface(2.0, 0.3, mu), 1000.0, 0.34, load).run()
+
+
+def test_the_figures_numbers_are_the_codes():
+    """docs/contact_loss.md's reading of Figs 6, 8 and 9 quotes the points and energies the
+    model computes (the Fig 6 scene: σ* = 2 µm, ν = 0.3, F_N0 = 1000 N, g_A = 0.34 µm),
+    rounded as printed."""
+    text = _page("contact_loss.md")
+    fig6 = _exponential(0.1, 850.0)
+    A, B, C, D = (fig6.points[k] for k in "ABCD")
+    high = _exponential(0.5, 850.0)
+    deep = _exponential(0.1, 400.0)
+    quoted = [
+        f"up to {A['F_T']:.1f} N at {A['g_T']:.2f} µm",
+        f"B ({B['g_T']:.4f} µm, {B['F_T']:.1f} N)",
+        f"D ({D['g_T']:.2f} µm, {D['F_T']:.1f} N)",
+        f"C ({C['g_T']:.3f} µm, {C['F_T']:.1f} N)",
+        f"B drops to {high.points['B']['g_T']:.3f} µm, {high.points['B']['F_T']:.1f} N",
+        f"grows from {fig6.energy['snap_back']:.3f} to {high.energy['snap_back']:.3f} N·µm",
+        f"(snap-through {fig6.energy['snap_through']:.3f} to "
+        f"{high.energy['snap_through']:.3f} N·µm)",
+        # the floor F'_N = F_N0 − F_A/μ, where F'_T = F_A − μΔF_N reaches 0
+        f"near the floor {1000.0 - A['F_T'] / 0.1:.1f} N",
+        f"F'_N = 400 N (Fig 8) it reaches {deep.points['D']['A_SL']:.2f} at D",
+    ]
+    missing = [q for q in quoted if q not in text]
+    assert not missing, missing
+
+
+def test_the_manifold_events_quoted_are_the_codes():
+    """The events of the Fig 9 loci (C boundary μ_C, F'_T = 0 at μ_0) as docs/contact_loss.md
+    and docs/manifold.md quote them, from a trace of the loci; and the snap-through energy
+    is least inside the range (contact_loss.md's reading of loci-energies)."""
+    import numpy as np
+
+    from cusp.models import ContactLoss, ExponentialRoughSurface, point_loci
+
+    model = ContactLoss(ExponentialRoughSurface(2.0, 0.3, 0.1), 1000.0, 0.34, 850.0)
+    loci = point_loci(model, "mu", (0.01, 1.0))
+    events = {e["event"]: e["mu"] for e in loci.events}
+    mu_c, mu_0 = events["C boundary"], events["F'_T = 0"]
+    contact_loss, manifold = _page("contact_loss.md"), _page("manifold.md")
+    for phrase in (f"μ_C = {mu_c:.4f}", f"μ_0 = {mu_0:.4f}"):
+        assert phrase in contact_loss, phrase
+    assert f"C boundary {mu_c:.10f}, F'_T = 0 {mu_0:.10f}" in manifold
+    through = loci.columns["snap_through_energy"]
+    finite = through[np.isfinite(through)]
+    assert 0 < int(np.argmin(finite)) < len(finite) - 1
+
+
+def test_the_frictionless_limit_numbers_are_the_codes():
+    """docs/manifold.md, "μ → 0 does not close the pleat": the widths over μ at every μ from
+    0.1 to 1e-4, the limit of ABD/μ² (closed form λ[ΔF_N − F'_N ln(F_N0/F'_N)],
+    λ = σ*(2 − ν)/(2(1 − ν))), and the C boundary of each body and the sphere's loss of D and
+    sliding of A (where F_A = μF'_N, where g_A is the sliding slip under F'_N and under F_N0:
+    the slip limit of a sphere is proportional to μ), as the page rounds them."""
+    from scipy.optimize import brentq
+
+    from cusp.app.cases import build_body
+    from cusp.app.run import resolve_scene
+    from cusp.app.scene import load_scene
+
+    text = _page("manifold.md")
+    widths = set()
+    for mu in (0.1, 1e-2, 1e-4):
+        res = _exponential(mu, 850.0)
+        A, B = res.points["A"], res.points["B"]
+        widths.add(f"(g_A − g_B)/μ = {(A['g_T'] - B['g_T']) / mu:.12f} µm")
+        widths.add(f"(F_A − F_B)/μ = {(A['F_T'] - B['F_T']) / mu:.0f} N")
+    assert len(widths) == 2 and all(w in text for w in widths), widths
+    lam = 2.0 * (2.0 - 0.3) / (2.0 * (1.0 - 0.3))
+    limit = lam * (150.0 - 850.0 * math.log(1000.0 / 850.0))
+    assert f"= {limit:.8f} N·µm" in text
+    assert abs(res.energy["snap_back"] / 1e-4**2 - limit) < 1e-3 * limit  # at μ = 1e-4
+
+    def scene(name):
+        path, source = resolve_scene(name)
+        return load_scene(path, source=source)
+
+    def c_boundary(sc):  # F_A(μ) = μ F'_N at the scene's g_A, F_N0 and F'_N = 850 N
+        g_A, F_N0 = sc.loading["max_slip"], sc.loading["normal_load"]
+
+        def gap(mu):
+            return build_body(sc, mu).tangential_force(g_A, F_N0) - mu * 850.0
+
+        return brentq(gap, 0.02, 0.5, xtol=1e-12)
+
+    bounds = [c_boundary(scene(n)) for n in ("fig6", "gaussian", "sphere")]
+    phrase = "μ = {:.4f} exponential, {:.4f} Gaussian, {:.4f} sphere".format(*bounds)
+    assert phrase in text, phrase
+    sph = scene("sphere")
+    per_mu = build_body(sph, 1.0).slip_limit  # sliding slip at μ = 1, ∝ μ
+    g_A = sph.loading["max_slip"]
+    d_lost, a_slides = g_A / per_mu(850.0), g_A / per_mu(sph.loading["normal_load"])
+    assert f"loses D at μ = {d_lost:.4f} and A slides at μ = {a_slides:.4f}" in text
+
+
+def test_the_readmes_numbers_are_the_codes():
+    """README.md's comments quote C of the Fig 6 path, the CO-oxidation cusp and the range
+    of ``rtol`` as the code computes and allows them."""
+    from cusp.continuation import RTOL_DEFAULT, RTOL_MAX, RTOL_MIN, fold_curve
+    from cusp.examples import co_oxidation
+
+    def cut(x: float, digits: int) -> str:  # "0.528..." : the digits shown, then "..."
+        return f"{math.floor(x * 10**digits) / 10**digits:.{digits}f}..."
+
+    text = " ".join((ROOT / "README.md").read_text(encoding="utf-8").split())
+    C = _exponential(0.1, 850.0).points["C"]
+    assert f"{{'g_T': {cut(C['g_T'], 3)}, 'F_T': {cut(C['F_T'], 2)}, ...}}" in text
+    ex = co_oxidation()
+    br = ex.trace(ds_max=0.01)
+    assert len(br.special("fold")) == 2  # "two folds"
+    fc = fold_curve(ex.problem, br.special("fold")[0], free=("q2", "k"), bounds={"k": (0, 2.2)})
+    k = fc.special("cusp")[0].values["k"]
+    assert f"k = {cut(k, 14)}" in text, k
+
+    def e(x: float) -> str:  # 1e-3 as the README writes it
+        return f"{x:.0e}".replace("e-0", "e-")
+
+    assert f"(default {e(RTOL_DEFAULT)}; [{e(RTOL_MIN)}, {e(RTOL_MAX)}])" in text
+
+
+def test_the_limits_table_is_the_codes():
+    """docs/limits.md's table of limits quotes the constants the code enforces."""
+    from cusp.app import limits, output, scene
+    from cusp.continuation import RTOL_MAX, RTOL_MIN
+    from cusp.models import manifold
+
+    text = _page("limits.md")
+    ds_max, tol = scene._NUMBERS["ds_max"], scene._NUMBERS["tol"]
+    quoted = [
+        f"at most {limits.MAX_SCENE_BYTES:,} bytes",
+        f'"limit of {limits.MAX_SCENE_BYTES} bytes"',
+        f"at most {limits.MAX_LINE_CHARS:,} characters",
+        f"at most {limits.MAX_NESTING} levels",
+        f"1 to {limits.MAX_LIST} values",
+        f"at most {limits.MAX_CASES} (listed μ times listed F'_N)",
+        f"1 to {limits.MAX_NAME_CHARS} printable characters",
+        f"at most {limits.MAX_TITLE_CHARS} characters",
+        f"at most {output.MAX_NAME_BYTES} bytes (UTF-8; the staging names add "
+        f"{output.NAME_MAX - output.MAX_NAME_BYTES})",
+        f"`[solver] ds_max` | [{ds_max.lower:g}, {ds_max.upper:g}]",
+        f"`[solver] tol` | ({tol.lower:g}, {tol.upper:.0e}]".replace("e-0", "e-"),
+        f"[{RTOL_MIN:.0e}, {RTOL_MAX:.0e}]".replace("e-0", "e-"),
+        f"`LOCUS_STEPS` = {manifold.LOCUS_STEPS} steps",
+        f"`ENERGY_ROWS` = {manifold.ENERGY_ROWS} rows",
+    ]
+    missing = [q for q in quoted if q not in text]
+    assert not missing, missing
+
+
+def test_the_physics_pages_fig6_values_are_the_codes():
+    """docs/physics.md's Fig 6 table (the closed forms evaluated to 16 digits) and the values
+    around it, against the traced model: to 1e-13 relative (the table's 16 digits and the
+    model's rounding), and the rounded ones as printed."""
+    text = _page("physics.md")
+    res = _exponential(0.1, 850.0)
+    rows = re.findall(r"\| ([ABCD]) \| ([0-9.]+) \| ([0-9.]+) \| ([0-9.]+) \|", text)
+    assert [r[0] for r in rows] == list("ABCD"), rows
+    for name, g, f, a in rows:
+        point = res.points[name]
+        for key, quoted in (("g_T", g), ("F_T", f), ("A_SL", a)):
+            assert abs(point[key] - float(quoted)) <= 1e-13 * abs(point[key]), (name, key)
+    for kind, label in (("snap_back", "(area ABD)"), ("snap_through", "(area ABC)")):
+        quoted = re.search(re.escape(label) + r" ([0-9.]+) N·µm", text)
+        assert quoted is not None, label
+        assert abs(res.energy[kind] - float(quoted.group(1))) <= 1e-13 * res.energy[kind]
+    F_A = res.points["A"]["F_T"]
+    assert f"= {1000.0 - F_A / 0.1:.3f} N" in text and f"F'_N > {F_A / 0.1:.3f} N" in text
+    deep = _exponential(0.1, 400.0).points["D"]["A_SL"]
+    assert f"= {deep:.4f} (`docs/gallery/fig8/summary.json`)" in text
+    energies = [_exponential(mu, 850.0).energy["snap_back"] for mu in (0.5, 0.1, 0.01)]
+    assert "{:.6g}, {:.6g} and {:.6g} N·µm for μ = 0.5, 0.1 and 0.01".format(*energies) in text
