@@ -34,9 +34,15 @@ def _number_row(p: registry.Parameter, how: str) -> list[str]:
 
 def _sections() -> list[str]:
     rows = []
-    for name in ("scene", "surface", "loading", "options", "solver", "manifold", "output"):
+    order = ("scene", "surface", "loading", "options", "solver", "manifold", "output")
+    for name in (*order, *sorted(set(scene._SECTIONS) - set(order))):
         if name == "surface":
             listed = f"{_lit('model')} and the parameters of its body (below)"
+        elif name == "sweep":
+            listed = (
+                "the varied fields by their dotted names (``\"surface.mu\" = [...]`` or "
+                "``{ start, stop, num, spacing }``), or ``cases`` (a CSV file): see Sweeps"
+            )
         else:
             listed = ", ".join(_lit(k) for k in sorted(scene._section_keys(name)))
         required = "required" if name in scene._REQUIRED_SECTIONS else "optional"
