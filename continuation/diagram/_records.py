@@ -14,13 +14,22 @@ from ._deflation import Deflation
 class DiagramBranch:
     """One branch of a :class:`Diagram`.
 
-    ``branch``: the traced :class:`~cusp.continuation.Branch` (both ways from its start,
-    unless ``closed``). ``depth``: 0 for the start's branch and branches started from
-    deflated solutions, one more than its parent's for a branch switched into. ``origin``:
-    ``"start"``, ``"branch_point"`` or ``"deflation"``. ``source``: the index in
-    :attr:`Diagram.points` of the branch point it leaves (None otherwise). ``closed``: it
-    returned to its start (an isola, or a loop). ``ends``: how each half ended (the minus
-    half's status, then the plus half's; ``("closed",)`` for a closed branch).
+    Parameters
+    ----------
+    branch : Branch
+        The traced branch (both ways from its start, unless ``closed``).
+    depth : int
+        0 for the start's branch and branches started from deflated solutions, one more
+        than its parent's for a branch switched into.
+    origin : {"start", "branch_point", "deflation"}
+        How the branch was found.
+    source : int or None
+        The index in ``Diagram.points`` of the branch point it leaves (None otherwise).
+    closed : bool
+        Whether it returned to its start (an isola, or a loop).
+    ends : tuple of str
+        How each half ended (the minus half's status, then the plus half's;
+        ``("closed",)`` for a closed branch).
     """
 
     branch: Branch
@@ -35,11 +44,19 @@ class DiagramBranch:
 class DiagramPoint:
     """A branch point of a :class:`Diagram`, once however many branches located it.
 
-    ``point``: the first located :class:`~cusp.continuation.SpecialPoint` (values, tangents
-    and switching data). ``on``: the indices of the branches it lies on (those that located
-    it, and the branches that leave it). ``leaving``: the branches switched into from it
-    (traced from it, or recognised as already traced). ``notes``: what was done at it, one
-    sentence per branch that located it (switched, recognised, not switched and why).
+    Parameters
+    ----------
+    point : SpecialPoint
+        The first located record of it (values, tangents and switching data).
+    on : tuple of int
+        The indices of the branches it lies on (those that located it, and the branches
+        that leave it).
+    leaving : tuple of int
+        The branches switched into from it (traced from it, or recognised as already
+        traced).
+    notes : tuple of str
+        What was done at it, one sentence per branch that located it (switched,
+        recognised, not switched and why).
     """
 
     point: SpecialPoint
@@ -52,13 +69,27 @@ class DiagramPoint:
 class Diagram:
     """A whole bifurcation diagram (:func:`~cusp.continuation.diagram`).
 
-    ``branches`` and ``points`` (see :class:`DiagramBranch`, :class:`DiagramPoint`);
-    ``free``: the free parameter; ``tol``: the distance (weighted, relative to the typical
-    sizes) within which two branches or points are the same; ``recognised``: one sentence per
-    branch found again and not kept (before tracing, from a branch point whose other branch
-    is known; or after, a traced branch lying on a known one; or a deflated solution on a
-    known branch); ``deflation``: the :class:`~cusp.continuation.Deflation` runs, one per
-    parameter value; ``traces``: the branches traced (kept or not).
+    ``len(diagram)`` is the number of branches.
+
+    Parameters
+    ----------
+    branches : tuple of DiagramBranch
+        The distinct branches.
+    points : tuple of DiagramPoint
+        The distinct branch points linking them.
+    free : str
+        The free parameter.
+    tol : float
+        The distance (weighted, relative to the typical sizes) within which two branches
+        or points are the same.
+    recognised : tuple of str
+        One sentence per branch found again and not kept (before tracing, from a branch
+        point whose other branch is known; or after, a traced branch lying on a known one;
+        or a deflated solution on a known branch).
+    deflation : tuple of Deflation
+        The deflation runs, one per parameter value.
+    traces : int
+        The branches traced (kept or not).
     """
 
     branches: tuple[DiagramBranch, ...]
@@ -81,9 +112,25 @@ class Diagram:
         )
 
     def plot(self, x: str, y: str, ax: Any = None, *, points: bool = True) -> Any:
-        """Draw every branch (``y`` against ``x``) and the branch points (matplotlib imported
-        lazily); a branch carrying a column ``n_unstable`` is drawn solid where it is 0 and
-        dashed elsewhere. Returns the Axes."""
+        """Draw every branch (``y`` against ``x``) and the branch points.
+
+        matplotlib is imported when first used. A branch carrying a column ``n_unstable``
+        is drawn solid where it is 0 and dashed elsewhere.
+
+        Parameters
+        ----------
+        x, y : str
+            The columns on the horizontal and vertical axes.
+        ax : matplotlib.axes.Axes, optional
+            Where to draw (default: a new figure's axes).
+        points : bool, optional
+            Whether to mark the branch points (default True).
+
+        Returns
+        -------
+        matplotlib.axes.Axes
+            The axes drawn on.
+        """
         from ._plot import plot_diagram
 
         return plot_diagram(self, x, y, ax=ax, points=points)
