@@ -76,6 +76,35 @@ DEFAULT_OPTIONS = ContinuationOptions()  # frozen: shared (validation costs 20 Â
 class Tracer:
     """Step-level continuation of one curve.
 
+    The tracer holds only configuration; all that changes, the curve system included, lives
+    in the :class:`~cusp.continuation.TracerState` records.
+
+    Parameters
+    ----------
+    problem : Problem or ContinuationProblem
+        The equations ``R(u, p) = 0``.
+    free : str
+        The parameter that varies along the branch.
+    params, bounds, targets, events, monitor, scales, direction, options, throw : optional
+        As for :func:`~cusp.continuation.trace`.
+
+    Other Parameters
+    ----------------
+    rtol, ds, ds_min, ds_max, max_steps, tol, step_tol, max_step_solves, \
+max_newton_iterations, target_newton_iterations, max_angle, target_angle, \
+target_contraction, target_distance, curve_tol, growth, predictor, state_weight, \
+detect_folds, detect_branch_points, locate_tol, max_locate_iterations : optional
+        The field of the same name of ``options``, overridden.
+
+    Raises
+    ------
+    ProblemDefinitionError
+        A malformed problem or argument (the message names it).
+    OptionsError
+        An option outside its allowed range.
+
+    Examples
+    --------
     >>> from cusp.continuation import Problem, Tracer
     >>> problem = Problem(lambda u, p: [u[0]**3 - u[0] - p["b"]], ["x"], {"b": -1.0})
     >>> tracer = Tracer(problem, free="b", bounds={"b": (-1, 1)})
@@ -85,9 +114,6 @@ class Tracer:
     >>> branch = tracer.result(state)
     >>> branch.status, [round(sp.values["b"], 10) for sp in branch.special("fold")]
     ('bound', [0.3849001795, -0.3849001795])
-
-    The arguments are those of :func:`trace`. The tracer holds only configuration; all that
-    changes, the curve system included, lives in the :class:`~._state.TracerState` records.
     """
 
     def __init__(
@@ -160,20 +186,26 @@ class Tracer:
         throw: bool = True,
         tests: Sequence[TestFunction] = (),
     ) -> Tracer:
-        """A tracer for any curve system (fold curves and other augmented systems).
+        """Build a tracer for any curve system (fold curves and other augmented systems).
 
         Parameters
         ----------
         system : CurveSystem
             The curve (its start system).
         options : ContinuationOptions
-        bounds, targets, events, monitor, scales, direction, throw
-            As for :func:`trace`, on the curve's components.
-        tests : sequence of TestFunction
+            The numerical settings.
+        bounds, targets, events, monitor, scales, direction, throw : optional
+            As for :func:`~cusp.continuation.trace`, on the curve's components.
+        tests : sequence of TestFunction, optional
             Test functions evaluated besides the generic ones of the curve (folds of its
             ``fold_components`` and of the monitored components, branch points, targets,
             bounds, events; :func:`~..detection._tests.generic_tests`), after them: the
             cusp and codimension-2 tests of a fold curve, or tests of one's own.
+
+        Returns
+        -------
+        Tracer
+            The tracer; start it with :meth:`init_at`.
         """
         self = object.__new__(cls)
         self._configure(
@@ -237,10 +269,26 @@ class Tracer:
     ) -> TracerState:
         """Correct the starting point and compute the first tangent.
 
-        ``u0``: initial guess of the unknowns (at the problem's parameter values), or a
-        :class:`~..results._branch.SpecialPoint` (a ``"branch_point"`` starts on the other
-        branch). ``tangent``: the start's tangent, if known (the start is then not
-        corrected).
+        Parameters
+        ----------
+        u0 : array_like, shape (n,), or SpecialPoint
+            Initial guess of the unknowns (at the problem's parameter values), or a special
+            point of a branch (a ``"branch_point"`` starts on the other branch).
+        tangent : array_like, shape (n + 1,), optional
+            The start's tangent, if known (the start is then not corrected).
+
+        Returns
+        -------
+        TracerState
+            The state at the start.
+
+        Raises
+        ------
+        ProblemDefinitionError
+            A ``u0`` of the wrong shape or not finite, or a branch point that cannot be
+            switched at.
+        ContinuationError
+            The start could not be corrected (with ``throw=True``).
         """
         if isinstance(u0, SpecialPoint):
             return self._init_at_special(u0, tangent)
@@ -292,10 +340,29 @@ class Tracer:
         start_label: str = "start",
         scales: Mapping[str, float] | None = None,
     ) -> TracerState:
-        """Start from a full curve vector ``z0`` (corrected with its last component fixed).
-        ``scales``: the scales (typical sizes) on a curve the start lies on (a branch whose
-        fold this curve continues), for the components whose value at ``z0`` is far below
-        them."""
+        """Start from a full curve vector ``z0``, corrected with its last component fixed.
+
+        Parameters
+        ----------
+        z0 : array_like, shape (dim,)
+            The curve's components (``system.names``).
+        start_label : str, optional
+            The label of the start's special point.
+        scales : mapping of str to float, optional
+            The scales (typical sizes) on a curve the start lies on (a branch whose fold
+            this curve continues), for the components whose value at ``z0`` is far below
+            them.
+
+        Returns
+        -------
+        TracerState
+            The state at the start.
+
+        Raises
+        ------
+        ProblemDefinitionError
+            A ``z0`` of the wrong shape.
+        """
         z = np.asarray(z0, dtype=float)
         if z.shape != (self.system.dim,):
             raise ProblemDefinitionError(
@@ -316,14 +383,38 @@ class Tracer:
     # ------------------------------------------------------------------ step
 
     def done(self, state: TracerState) -> bool:
-        """Whether the curve of ``state`` has ended."""
+        """Return whether the curve of ``state`` has ended.
+
+        Parameters
+        ----------
+        state : TracerState
+            A state of this tracer.
+
+        Returns
+        -------
+        bool
+            True once the state has a status.
+        """
         return state.status is not None
 
     def step(self, state: TracerState) -> TracerState:
-        """One accepted continuation step (with its special points), or the end. numpy's
-        floating-point warnings are silenced inside it: a trial point where the user's
-        functions overflow or take the square root of a negative number gives a non-finite
-        value, which the step rejects like any other (and reports if it persists)."""
+        """Take one accepted continuation step (with its special points), or end the curve.
+
+        numpy's floating-point warnings are silenced inside it: a trial point where the
+        user's functions overflow or take the square root of a negative number gives a
+        non-finite value, which the step rejects like any other (and reports if it
+        persists).
+
+        Parameters
+        ----------
+        state : TracerState
+            The state to step from (not changed).
+
+        Returns
+        -------
+        TracerState
+            The state after the step.
+        """
         with np.errstate(all="ignore"):
             return self._step(state)
 
@@ -568,8 +659,18 @@ class Tracer:
     # ------------------------------------------------------------------ result
 
     def result(self, state: TracerState) -> Branch:
-        """Assemble the :class:`~..results._branch.Branch` (column arrays and special points)
-        of a state (finished or not)."""
+        """Assemble the branch of a state (finished or not).
+
+        Parameters
+        ----------
+        state : TracerState
+            A state of this tracer.
+
+        Returns
+        -------
+        Branch
+            Its column arrays and special points.
+        """
         info = {"direction": self.direction, "rtol": self.options.rtol}
         kinds = frozenset(t.kind for t in self.tests)
         return assemble_branch(state, info, kinds)
