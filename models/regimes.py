@@ -49,12 +49,22 @@ REGIMES = (
 class RegimeMap:
     """The regime map (:func:`regime_map`).
 
-    ``mu`` (m,), ``loads`` (k,): the grid [-, N]. ``snap_back``, ``snap_through`` (k, m):
-    the energies [N·µm], NaN where the point does not exist, is not resolved (see the loci)
-    or lies above the spine (ΔF_N < 1e-3·F_N0). ``regimes`` (k, m): index into
-    :data:`REGIMES` (−1 at a μ the spine did not reach).
-    ``boundaries``: name -> (μ, F'_N) arrays, each a curve between regimes. ``messages``:
-    what the loci said about where they ended."""
+    Parameters
+    ----------
+    mu : numpy.ndarray, shape (m,)
+        The friction coefficients of the grid (dimensionless).
+    loads : numpy.ndarray, shape (k,)
+        The reduced normal loads F'_N of the grid [N].
+    snap_back, snap_through : numpy.ndarray, shape (k, m)
+        The released energies [N·µm], NaN where the point does not exist, is not resolved
+        (see the loci) or lies above the spine (ΔF_N < 1e-3·F_N0).
+    regimes : numpy.ndarray of int, shape (k, m)
+        Index into :data:`REGIMES` (−1 at a μ the spine did not reach).
+    boundaries : dict of str to tuple of (numpy.ndarray, numpy.ndarray)
+        Name -> (μ, F'_N [N]) arrays, each a curve between regimes.
+    messages : list of str
+        What the loci said about where they ended.
+    """
 
     mu: np.ndarray
     loads: np.ndarray
@@ -74,11 +84,33 @@ def regime_map(
     loads: int | Sequence[float] = 40,
     options: ContinuationOptions | None = None,
 ) -> RegimeMap:
-    """The regime map of ``model``'s body at its F_N0 and g_A over ``mu_span`` × ``load_span``
-    (F'_N in N, up to F_N0). ``mus``, ``loads``: the grid (numbers of points spaced evenly,
-    μ logarithmically, or the values). The model's own μ must lie in ``mu_span``.
-    ``options``: of the loci (default :data:`cusp.models.manifold.DEFAULT_OPTIONS`; for
-    another accuracy, ``DEFAULT_OPTIONS.replace(rtol=...)``)."""
+    """Compute the regime map of ``model``'s body at its F_N0 and g_A over μ × F'_N.
+
+    Parameters
+    ----------
+    model : ContactLoss
+        The path whose body, F_N0 [N] and g_A [µm] are used; its own μ must lie in
+        ``mu_span``.
+    mu_span : tuple of (float, float)
+        The range of μ (dimensionless).
+    load_span : tuple of (float, float)
+        The range of F'_N [N], increasing, within (0, F_N0].
+    mus, loads : int or sequence of float, optional
+        The grid: numbers of points spaced evenly (μ logarithmically), or the values.
+    options : ContinuationOptions, optional
+        Of the loci (default :data:`cusp.models.manifold.DEFAULT_OPTIONS`; for another
+        accuracy, ``DEFAULT_OPTIONS.replace(rtol=...)``).
+
+    Returns
+    -------
+    RegimeMap
+        The energies [N·µm], the regime of each grid point and the boundary curves.
+
+    Raises
+    ------
+    ModelParameterError
+        A span or grid out of range.
+    """
     lo, hi = (float(x) for x in load_span)
     if not 0.0 < lo < hi <= model.F_N0:
         raise ModelParameterError(
