@@ -33,6 +33,7 @@ from typing import TYPE_CHECKING, cast
 
 import numpy as np
 
+from ._height_integrals import HeightIntegrals
 from ._roots import expand_bracket, gap_high, gap_low, monotone_root
 from .errors import (
     GrossSlidingError,
@@ -53,7 +54,7 @@ __all__ = ["RoughSurface", "RoughLevels", "monotone_root", "slip_in_mu_lambda"]
 _LOAD_SCALE_KEYS = ("E", "radius", "density", "nominal_area")
 
 
-class RoughSurface:
+class RoughSurface(HeightIntegrals):
     """A composite rough surface on a rigid flat (base class; see module docstring).
 
     E, radius, density and nominal_area form the load scale K, needed only for absolute d,
@@ -153,7 +154,7 @@ class RoughSurface:
         return math.pi * radius * density * nominal_area
 
     # ---------------------------------------------------------------- density integrals
-    # Defaults by quadrature over self.pdf; closed-form subclasses override them.
+    # Defaults by quadrature over self.pdf (HeightIntegrals); closed-form subclasses override.
     def pdf(self, z):
         """Return Φ(z) [1/µm], the summit-height density (each density defines it).
 
@@ -168,104 +169,6 @@ class RoughSurface:
             Φ(z) [1/µm].
         """
         raise NotImplementedError(f"{type(self).__name__} defines no height density pdf(z)")
-
-    def load_integral(self, h):
-        """J(h) = ∫_h^∞ (z − h)^{3/2} Φ(z) dz  [µm^{3/2}]."""
-        from ._quadrature import moment
-
-        return moment(self, 1.5, check_finite_array("h", h, unit="µm"))
-
-    def log_load_integral(self, h):
-        """log J(h) (J in µm^{3/2})."""
-        with np.errstate(divide="ignore"):
-            return np.log(self.load_integral(h))
-
-    def load_integral_derivative(self, h):
-        """dJ/dh = −(3/2) ∫_h^∞ (z − h)^{1/2} Φ dz  [µm^{1/2}]."""
-        from ._quadrature import moment
-
-        return -1.5 * moment(self, 0.5, check_finite_array("h", h, unit="µm"))
-
-    def area_integral(self, h):
-        """A(h) = ∫_h^∞ (z − h) Φ(z) dz  [µm]."""
-        from ._quadrature import moment
-
-        return moment(self, 1.0, check_finite_array("h", h, unit="µm"))
-
-    def tail_probability(self, h):
-        """∫_h^∞ Φ(z) dz (dimensionless)."""
-        from ._quadrature import moment
-
-        return moment(self, 0.0, check_finite_array("h", h, unit="µm"))
-
-    def slip_load_integral(self, h, g):
-        """S(h, g) = ∫_h^{h+g} (z − h)^{3/2} Φ dz  [µm^{3/2}] (sliding summits, Eq 10)."""
-        from ._quadrature import slip_integral
-
-        return slip_integral(self, *self._hg(h, g))
-
-    def stick_load_integral(self, h, g):
-        """T(h, g) = ∫_{h+g}^∞ [(z − h)^{3/2} − (z − h − g)^{3/2}] Φ dz  [µm^{3/2}] (Eq 7)."""
-        from ._quadrature import stick_integral
-
-        return stick_integral(self, *self._hg(h, g))
-
-    def load_integral_difference(self, h, g):
-        """J(h) − J(h + g) = S + T ≥ 0 [µm^{3/2}], without cancellation for tiny g."""
-        h, g = self._hg(h, g)
-        return self.slip_load_integral(h, g) + self.stick_load_integral(h, g)
-
-    def load_integral_second_derivative(self, h):
-        """d²J/dh² = (3/4) ∫_h^∞ (z − h)^{−1/2} Φ dz > 0  [µm^{−1/2}]."""
-        from ._quadrature import moment
-
-        return 0.75 * moment(self, -0.5, check_finite_array("h", h, unit="µm"))
-
-    def log_load_integral_second_derivative(self, h):
-        """log d²J/dh² (J'' in µm^{−1/2})."""
-        with np.errstate(divide="ignore"):
-            return np.log(self.load_integral_second_derivative(h))
-
-    def slip_area_integral(self, h, g):
-        """∫_h^{h+g} (z − h) Φ dz [µm]: the slipping summits' share of the real contact area
-        over π ρ* η A_n (A(h) minus the stick area of Eq 14), without cancellation."""
-        from ._quadrature import slip_integral
-
-        h, g = self._hg(h, g)
-        return slip_integral(self, h, g, k=1.0)
-
-    def tail_difference(self, h, g):
-        """∫_h^{h+g} Φ dz (dimensionless), without cancellation for tiny g."""
-        from ._quadrature import slip_integral
-
-        h, g = self._hg(h, g)
-        return slip_integral(self, h, g, k=0.0)
-
-    def area_integral_difference(self, h, g):
-        """A(h) − A(h + g) = ∫_h^{h+g} (z − h) Φ dz + g ∫_{h+g}^∞ Φ dz ≥ 0 [µm] (two
-        nonnegative terms)."""
-        h, g = self._hg(h, g)
-        return self.slip_area_integral(h, g) + g * self.tail_probability(h + g)
-
-    def integral_rtol(self) -> float:
-        """Return a bound on the relative error of this surface's integrals.
-
-        QUADPACK is asked for 1.2e-14, measured up to 1.4e-13 on Weibull densities; the
-        bounds of the path's points and energies use it.
-
-        Returns
-        -------
-        float
-            The relative error bound.
-        """
-        return 2e-13
-
-    @staticmethod
-    def _hg(h, g):
-        h = check_finite_array("h", h, unit="µm")
-        g = check_finite_array("g", g, lower=0.0, unit="µm")
-        h, g = np.broadcast_arrays(h, g)
-        return np.array(h), np.array(g)
 
     # ---------------------------------------------------------------- normal contact
     def normal_load(self, d):
