@@ -76,7 +76,6 @@ cases, the loci from the case of the first listed value that lies in ``range``.
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any, NoReturn
@@ -93,6 +92,7 @@ from .limits import (
     read_scene_bytes,
     show,
 )
+from .scene_sections import MANIFOLD_PARAMETERS, check_loading, check_manifold
 
 try:
     import tomllib
@@ -118,8 +118,6 @@ FIGURES = ("force-slip", "force-slip-detail", "force-area", "fig9", *MANIFOLD_FI
 #: the figures of a scene without [output] (without, with a [manifold] section)
 DEFAULT_FIGURES = ("force-slip", "force-slip-detail", "force-area")
 DEFAULT_MANIFOLD_FIGURES = ("fig9", *MANIFOLD_FIGURES)
-#: the parameters a [manifold] locus can be traced in, and their units
-MANIFOLD_PARAMETERS = {"mu": "", "reduced_normal_load": "N"}
 
 #: the allowed ``rtol``: ContinuationOptions' RTOL_MIN and RTOL_MAX (written out, not
 #: imported: reading a scene loads no solver; tests/app/test_rtol.py checks they agree)
@@ -172,11 +170,33 @@ class SceneError(ValueError):
 
 @dataclass(frozen=True)
 class Scene:
-    """A checked scene. ``surface``, ``loading``, ``options``, ``solver``, ``output`` are
-    plain dicts of the values given (numbers as floats; ``surface["mu"]`` a float or a
-    list, as given); ``reduced_normal_loads`` and ``mus`` are always tuples. ``manifold``:
-    None, or ``{"parameter", "range": (low, high), "start": (μ, F'_N)}`` (the case the loci
-    start from)."""
+    """A checked scene (made by :func:`load_scene` or :func:`parse_scene`).
+
+    The sections are dicts of the values given, numbers as floats in the schema's units.
+
+    Parameters
+    ----------
+    source : str
+        How messages and the echo name the scene (its path, or a label).
+    name, title : str
+        ``[scene] name`` (the output label; default the file's stem) and ``title``.
+    surface : dict of str to Any
+        ``[surface]``: ``model`` and the body's numbers (``mu`` a float or a list, as given).
+    loading : dict of str to Any
+        ``[loading]``: ``normal_load`` [N], ``max_slip`` [µm] and ``reduced_normal_load``
+        [N], the last always a list.
+    options, solver : dict
+        ``[options]`` (``area_reading``) and ``[solver]`` (``rtol``, ``ds_max``, ``tol``).
+    figures : tuple of str
+        The figures to draw.
+    surface_units : dict of str to str, optional
+        The unit of each ``[surface]`` number, from the body's registry entry.
+    manifold : dict or None, optional
+        None, or ``{"parameter", "range": (low, high), "start": (μ, F'_N [N])}`` (the case
+        the loci start from).
+    sweep : Sweep or None, optional
+        The checked ``[sweep]`` section (the varied fields and their cases), or None.
+    """
 
     source: str
     name: str
@@ -194,6 +214,7 @@ class Scene:
 
     @property
     def reduced_normal_loads(self) -> tuple[float, ...]:
+        """The listed reduced normal loads F'_N [N], as a tuple."""
         return tuple(self.loading["reduced_normal_load"])
 
     @property
@@ -204,13 +225,18 @@ class Scene:
 
     @property
     def cases(self) -> tuple[tuple[float | None, float], ...]:
-        """(μ, F'_N) of each case: every listed μ with every listed F'_N (at most one of
-        them is a list)."""
+        """(μ, F'_N [N]) of each case: every listed μ with every listed F'_N (one listed)."""
         return tuple((mu, load) for mu in self.mus for load in self.reduced_normal_loads)
 
     def echo(self) -> dict[str, Any]:
-        """The scene as given, with units: ``{section: {key: {"value", "unit"}}}`` (with
-        ``[solver] rtol`` as ``cusp run --rtol`` set it, :func:`with_rtol`)."""
+        """Return the scene as given, with units (for ``summary.json``).
+
+        Returns
+        -------
+        dict of str to Any
+            ``{section: {key: {"value", "unit"}}}``, with ``[solver] rtol`` as
+            ``cusp run --rtol`` set it (:func:`with_rtol`).
+        """
         out: dict[str, Any] = {"source": self.source, "name": self.name, "title": self.title}
         for section in ("surface", "loading", "options", "solver"):
             block = getattr(self, section)
@@ -229,8 +255,26 @@ class Scene:
 
 
 def load_scene(path: str | Path, *, source: str | None = None) -> Scene:
-    """Read and check a scene file (``source``: how messages and the echo name it; default
-    the path as given)."""
+    """Read and check a scene file.
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        The TOML file (UTF-8).
+    source : str, optional
+        How messages and the echo name it (default: the path as given).
+
+    Returns
+    -------
+    Scene
+        The checked scene.
+
+    Raises
+    ------
+    SceneError
+        An unreadable file or one that does not follow the schema; the one-line message
+        names the file, the field (``[section] key``), the value and what is allowed.
+    """
     path = Path(path)
     label = str(path) if source is None else source
     try:
@@ -257,8 +301,37 @@ def load_scene(path: str | Path, *, source: str | None = None) -> Scene:
 def parse_scene(
     text: str, *, source: str = "<scene>", default_name: str = "scene", base_dir: Path | None = None
 ) -> Scene:
-    """Parse and check scene text (see the module docstring for the schema); ``base_dir``:
-    where a ``[sweep] cases`` file is looked for (default: the working directory)."""
+    """Parse and check scene text (see the module docstring for the schema).
+
+    Parameters
+    ----------
+    text : str
+        The TOML text.
+    source : str, optional
+        How messages and the echo name it.
+    default_name : str, optional
+        The scene's name when ``[scene] name`` is not given.
+    base_dir : pathlib.Path, optional
+        Where a ``[sweep] cases`` file is looked for (default: the working directory).
+
+    Returns
+    -------
+    Scene
+        The checked scene.
+
+    Raises
+    ------
+    SceneError
+        Text that does not follow the schema (the message names the field, the value and
+        what is allowed).
+
+    Examples
+    --------
+    >>> parse_scene("[surface]\\nmodel = 'sphere'\\n", source="s.toml")
+    Traceback (most recent call last):
+    ...
+    cusp.app.scene.SceneError: s.toml: missing section [loading]; allowed: a scene needs ...
+    """
     text = text.removeprefix("\ufeff")  # a UTF-8 byte-order mark
     if not text.strip():
         raise SceneError(f"{source}: empty scene; it needs at least [surface] and [loading]")
@@ -281,7 +354,29 @@ def scene_from_data(
     default_name: str = "scene",
     base_dir: Path | None = None,
 ) -> Scene:
-    """Check parsed scene data (the TOML tables; :func:`parse_scene`)."""
+    """Check parsed scene data (the TOML tables, as :func:`parse_scene` reads them).
+
+    Parameters
+    ----------
+    data : dict of str to object
+        The scene's tables.
+    source : str, optional
+        How messages and the echo name it.
+    default_name : str, optional
+        The scene's name when ``[scene] name`` is not given.
+    base_dir : pathlib.Path, optional
+        Where a ``[sweep] cases`` file is looked for (default: the working directory).
+
+    Returns
+    -------
+    Scene
+        The checked scene.
+
+    Raises
+    ------
+    SceneError
+        Data that does not follow the schema.
+    """
     chk = _Checker(source)
     _check_sections(chk, data)
 
@@ -291,7 +386,7 @@ def scene_from_data(
     if len(title) > MAX_TITLE_CHARS:
         chk.fail(f"[scene] title of {len(title)} characters", f"at most {MAX_TITLE_CHARS}")
     surface, surface_units = _check_surface(chk, data["surface"])
-    loading = _check_loading(chk, data["loading"])
+    loading = check_loading(chk, data["loading"])
 
     opts_in = data.get("options", {})
     reading = chk.string("options", "area_reading", opts_in.get("area_reading", AREA_READINGS[0]))
@@ -312,7 +407,7 @@ def scene_from_data(
         )
     manifold = None
     if "manifold" in data:
-        manifold = _check_manifold(chk, data["manifold"], surface, loading)
+        manifold = check_manifold(chk, data["manifold"], surface, loading)
     figs = _check_figures(chk, data.get("output", {}), manifold is not None)
     sweep = None
     if "sweep" in data:
@@ -335,8 +430,27 @@ def scene_from_data(
 
 
 def with_rtol(scene: Scene, text: str, *, flag: str = "--rtol") -> Scene:
-    """The scene with its ``[solver] rtol`` set to ``text`` (a command-line value, named
-    ``flag`` in messages), checked as the scene's own would be."""
+    """Return the scene with its ``[solver] rtol`` set from a command-line value.
+
+    Parameters
+    ----------
+    scene : Scene
+        The scene.
+    text : str
+        The value as typed, checked as the scene's own would be.
+    flag : str, optional
+        How messages name the value (default ``"--rtol"``).
+
+    Returns
+    -------
+    Scene
+        A copy with the new ``rtol``.
+
+    Raises
+    ------
+    SceneError
+        Not a number, or outside [1e-13, 1e-2].
+    """
     spec = _NUMBERS["rtol"]
     try:
         value = float(text)
@@ -368,9 +482,21 @@ def _check_name(chk: _Checker, value: Any) -> str:
 
 
 def check_title(scene: Scene) -> None:
-    """Refuse a title matplotlib cannot draw (broken mathtext: an unknown command, an
-    unclosed brace between $ signs), before any work. It is drawn once on a small figure,
-    so this imports matplotlib: only for a run that draws figures."""
+    """Refuse a title matplotlib cannot draw, before any work.
+
+    The title is drawn once on a small figure (so this imports matplotlib: only for a run
+    that draws figures); broken mathtext (an unknown command, an unclosed brace) is refused.
+
+    Parameters
+    ----------
+    scene : Scene
+        The scene whose ``title`` is checked.
+
+    Raises
+    ------
+    SceneError
+        A title that cannot be drawn.
+    """
     from .figures import title_problem
 
     problem = title_problem(scene.title)
@@ -397,63 +523,6 @@ def _check_figures(chk: _Checker, output: dict[str, Any], manifold: bool) -> lis
                 f"{_list(MANIFOLD_FIGURES)} with a [manifold] section only",
             )
     return figs
-
-
-def _check_manifold(
-    chk: _Checker, man_in: dict[str, Any], surface: dict[str, Any], loading: dict[str, Any]
-) -> dict[str, Any]:
-    """[manifold]: the parameter, its range, and the case the loci start from (the first
-    listed value of the parameter inside the range)."""
-    allowed_params = " or ".join(repr(k) for k in MANIFOLD_PARAMETERS)
-    for key in ("parameter", "range"):
-        if key not in man_in:
-            chk.fail(f"[manifold] missing key {show(key)}", "[manifold] needs parameter and range")
-    param = chk.string("manifold", "parameter", man_in["parameter"])
-    if param not in MANIFOLD_PARAMETERS:
-        chk.fail(f"[manifold] parameter = {show(param)}", allowed_params)
-    if param == "mu" and "mu" not in surface:
-        chk.fail(
-            f"[manifold] parameter = 'mu' but model {show(surface['model'])} has no mu",
-            "'reduced_normal_load' for this model",
-        )
-    unit = MANIFOLD_PARAMETERS[param]
-    u = f" [{unit}]" if unit else ""
-    rng = man_in["range"]
-    top = loading["normal_load"] if param == "reduced_normal_load" else math.inf
-    what = "two finite numbers [low, high], 0 < low < high" + (
-        f" <= normal_load = {show(top)} N" if math.isfinite(top) else ""
-    )
-    if (
-        not isinstance(rng, list)
-        or len(rng) != 2
-        or not all(isinstance(v, (int, float)) and not isinstance(v, bool) for v in rng)
-        or not all(math.isfinite(v) for v in rng)
-        or not 0.0 < rng[0] < rng[1] <= top
-    ):
-        chk.fail(f"[manifold] range = {show(rng)}{u}", what)
-    lo, hi = float(rng[0]), float(rng[1])
-    values = surface["mu"] if param == "mu" else loading["reduced_normal_load"]
-    values = values if isinstance(values, list) else [values]
-    inside = [v for v in values if lo <= v <= hi]
-    if not inside:
-        where = "[surface] mu" if param == "mu" else "[loading] reduced_normal_load"
-        shown = values if len(values) > 1 else values[0]
-        chk.fail(
-            f"[manifold] range = {show(rng)}{u} does not hold {where} = {show(shown)}",
-            f"a range holding {'a listed value of ' if len(values) > 1 else ''}{param} "
-            "(the loci start from that case)",
-        )
-    mus = surface.get("mu")
-    first_mu = mus[0] if isinstance(mus, list) else mus
-    start = (
-        (inside[0], loading["reduced_normal_load"][0])
-        if param == "mu"
-        else (
-            first_mu,
-            inside[0],
-        )
-    )
-    return {"parameter": param, "range": (lo, hi), "start": start}
 
 
 def _check_sections(chk: _Checker, data: dict[str, Any]) -> None:
@@ -530,29 +599,6 @@ def _check_surface(chk: _Checker, surf_in: dict[str, Any]) -> tuple[dict[str, An
     for key in given:
         surface[key] = chk.number("surface", key, surf_in[key], params[key])
     return surface, {k: params[k].unit for k in surface if k != "model"}
-
-
-def _check_loading(chk: _Checker, load_in: dict[str, Any]) -> dict[str, Any]:
-    """[loading]: the three loads, the reductions as a list, each below normal_load."""
-    loading: dict[str, Any] = {}
-    for key in ("normal_load", "max_slip", "reduced_normal_load"):
-        if key not in load_in:
-            chk.fail(
-                f"[loading] missing key {show(key)}",
-                "[loading] needs normal_load, max_slip and reduced_normal_load",
-            )
-    loading["normal_load"] = chk.number("loading", "normal_load", load_in["normal_load"])
-    loading["max_slip"] = chk.number("loading", "max_slip", load_in["max_slip"])
-    red = load_in["reduced_normal_load"]
-    reds = red if isinstance(red, list) else [red]
-    loading["reduced_normal_load"] = chk.numbers("loading", "reduced_normal_load", reds)
-    for v in loading["reduced_normal_load"]:
-        if v >= loading["normal_load"]:
-            chk.fail(
-                f"[loading] reduced_normal_load = {show(v)} N",
-                f"less than normal_load = {show(loading['normal_load'])} N (a reduction)",
-            )
-    return loading
 
 
 class _Checker:

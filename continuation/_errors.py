@@ -20,11 +20,25 @@ class ProblemDefinitionError(ValueError):
 
 
 class JacobianError(ProblemDefinitionError):
-    """A supplied Jacobian (or parameter derivative) disagrees with the residual's own
-    differences at a point of the branch: continuation with it would report the special
-    points of another problem, so it is refused. Attributes: ``values`` (the point), ``row``
-    (the equation), ``supplied`` and ``differenced`` (its rate of change along the check's
-    direction, from the Jacobian and from the residual)."""
+    """A supplied Jacobian (or parameter derivative) disagrees with the residual.
+
+    Checked against the residual's own differences at a point of the branch: continuation
+    with it would report the special points of another problem, so it is refused. The
+    arguments are kept as attributes of the same names.
+
+    Parameters
+    ----------
+    message : str
+        What disagrees, where, by how much.
+    values : mapping of str to float
+        The unknowns and parameters of the point.
+    row : int
+        The equation that disagrees.
+    supplied : float
+        Its rate of change along the check's direction, from the supplied Jacobian.
+    differenced : float
+        The same, from differences of the residual.
+    """
 
     def __init__(
         self,
@@ -41,7 +55,15 @@ class JacobianError(ProblemDefinitionError):
 
 
 class ContinuationError(RuntimeError):
-    """Base class of numerical failures during continuation."""
+    """Base class of numerical failures during continuation.
+
+    Parameters
+    ----------
+    message : str
+        What failed, where, and what to try.
+    values : mapping of str to float, optional
+        The unknowns and parameters at the point of failure (kept as ``values``).
+    """
 
     def __init__(self, message: str, *, values: Mapping[str, float] | None = None) -> None:
         super().__init__(message)
@@ -59,8 +81,23 @@ def format_values(values: Mapping[str, float], limit: int = 6) -> str:
 class ConvergenceError(ContinuationError):
     """Newton's method (and the fallback corrector) failed to converge.
 
-    Attributes: ``values`` (unknowns and parameters at the last good point), ``ds`` (the step
-    size at which the corrector gave up), ``iterations``, ``residual_norm`` and ``remedy``.
+    The arguments are kept as attributes of the same names (but ``what``, which opens the
+    message).
+
+    Parameters
+    ----------
+    what : str
+        What failed to converge, opening the message.
+    values : mapping of str to float
+        Unknowns and parameters at the last good point.
+    ds : float
+        The step size at which the corrector gave up.
+    iterations : int
+        The Newton iterations of the last try.
+    residual_norm : float
+        The residual's norm when it gave up.
+    remedy : str
+        What to try, closing the message.
     """
 
     def __init__(
@@ -85,14 +122,31 @@ class ConvergenceError(ContinuationError):
 
 
 class StepGuardError(ConvergenceError):
-    """Newton converged at ``ds_min``, but a guard of the step rejects it: the branch cannot
-    be followed safely from the last point (status ``"guard_failure"``).
+    """Newton converged at ``ds_min``, but a guard of the step rejects it.
 
-    ``guard`` (a :class:`~._outcomes.Guard`, equal to its string) is ``"angle"`` (the tangent
-    turned more than the limits allow), ``"contraction"`` (Newton's first contraction too
-    weak: the corrector may be converging to another branch) or ``"distance"`` (the corrector
-    moved too far from the predictor); the other attributes are those of
-    :class:`ConvergenceError`."""
+    The branch cannot be followed safely from the last point (status
+    ``"guard_failure"``).
+
+    Parameters
+    ----------
+    what : str
+        What was rejected, opening the message.
+    guard : Guard or str
+        ``"angle"`` (the tangent turned more than the limits allow), ``"contraction"``
+        (Newton's first contraction too weak: the corrector may be converging to another
+        branch) or ``"distance"`` (the corrector moved too far from the predictor); a
+        :class:`~._outcomes.Guard`, equal to its string.
+    values : mapping of str to float
+        Unknowns and parameters at the last good point.
+    ds : float
+        The step size rejected.
+    iterations : int
+        The Newton iterations of the last try.
+    residual_norm : float
+        The residual's norm at the rejected point.
+    remedy : str
+        What to try, closing the message.
+    """
 
     def __init__(
         self,
@@ -117,12 +171,23 @@ class StepGuardError(ConvergenceError):
 
 
 class StalledError(ContinuationError):
-    """A step could not make progress within its work limit (``max_step_solves`` corrector
-    solves: tries, halvings, half steps confirming a sign change, corner steps), or the
-    branch crept on for 100 steps far below ``ds``: status ``"stalled"``.
+    """A step could not make progress within its work limit (status ``"stalled"``).
 
-    Attributes: ``values`` (the point the step started from), ``ds`` (the smallest step size
-    tried) and ``tried`` (what was tried, in words)."""
+    The limit is ``max_step_solves`` corrector solves (tries, halvings, half steps
+    confirming a sign change, corner steps); a branch that crept on for 100 steps far below
+    ``ds`` stalls too. The arguments are kept as attributes of the same names.
+
+    Parameters
+    ----------
+    message : str
+        What stalled, where.
+    values : mapping of str to float
+        The point the step started from.
+    ds : float
+        The smallest step size tried.
+    tried : str
+        What was tried, in words.
+    """
 
     def __init__(self, message: str, *, values: Mapping[str, float], ds: float, tried: str):
         self.ds = float(ds)
@@ -131,29 +196,73 @@ class StalledError(ContinuationError):
 
 
 class NonFiniteResidualError(ContinuationError):
-    """The residual (or its Jacobian) returned NaN or infinity."""
+    """The residual (or its Jacobian) returned NaN or infinity.
+
+    Parameters
+    ----------
+    message : str
+        What failed, where, and what to try.
+    values : mapping of str to float, optional
+        The unknowns and parameters at the point of failure (kept as ``values``).
+    """
 
 
 class SingularMatrixError(ContinuationError):
-    """A linear system that must be regular was exactly singular."""
+    """A linear system that must be regular was exactly singular.
+
+    Parameters
+    ----------
+    message : str
+        What failed, where, and what to try.
+    values : mapping of str to float, optional
+        The unknowns and parameters at the point of failure (kept as ``values``).
+    """
 
 
 class SingularPointError(SingularMatrixError):
-    """A curve was started at a singular point: the Jacobian ``∂G/∂z`` (for a branch,
-    ``[∂R/∂u, ∂R/∂p]``) has a null space of dimension 2 or more there (a branch point), so
-    the curve has no tangent to start along. ``values``: the point."""
+    """A curve was started at a singular point, where it has no tangent to start along.
+
+    The Jacobian ``∂G/∂z`` (for a branch, ``[∂R/∂u, ∂R/∂p]``) has a null space of
+    dimension 2 or more there (a branch point).
+
+    Parameters
+    ----------
+    message : str
+        What failed, where, and what to try.
+    values : mapping of str to float, optional
+        The unknowns and parameters at the point of failure (kept as ``values``).
+    """
 
 
 class AccuracyError(ContinuationError):
-    """A result cannot be given to the requested accuracy (a branch's interpolant across a
-    segment it could not bring within ``rtol``, or a branch with no interpolant)."""
+    """A result cannot be given to the requested accuracy.
+
+    Raised for a branch's interpolant across a segment it could not bring within
+    ``rtol``, or a branch with no interpolant.
+
+    Parameters
+    ----------
+    message : str
+        What failed, where, and what to try.
+    values : mapping of str to float, optional
+        The unknowns and parameters at the point of failure (kept as ``values``).
+    """
 
 
 class ResultsFileError(ValueError):
-    """A file that :func:`~cusp.continuation.load` cannot read back: not a zip archive
-    (``.npz``), not a cusp results file, truncated or damaged, written in a newer format, or
-    holding another type than asked. Attributes: ``path`` and ``reason`` (the message is
-    ``"cannot load PATH: REASON"``)."""
+    """A file that :func:`~cusp.continuation.load` cannot read back.
+
+    Not a zip archive (``.npz``), not a cusp results file, truncated or damaged, written in
+    a newer format, or holding another type than asked; the message is
+    ``"cannot load PATH: REASON"``.
+
+    Parameters
+    ----------
+    path : object
+        The file (kept as the attribute ``path``).
+    reason : str
+        What is wrong with it (kept as the attribute ``reason``).
+    """
 
     def __init__(self, path: object, reason: str) -> None:
         super().__init__(f"cannot load {str(path)!r}: {reason}")
@@ -161,8 +270,11 @@ class ResultsFileError(ValueError):
 
 
 class MaxStepsWarning(UserWarning):
-    """A branch ended because it took ``max_steps`` steps, before reaching a bound or a
-    terminal event: it is incomplete (its status ``"max_steps"`` is not a success)."""
+    """A branch ended because it took ``max_steps`` steps.
+
+    It stopped before reaching a bound or a terminal event: it is incomplete (its status
+    ``"max_steps"`` is not a success).
+    """
 
 
 # the public classes are shown as the package's own (tracebacks print

@@ -66,33 +66,67 @@ value). ``None`` given for one of them means the same."""
 
 
 def point_tol(rtol: float) -> float:
-    """The error left in a point placed by Newton (a point of the branch, a located special
-    point, a polished point of a loading path) for a given ``rtol``: ``(rtol/1000)²``, at least
-    1e-16.
+    """Return the error left in a point placed by Newton for a given ``rtol``.
+
+    A point of the branch, a located special point, a polished point of a loading path: the
+    error is ``(rtol/1000)²``, at least 1e-16.
 
     Newton stops when its update is below ``rtol/1000`` relative to each component's
     magnitude; under its quadratic convergence the error left is about the square of that.
     The points are the nodes of the interpolant and of every quadrature along the branch, so
     they are kept three orders below ``rtol`` and more: squaring costs at most one more
     iteration. At the default ``rtol`` = 1e-3 this is 1e-12, the step tolerance the solver
-    has always used."""
+    has always used.
+
+    Parameters
+    ----------
+    rtol : float
+        The relative accuracy asked for (:attr:`ContinuationOptions.rtol`).
+
+    Returns
+    -------
+    float
+        The relative error left in a point.
+
+    Examples
+    --------
+    >>> point_tol(1e-3), point_tol(1e-13)
+    (1e-12, 1e-16)
+    """
     # (rounded to 12 digits: the default is exactly 1e-12, not 1.0000000000000004e-12)
     return max(float(f"{(1e-3 * rtol) ** 2:.12g}"), _POINT_TOL_FLOOR)
 
 
 def quadrature_tol(rtol: float) -> float:
-    """The relative tolerance of quadratures along a branch or a loading path (energies,
-    loci) for a given ``rtol``: a tenth of :func:`point_tol` (1e-13 at the default), at
-    least 1e-14."""
+    """Return the relative tolerance of quadratures along a branch for a given ``rtol``.
+
+    Quadratures along a branch or a loading path (energies, loci) are asked for a tenth of
+    :func:`point_tol` (1e-13 at the default), at least 1e-14.
+
+    Parameters
+    ----------
+    rtol : float
+        The relative accuracy asked for (:attr:`ContinuationOptions.rtol`).
+
+    Returns
+    -------
+    float
+        The relative tolerance of the quadratures.
+
+    Examples
+    --------
+    >>> quadrature_tol(1e-3), quadrature_tol(1e-13)
+    (1e-13, 1e-14)
+    """
     return max(float(f"{0.1 * point_tol(rtol):.12g}"), _QUAD_TOL_FLOOR)
 
 
 @dataclass(frozen=True)
 class ContinuationOptions:
-    """Numerical settings of :func:`~cusp.continuation.trace` and
-    :func:`~cusp.continuation.fold_curve`.
+    """Numerical settings of the continuation (:func:`~cusp.continuation.trace`, ...).
 
-    Step sizes are pseudo-arclengths measured in the weighted norm
+    The settings of :func:`~cusp.continuation.trace`, :func:`~cusp.continuation.fold_curve`
+    and the other entry points. Step sizes are pseudo-arclengths measured in the weighted norm
     ``||dz||² = state_weight·Σ du_i² + Σ dp_j²`` (``state_weight`` defaults to 1/n, so the
     state enters as a root-mean-square and large discretisations take the same steps as
     small ones), relative to the components' typical sizes.
@@ -116,6 +150,68 @@ class ContinuationOptions:
     sets. The other guards of the step (``target_*``, ``curve_tol``, ``max_angle``) keep
     the steps on their branch; they are safety settings, not accuracy ones, and do not
     follow ``rtol``.
+
+    Each field is validated when the options are built; the attribute of the same name
+    documents it in full.
+
+    Parameters
+    ----------
+    rtol : float, optional
+        Relative accuracy of everything the solver reports, in ``[1e-13, 1e-2]``
+        (default 1e-3).
+    ds : float, optional
+        Initial step size, within ``[ds_min, ds_max]``.
+    ds_min : float, optional
+        Smallest step size tried before the fallback corrector and then failure.
+    ds_max : float, optional
+        Largest step size.
+    max_steps : int, optional
+        Accepted steps after which the branch ends, incomplete (status ``"max_steps"``).
+    tol : float, optional
+        Newton's residual max-norm tolerance (default from ``rtol``).
+    step_tol : float, optional
+        Newton's relative update tolerance (default from ``rtol``: :func:`point_tol`).
+    max_step_solves : int, optional
+        Corrector solves one step may take before the branch ends as ``"stalled"``.
+    max_newton_iterations : int, optional
+        Newton iterations per corrector solve.
+    target_newton_iterations : int, optional
+        The Newton iterations the step size aims at.
+    max_angle : float, optional
+        Degrees: a step whose tangent turns further is rejected, below 180.
+    target_angle : float, optional
+        Degrees: the nominal tangent turn per step, at most ``max_angle``.
+    target_contraction : float, optional
+        Nominal first contraction of the corrector (Deuflhard).
+    target_distance : float, optional
+        Nominal predictor-to-corrector distance, as a fraction of ``ds``.
+    curve_tol : float, optional
+        Nominal predictor-to-corrector distance in the weighted norm.
+    growth : float, optional
+        Largest factor by which ``ds`` may grow in one step, at least 1.
+    predictor : {"tangent", "secant"}, optional
+        The predictor of each step.
+    state_weight : float or None, optional
+        Weight of each unknown in the arclength norm; None means ``1/n``.
+    detect_folds : bool, optional
+        Whether folds are detected and located.
+    detect_branch_points : bool, optional
+        Whether branch points are detected and located.
+    locate_tol : float, optional
+        Relative tolerance to which special points are located (default from ``rtol``).
+    max_locate_iterations : int, optional
+        Iterations allowed to locate one special point.
+
+    Raises
+    ------
+    OptionsError
+        A field outside its allowed range (the message names it, its value and what is
+        allowed).
+
+    Examples
+    --------
+    >>> ContinuationOptions(rtol=1e-4).step_tol  # (rtol/1000)²
+    1e-14
     """
 
     rtol: float = RTOL_DEFAULT
@@ -187,8 +283,10 @@ class ContinuationOptions:
 
     @property
     def quad_tol(self) -> float:
-        """Relative tolerance of quadratures along a path (energies, loci):
-        :func:`quadrature_tol` of ``rtol``."""
+        """Relative tolerance of quadratures along a path: :func:`quadrature_tol` of ``rtol``.
+
+        Used for the energies and the loci.
+        """
         return quadrature_tol(self.rtol)
 
     def _follow_rtol(self) -> None:
@@ -271,9 +369,16 @@ class ContinuationOptions:
         )
 
     def as_dict(self) -> dict[str, Any]:
-        """The fields as a dict, a tolerance that follows ``rtol`` as None:
+        """The fields as a dict, a tolerance that follows ``rtol`` as None.
+
         ``ContinuationOptions(**options.as_dict())`` equals ``options`` (a saved branch's
-        ``info["options"]``)."""
+        ``info["options"]``).
+
+        Returns
+        -------
+        dict of str to object
+            The options by field name.
+        """
         saved = self._saved
         if saved is None:  # (once per options object: every trace records them)
             saved = {
@@ -284,7 +389,25 @@ class ContinuationOptions:
         return dict(saved)
 
     def replace(self, **changes) -> ContinuationOptions:
-        """A copy with some fields changed (validated again)."""
+        """Return a copy with some fields changed (validated again).
+
+        Tolerances that followed ``rtol`` still follow it unless given now.
+
+        Parameters
+        ----------
+        **changes
+            New values of fields, by name.
+
+        Returns
+        -------
+        ContinuationOptions
+            The copy.
+
+        Raises
+        ------
+        OptionsError
+            An unknown field, or a value outside its allowed range.
+        """
         names = {f.name for f in fields(self) if f.init}
         unknown = set(changes) - names
         if unknown:
@@ -302,15 +425,31 @@ class ContinuationOptions:
 
 @dataclass(frozen=True, kw_only=True)
 class StabilityOptions:
-    """How ``trace(..., stability=...)`` computes stability (``stability=True`` is
-    ``StabilityOptions()``).
+    """How ``trace(..., stability=...)`` computes stability.
 
-    ``nev``: the eigenvalues computed nearest ``shift`` on sparse problems (shift-invert
-    Arnoldi; at least 2); ``dense_limit``: sparse Jacobians of at most this many unknowns
-    get all their eigenvalues densely; ``shift``: the real shift of the sparse
-    computation (0: the eigenvalues nearest the imaginary axis's origin); ``hopf``: locate
-    the Hopf points (False: eigenvalues and ``n_unstable`` only).
+    ``stability=True`` is ``StabilityOptions()``.
 
+    Parameters
+    ----------
+    nev : int, optional
+        The eigenvalues computed nearest ``shift`` on sparse problems (shift-invert
+        Arnoldi); at least 2 (default 8).
+    dense_limit : int, optional
+        Sparse Jacobians of at most this many unknowns get all their eigenvalues densely
+        (default 400).
+    shift : float, optional
+        The real shift of the sparse computation (default 0: the eigenvalues nearest the
+        origin).
+    hopf : bool, optional
+        Whether to locate the Hopf points (False: eigenvalues and ``n_unstable`` only).
+
+    Raises
+    ------
+    OptionsError
+        A field outside its allowed range.
+
+    Examples
+    --------
     >>> StabilityOptions(nev=1)
     Traceback (most recent call last):
     ...

@@ -34,10 +34,9 @@ plus one constraint for the leg: m = 0 (OA), the frozen stick zone q = q_A (AB) 
 (BC). Mindlin and Deresiewicz freeze the stick zone of every asperity while the
 tractions are removed from the lost annulus; summed over the contact this is their rule
 F'_T = F_A − μΔF_N (μF_N − F_T = μ K J(d0) for a rough surface, μ(4E*/3R*)c³ for a sphere,
-is kept). The frozen-level form is used as the residual because it stays well conditioned
-when F̂_T(A) is within rounding of 1, where F_T no longer resolves q; the force form is
-checked on every traced row in the tests.
-Each leg is a :class:`cusp.continuation.Problem` in the nondimensional unknowns
+is kept). The frozen-level form is the residual because it stays well conditioned when F̂_T(A)
+is within rounding of 1, where F_T no longer resolves q; the force form is checked on every
+traced row in the tests. Each leg is a :class:`cusp.continuation.Problem` in the unknowns
 
     g = g_T/g_A,  t = F_T/(μ0 F_N0),  m = 1 − F_N/F_N0,  A_SL,  p,  q
 
@@ -84,12 +83,19 @@ from ._loci_energy import path_energies, path_points
 from ._memo import Latest
 from ._path_folds import path_folds
 from ._path_guards import PathError
+from ._path_records import (
+    VARIABLES,
+    gross_sliding_messages,
+    leg_stats,
+    physical_point,
+    point_rows,
+    to_physical,
+)
 from ._point_errors import point_bounds, point_messages, underflow_messages
 from .errors import ModelParameterError, check_positive
 from .protocol import (
     ContactLevels,
     PathBody,
-    level_lengths,
     require_levels,
     require_path_body,
     slipped_area,
@@ -105,8 +111,6 @@ __all__ = [
     "LEG_CONTROLS",
 ]
 
-#: nondimensional variables of every leg problem (one of them is the leg's control)
-VARIABLES = ("g", "t", "m", "A_SL", "p", "q")
 #: leg -> its control (the free parameter of the leg problem)
 LEG_CONTROLS = {"OA": "g", "AB": "m", "BC": "g"}
 _MEMO = 4  # evaluations a leg's problem keeps (its latest points)
@@ -124,16 +128,34 @@ DEFAULT_OPTIONS = ContinuationOptions(ds=0.02, ds_max=0.05)
 class ContactLossResult:
     """Outcome of :meth:`ContactLoss.run`.
 
-    ``points``: ``"O"``, ``"A"``, ``"B"``, ``"C"``, ``"D"`` → ``{"g_T" [µm], "F_T" [N],
-    "F_N" [N], "A_SL", and the two levels (d, d0 [µm] or a, c [µm])}``, or None for a point
-    that does not exist. ``energy``: ``snap_back`` (area ABD) and ``snap_through`` (area
-    ABC) [N·µm], None when the landing point does not exist, with their error
-    bounds in ``energy_error``; ``point_errors``: bounds on the absolute errors of the points
-    quantities (``{"B": {"F_T": ...}}``, :mod:`cusp.models._point_errors`; a message names
-    those above 1e-12 relative). ``folds``: turning points of the controls g_T
-    (snap-back) and F_T (snap-through) along the path (the corners A and B, and any smooth
-    fold the tracer located inside a leg). ``legs``: the traced branches (nondimensional, see
-    the module docstring). ``gross_sliding``: which control ends in gross sliding.
+    Parameters
+    ----------
+    points : dict of str to dict of str to float or None
+        ``"O"`` … ``"D"`` → ``{"g_T" [µm], "F_T" [N], "F_N" [N], "A_SL", the two levels
+        (d, d0 or a, c [µm])}``, or None for a point that does not exist.
+    energy, energy_error : dict of str to float or None
+        ``snap_back`` (area ABD) and ``snap_through`` (area ABC) [N·µm] and their error
+        bounds [N·µm], None when the landing point does not exist.
+    folds : list of dict
+        Turning points of the controls g_T (snap-back) and F_T (snap-through) along the
+        path (the corners A and B, and any smooth fold located inside a leg).
+    legs : dict of str to Branch
+        The traced legs ``"OA"``, ``"AB"``, ``"BC"`` (nondimensional, see the module).
+    gross_sliding : dict of str to bool
+        Which control ends in gross sliding.
+    messages : list of str
+        What the path has to say (gross sliding, underflow, error bounds above 1e-12).
+    level_names : tuple of (str, str)
+        The names of the two levels (``("d", "d0")`` or ``("a", "c")``).
+    scales : dict of str to float
+        The scales of the nondimensional variables (µm, N).
+    problems, point_rows, stats : dict, optional
+        Per leg: its problem, its work (``stats``: points, Newton iterations, rejected
+        steps); ``point_rows``: where each named point is a row of the legs.
+    levels : ContactLevels, optional
+        The body's levels (:meth:`PathBody.contact_levels`).
+    point_errors : dict of str to dict of str to float, optional
+        Bounds on the absolute errors of the points' quantities, in their units.
     """
 
     points: dict[str, dict[str, float] | None]
@@ -152,9 +174,19 @@ class ContactLossResult:
     point_errors: dict[str, dict[str, float]] = field(default_factory=dict)
 
     def path(self, leg: str | None = None) -> dict[str, np.ndarray]:
-        """Physical columns along the whole path (or one leg), with a ``leg`` label column.
+        """Return the physical columns along the whole path (or one leg).
 
         Consecutive legs share their junction point, which appears once in each leg.
+
+        Parameters
+        ----------
+        leg : {"OA", "AB", "BC"}, optional
+            One leg (default: all).
+
+        Returns
+        -------
+        dict of str to numpy.ndarray
+            g_T [µm], F_T [N], F_N [N], A_SL, the two levels [µm] and a ``leg`` label.
         """
         legs = [leg] if leg is not None else list(self.legs)
         parts = [self._physical(self.legs[name]) for name in legs]
@@ -163,9 +195,23 @@ class ContactLossResult:
         return out
 
     def dense(self, leg: str, points: int = 100) -> dict[str, np.ndarray]:
-        """Physical columns of one leg at ``points`` values of its control spread evenly
-        over the leg, each corrected onto the branch (:func:`cusp.continuation.points_at`): a
-        smooth curve for plotting, exact at every point whatever the step sizes were."""
+        """Return the physical columns of one leg at evenly spread values of its control.
+
+        Each is corrected onto the branch (:func:`cusp.continuation.points_at`): exact at
+        every point whatever the step sizes were.
+
+        Parameters
+        ----------
+        leg : {"OA", "AB", "BC"}
+            The leg.
+        points : int, optional
+            The number of points (default 100).
+
+        Returns
+        -------
+        dict of str to numpy.ndarray, each shape (points,)
+            g_T [µm], F_T [N], F_N [N], A_SL and the two levels [µm].
+        """
         br = self.legs[leg]
         control = LEG_CONTROLS[leg]
         ends = br[control][[0, -1]]
@@ -173,33 +219,7 @@ class ContactLossResult:
         return self._physical(points_at(self.problems[leg], br, control, values))
 
     def _physical(self, columns) -> dict[str, np.ndarray]:
-        return _to_physical(columns, self.scales, self.level_names, self.levels)
-
-
-def _to_physical(columns, scales, level_names, levels=None) -> dict[str, np.ndarray]:
-    """Nondimensional leg columns (g, t, m, A_SL, p, q) to physical ones (µm, N); the levels
-    by the body's own :func:`~cusp.models.protocol.level_lengths` (without ``levels``:
-    p·scale, q·scale)."""
-    p_name, q_name = level_names
-    if levels is not None:
-        lp, lq = level_lengths(levels, columns["p"], columns["q"])
-    else:
-        lp = np.asarray(columns["p"]) * scales["level"]
-        lq = np.asarray(columns["q"]) * scales["level"]
-    return {
-        "g_T": np.asarray(columns["g"]) * scales["g"],
-        "F_T": np.asarray(columns["t"]) * scales["t"],
-        "F_N": (1.0 - np.asarray(columns["m"])) * scales["F_N"],
-        "A_SL": np.array(columns["A_SL"], dtype=float),
-        p_name: lp,
-        q_name: lq,
-    }
-
-
-def _point(values: dict[str, float], scales, level_names, levels=None) -> dict[str, float]:
-    """One nondimensional point to a physical record."""
-    cols = _to_physical({c: [values[c]] for c in VARIABLES}, scales, level_names, levels)
-    return {k: float(v[0]) for k, v in cols.items()}
+        return to_physical(columns, self.scales, self.level_names, self.levels)
 
 
 # ------------------------------------------------------------------------------------------
@@ -207,13 +227,12 @@ def _point(values: dict[str, float], scales, level_names, levels=None) -> dict[s
 
 
 class ContactLoss:
-    """The contact-loss loading path of a body (rough surface, sphere, or any body that follows
-    :class:`cusp.models.protocol.PathBody`).
+    """The contact-loss loading path O→A→B→C (and D) of a body.
 
     Parameters
     ----------
-    body:
-        a :class:`~cusp.models.protocol.PathBody`: an
+    body : PathBody
+        A rough surface, sphere, or any body that follows the protocol: an
         :class:`~cusp.models.ExponentialRoughSurface`,
         :class:`~cusp.models.GaussianRoughSurface`,
         :class:`~cusp.models.GeneralRoughSurface` (these two need the load scale: E, radius,
@@ -221,15 +240,16 @@ class ContactLoss:
         a body of your own. Cylinders and flat planes raise
         :class:`~cusp.models.NoComplianceLawError` (no compliance law); an object that does
         not follow the protocol raises :class:`~cusp.models.ModelParameterError`.
-    normal_load:
+    normal_load : float
         F_N0 [N], held on OA.
-    max_slip:
+    max_slip : float
         g_A [µm], the slip at A.
-    reduced_normal_load:
+    reduced_normal_load : float
         F'_N [N] at B, with F_N0 − F_A/μ ≤ F'_N < F_N0 (deeper reductions would make F'_T
         negative).
-    area_reading:
-        ``"printed"`` (Eq 32 as printed, default) or ``"consistent"`` (see module docstring).
+    area_reading : {"printed", "consistent"}, optional
+        Eq 32 as printed (default) or consistent (see the module docstring). A value out of
+        range raises :class:`~cusp.models.ModelParameterError` naming it.
     """
 
     def __init__(
@@ -343,11 +363,25 @@ class ContactLoss:
     def problem(
         self, leg: str, *, start: float, constant: float | None = None, mu: float | None = None
     ) -> Problem:
-        """The continuation problem of one leg (nondimensional; see the module docstring).
+        """Return the continuation problem of one leg (nondimensional; see the module).
 
-        ``start``: the value of the leg's control (:data:`LEG_CONTROLS`). ``constant``: q_A
-        (the stick level at A) on AB, m_B (1 − F'_N/F_N0) on BC. Parameters: the control,
-        ``mu`` and the leg constant (``q_A`` or ``m_B``).
+        Its parameters are the control, ``mu`` and the leg constant (``q_A`` or ``m_B``).
+
+        Parameters
+        ----------
+        leg : {"OA", "AB", "BC"}
+            The leg.
+        start : float
+            The value of the leg's control (:data:`LEG_CONTROLS`).
+        constant : float, optional
+            q_A (the stick level at A) on AB, m_B (1 − F'_N/F_N0) on BC.
+        mu : float, optional
+            The friction coefficient (default: the body's).
+
+        Returns
+        -------
+        Problem
+            The leg's equations with their exact derivatives.
         """
         if leg not in LEG_CONTROLS:
             raise ModelParameterError(f"leg must be one of {list(LEG_CONTROLS)}, got {leg!r}")
@@ -400,9 +434,24 @@ class ContactLoss:
     # -------------------------------------------------------------- the path
     def run(self, options: ContinuationOptions | None = None) -> ContactLossResult:
         """Trace O→A→B→C (and D), locate the folds and integrate the released energies.
-        ``options``: of the legs (default :data:`DEFAULT_OPTIONS`; for another accuracy,
-        ``DEFAULT_OPTIONS.replace(rtol=...)``: its ``rtol`` sets the legs' tolerances, the
-        polish of the points and the quadrature of the energies)."""
+
+        Parameters
+        ----------
+        options : ContinuationOptions, optional
+            Of the legs (default :data:`DEFAULT_OPTIONS`; for another accuracy,
+            ``DEFAULT_OPTIONS.replace(rtol=...)``: its ``rtol`` sets the legs' tolerances,
+            the polish of the points and the quadrature of the energies).
+
+        Returns
+        -------
+        ContactLossResult
+            The points, energies [N·µm], folds and legs.
+
+        Raises
+        ------
+        PathError
+            A leg could not be traced (the message says where and why).
+        """
         o = options or DEFAULT_OPTIONS
         L = self.levels
         prob, oa, A = self._loading_leg(o)
@@ -458,7 +507,7 @@ class ContactLoss:
         their error bounds (:mod:`._point_errors`), the energies, the folds, the messages."""
         L = self.levels
         c_exists, d_exists = named["C"] is not None, named["D"] is not None
-        messages = self._gross_sliding_messages(named["A"]["t"], c_exists, d_exists)
+        messages = gross_sliding_messages(self, named["A"]["t"], c_exists, d_exists)
         messages += guards.near_sliding_messages(self)
         _, row, errors = path_points(self, *(named[x] for x in "ABCD"))
         energy, error, notes = path_energies(self, row, errors, o.quad_tol)
@@ -467,7 +516,8 @@ class ContactLoss:
             for x, pt in named.items()
         }
         points = {
-            k: None if v is None else _point(v, self.scales, L.names, L) for k, v in raw.items()
+            k: None if v is None else physical_point(v, self.scales, L.names, L)
+            for k, v in raw.items()
         }
         point_err = {
             x: point_bounds(self, v, {k: errors[f"{x}.{k}"] for k in VARIABLES})
@@ -489,14 +539,14 @@ class ContactLoss:
             level_names=L.names,
             scales=self.scales,
             problems=problems,
-            point_rows=_point_rows(legs, c_exists, d_exists),
-            stats={name: _leg_stats(br) for name, br in legs.items()},
+            point_rows=point_rows(legs, c_exists, d_exists),
+            stats={name: leg_stats(br) for name, br in legs.items()},
             levels=L,
             point_errors=point_err,
         )
 
     def _physical_point(self, values: dict[str, float]) -> dict[str, float]:
-        return _point(values, self.scales, self.levels.names, self.levels)
+        return physical_point(values, self.scales, self.levels.names, self.levels)
 
     def _loading_leg(self, o: ContinuationOptions) -> tuple[Problem, Branch, dict[str, float]]:
         """O -> A: the slip raised at F_N0; the leg's problem, branch and the point A.
@@ -552,49 +602,3 @@ class ContactLoss:
                 except ArithmeticError as exc:
                     raise guards.stopped(self, "BC", bc, what) from exc
         return points[0], points[1]
-
-    def _gross_sliding_messages(self, t_A: float, c_exists: bool, d_exists: bool) -> list[str]:
-        """Why C or D does not exist (t_A = F_A/(μ0 F_N0))."""
-        messages: list[str] = []
-        if not c_exists:
-            messages.append(
-                f"F_A = {t_A * self.scales['t']:.6g} N >= mu F'_N = "
-                f"{self.mu0 * self.F_Np:.6g} N: under force control the block slides (gross "
-                f"sliding); there is no point C and no snap-through energy"
-            )
-        if not d_exists:
-            messages.append(
-                f"g_A = {self.g_A:.6g} µm exceeds the slip at which the body slides under F'_N:"
-                f" under displacement control the block slides (gross sliding); there is no "
-                f"point D and no snap-back energy"
-            )
-        return messages
-
-
-# ------------------------------------------------------------------------------------------
-# helpers
-
-
-def _point_rows(legs, c_exists: bool, d_exists: bool) -> dict[str, tuple[str, int]]:
-    """Where the named points are rows of the legs."""
-    rows = {"O": ("OA", 0), "A": ("OA", len(legs["OA"]) - 1), "B": ("AB", len(legs["AB"]) - 1)}
-    last = len(legs["BC"]) - 1
-    if c_exists:
-        rows["C"] = ("BC", last)
-        hits = [sp.index for sp in legs["BC"].special("target") if sp.with_respect_to == "g"]
-        if hits:
-            rows["D"] = ("BC", hits[0])
-    elif d_exists:
-        rows["D"] = ("BC", last)
-    return rows
-
-
-def _leg_stats(br: Branch) -> dict[str, Any]:
-    it = br.stats["newton_iterations"]
-    return {
-        "points": len(br),
-        "status": br.status,
-        "newton_iterations_per_point": float(np.mean(it[1:])) if len(it) > 1 else 0.0,
-        "rejected_steps": int(np.sum(br.stats["rejected_steps"])),
-        "max_residual_norm": float(np.max(br.stats["residual_norm"])),
-    }

@@ -50,7 +50,15 @@ _MESSAGE = (
 
 
 class Cylinder:
-    """Two identical parallel cylinders (per unit length). ``Cylinder(nu=None, mu=None)``."""
+    """Two identical parallel cylinders (per unit length).
+
+    Parameters
+    ----------
+    nu : float, optional
+        Poisson's ratio ν, in (−1, 0.5].
+    mu : float, optional
+        The friction coefficient μ > 0 (the stick ratios do not depend on it).
+    """
 
     def __init__(self, nu=None, mu=None) -> None:
         from .errors import check_poisson, check_positive
@@ -60,12 +68,44 @@ class Cylinder:
 
     @staticmethod
     def stick_zone_ratio(FT_hat):
-        """c/a = √(1 − F̂_T)  (Eq 26)."""
+        """Return the stick-zone ratio c/a = √(1 − F̂_T) (Eq 26).
+
+        Parameters
+        ----------
+        FT_hat : array_like
+            F̂_T = F_T/(μ F_N) in [0, 1] (dimensionless).
+
+        Returns
+        -------
+        numpy.ndarray
+            c/a (dimensionless), the shape of ``FT_hat``.
+
+        Raises
+        ------
+        ModelParameterError
+            A ratio outside [0, 1] or not finite.
+        """
         return np.sqrt(1.0 - check_ratio(FT_hat))
 
     @staticmethod
     def stick_force_ratio(FT_hat):
-        """F̂_ST(F̂_T), Eq 28, evaluated without cancellation at both ends."""
+        """Return F̂_ST(F̂_T) (Eq 28), without cancellation at both ends.
+
+        Parameters
+        ----------
+        FT_hat : array_like
+            F̂_T = F_T/(μ F_N) in [0, 1] (dimensionless).
+
+        Returns
+        -------
+        numpy.ndarray
+            F̂_ST (dimensionless), the shape of ``FT_hat``.
+
+        Raises
+        ------
+        ModelParameterError
+            A ratio outside [0, 1] or not finite.
+        """
         F = check_ratio(FT_hat)
         m = 1.0 - F
         w = np.arcsin(np.sqrt(F))
@@ -76,22 +116,76 @@ class Cylinder:
 
     @staticmethod
     def stick_area_ratio(FT_hat):
-        """Â_ST(F̂_T) = c/a = √(1 − F̂_T)  (Eq 29)."""
+        """Return Â_ST(F̂_T) = c/a = √(1 − F̂_T) (Eq 29).
+
+        Parameters
+        ----------
+        FT_hat : array_like
+            F̂_T = F_T/(μ F_N) in [0, 1] (dimensionless).
+
+        Returns
+        -------
+        numpy.ndarray
+            Â_ST (dimensionless), the shape of ``FT_hat``.
+
+        Raises
+        ------
+        ModelParameterError
+            A ratio outside [0, 1] or not finite.
+        """
         return np.sqrt(1.0 - check_ratio(FT_hat))
 
     def tangential_slip(self, F_T, F_N):
-        """Not available: raises NoComplianceLawError (see module docstring)."""
+        """Not available: the paper gives no compliance law for cylinders.
+
+        Parameters
+        ----------
+        F_T : array_like
+            Tangential force [N].
+        F_N : array_like
+            Normal load [N].
+
+        Raises
+        ------
+        NoComplianceLawError
+            Always: the body has no compliance law (see the module docstring).
+        """
         raise NoComplianceLawError(_MESSAGE)
 
     def tangential_force(self, g_T, F_N):
-        """Not available: raises NoComplianceLawError (see module docstring)."""
+        """Not available: the paper gives no compliance law for cylinders.
+
+        Parameters
+        ----------
+        g_T : array_like
+            Tangential slip [µm].
+        F_N : array_like
+            Normal load [N].
+
+        Raises
+        ------
+        NoComplianceLawError
+            Always: the body has no compliance law (see the module docstring).
+        """
         raise NoComplianceLawError(_MESSAGE)
 
     compliance = tangential_slip
 
     def contact_levels(self, normal_load: float, max_slip: float) -> NoReturn:
-        """Not available: raises NoComplianceLawError (no compliance law, so no contact-loss
-        path; see the module docstring)."""
+        """Not available: no compliance law, so no contact-loss path.
+
+        Parameters
+        ----------
+        normal_load : float
+            F_N0 [N].
+        max_slip : float
+            g_A [µm].
+
+        Raises
+        ------
+        NoComplianceLawError
+            Always: the body has no compliance law (see the module docstring).
+        """
         raise no_compliance_law(type(self).__name__)
 
     def __repr__(self) -> str:

@@ -27,9 +27,30 @@ __all__ = ["HeightDensity", "GeneralRoughSurface", "weibull_surface"]
 class HeightDensity:
     """A summit-height probability density Φ(z) [1/µm] on ``support`` = (lo, hi) [µm].
 
-    ``pdf`` must accept a float (and preferably an array) and return Φ ≥ 0. The density is
-    checked to integrate to 1 within ``rtol`` (default 1e-6): a ModelParameterError names
-    the integral found otherwise.
+    The density is checked to integrate to 1 within ``rtol``.
+
+    Parameters
+    ----------
+    pdf : callable
+        Φ(z) [1/µm] of a height z [µm]: accepts a float (and preferably an array) and
+        returns Φ ≥ 0.
+    support : tuple of (float, float), optional
+        ``(lo, hi)`` [µm], ``lo < hi`` (default the whole line).
+    breakpoints : sequence of float, optional
+        Heights [µm] where Φ or its derivatives jump (the quadratures split there).
+    scale : float, optional
+        Length scale [µm] used to split infinite intervals (≈ the standard deviation;
+        default from the support and breakpoints).
+    name : str, optional
+        A label shown by ``repr``.
+    rtol : float, optional
+        The tolerance of the check that Φ integrates to 1 (default 1e-6).
+
+    Raises
+    ------
+    ModelParameterError
+        ``pdf`` not callable, a bad support or breakpoint, or an integral other than 1 (the
+        message names the integral found).
     """
 
     def __init__(
@@ -71,7 +92,24 @@ class HeightDensity:
 
     @classmethod
     def weibull(cls, shape: float, scale: float, loc: float = 0.0) -> HeightDensity:
-        """Weibull heights: Φ(z) = (k/λ)((z−loc)/λ)^{k−1} exp(−((z−loc)/λ)^k) for z > loc."""
+        """Return Weibull heights: Φ(z) = (k/λ)((z−loc)/λ)^{k−1} exp(−((z−loc)/λ)^k).
+
+        The density is zero at and below ``loc``.
+
+        Parameters
+        ----------
+        shape : float
+            The shape k > 0.
+        scale : float
+            The scale λ > 0 [µm].
+        loc : float, optional
+            The lowest height [µm] (default 0).
+
+        Returns
+        -------
+        HeightDensity
+            The density.
+        """
         k = check_positive("shape", shape)
         lam = check_positive("scale", scale, "µm")
         if not math.isfinite(loc):
@@ -91,7 +129,25 @@ class HeightDensity:
 
     @classmethod
     def histogram(cls, edges: Sequence[float], counts: Sequence[float]) -> HeightDensity:
-        """Piecewise-constant Φ from a histogram of measured summit heights (edges in µm)."""
+        """Return a piecewise-constant Φ from a histogram of measured summit heights.
+
+        Parameters
+        ----------
+        edges : sequence of float, shape (b + 1,)
+            Bin edges [µm], strictly increasing.
+        counts : sequence of float, shape (b,)
+            Counts per bin (≥ 0, not all zero).
+
+        Returns
+        -------
+        HeightDensity
+            The normalised density.
+
+        Raises
+        ------
+        ModelParameterError
+            Edges or counts malformed.
+        """
         e = np.asarray(edges, dtype=float)
         n = np.asarray(counts, dtype=float)
         if e.ndim != 1 or e.size < 2 or not np.all(np.isfinite(e)):
@@ -116,7 +172,15 @@ class HeightDensity:
         return cls(pdf, (e[0], e[-1]), tuple(e[1:-1]), scale=max(std, 1e-12), name="histogram")
 
     def moments(self) -> tuple[float, float]:
-        """(mean, standard deviation) [µm] by quadrature."""
+        """Return the mean and standard deviation of the heights, by quadrature.
+
+        Returns
+        -------
+        mean : float
+            The mean height [µm].
+        std : float
+            The standard deviation [µm].
+        """
         from ._quadrature import integrate_pdf
 
         args = (self.support, self.breakpoints, self.scale)
@@ -132,9 +196,31 @@ class HeightDensity:
 class GeneralRoughSurface(RoughSurface):
     """Rough surface over any :class:`HeightDensity` (all integrals by quadrature).
 
-    ``GeneralRoughSurface(heights, nu, mu, sigma=None, E=None, radius=None, density=None,
-    nominal_area=None)``: ``sigma`` [µm] (only enters λ; defaults to the standard deviation of
-    the heights), the rest as for :class:`cusp.models.rough.RoughSurface`.
+    The methods are those of :class:`~cusp.models.RoughSurface`.
+
+    Parameters
+    ----------
+    heights : HeightDensity
+        The summit-height density.
+    nu : float
+        Poisson's ratio ν, in (−1, 0.5].
+    mu : float
+        Friction coefficient μ > 0.
+    sigma : float, optional
+        σ* [µm]; it only enters λ (default: the standard deviation of the heights).
+    E : float, optional
+        Young's modulus of each body [N/µm²] (E* = E/[2(1 − ν²)]).
+    radius : float, optional
+        Composite summit radius ρ* [µm].
+    density : float, optional
+        Summit density η [1/µm²].
+    nominal_area : float, optional
+        Nominal contact area A_n [µm²].
+
+    Raises
+    ------
+    ModelParameterError
+        ``heights`` not a HeightDensity, or a parameter out of its range.
     """
 
     load_dependent = True
@@ -161,10 +247,12 @@ class GeneralRoughSurface(RoughSurface):
 
     @property
     def support(self):
+        """The support ``(lo, hi)`` [µm] of the heights."""
         return self.heights.support
 
     @property
     def breakpoints(self):
+        """The heights [µm] where Φ or its derivatives jump."""
         return self.heights.breakpoints
 
     def pdf(self, z):
@@ -184,12 +272,39 @@ def weibull_surface(
     density: float | None = None,
     nominal_area: float | None = None,
 ) -> GeneralRoughSurface:
-    """A rough surface over Weibull summit heights of shape k = ``shape`` whose standard
-    deviation is ``sigma`` [µm] (the scene model ``rough-weibull``).
+    """Build a rough surface over Weibull summit heights (the scene model ``rough-weibull``).
 
     The Weibull scale is σ*/√(Γ(1 + 2/k) − Γ(1 + 1/k)²) [µm], so that the heights have
-    standard deviation σ*; ν, μ and the load scale (E [N/µm²], ρ* [µm], η [1/µm²],
-    A_n [µm²]) as for :class:`GeneralRoughSurface`.
+    standard deviation σ*.
+
+    Parameters
+    ----------
+    sigma : float
+        The heights' standard deviation σ* [µm].
+    nu : float
+        Poisson's ratio ν, in (−1, 0.5].
+    mu : float
+        Friction coefficient μ > 0.
+    shape : float
+        The Weibull shape k, 0.0117 < k < 1e15.
+    E : float, optional
+        Young's modulus of each body [N/µm²] (E* = E/[2(1 − ν²)]).
+    radius : float, optional
+        Composite summit radius ρ* [µm].
+    density : float, optional
+        Summit density η [1/µm²].
+    nominal_area : float, optional
+        Nominal contact area A_n [µm²].
+
+    Returns
+    -------
+    GeneralRoughSurface
+        The surface.
+
+    Raises
+    ------
+    ModelParameterError
+        A parameter out of its range.
     """
     k = check_positive("shape", shape)
     sigma = check_positive("sigma", sigma, "µm")

@@ -35,18 +35,46 @@ _LOG_GAMMA_5_2 = math.log(_GAMMA_5_2)
 class ExponentialRoughSurface(RoughSurface):
     """Composite rough surface with exponentially distributed summit heights.
 
-    ``ExponentialRoughSurface(sigma, nu, mu, E=None, radius=None, density=None,
-    nominal_area=None)``: σ* [µm], ν, μ; the load scale (E [N/µm²], ρ* [µm], η [1/µm²],
-    A_n [µm²]) only for absolute d [µm], F_N [N], A_r [µm²]. Heights z [µm] are measured
-    from the mean plane of the exponential law (Φ = 0 for z < 0 is not imposed: the paper's
-    Eq 1 density is used on the whole line where it matters, z > d).
+    Heights z [µm] are measured from the mean plane of the exponential law (Φ = 0 for z < 0
+    is not imposed: the paper's Eq 1 density is used on the whole line where it matters,
+    z > d). Every integral is in closed form, and the ratios do not depend on the load.
+
+    Parameters
+    ----------
+    sigma : float
+        Composite rms roughness σ* [µm], > 0 (the decay length of the heights).
+    nu : float
+        Poisson's ratio ν, in (−1, 0.5].
+    mu : float
+        Friction coefficient μ > 0.
+    E, radius, density, nominal_area : float, optional
+        The load scale, as for :class:`~cusp.models.RoughSurface`: E [N/µm²], ρ* [µm],
+        η [1/µm²], A_n [µm²]; only for absolute d [µm], F_N [N], A_r [µm²].
+
+    Examples
+    --------
+    >>> s = ExponentialRoughSurface(sigma=2.0, nu=0.3, mu=0.1)
+    >>> round(float(s.stick_threshold(0.34)), 12)  # g_T σ*/(μλ) = 0.34·2/(0.1·17/7) µm
+    2.8
     """
 
     load_dependent = False
 
     def contact_levels(self, normal_load: float, max_slip: float) -> ExponentialLevels:
-        """The closed-form levels of this surface for the contact-loss path at F_N0 =
-        ``normal_load`` [N] and g_A = ``max_slip`` [µm] (:class:`ExponentialLevels`)."""
+        """Return the closed-form levels of this surface for the contact-loss path.
+
+        Parameters
+        ----------
+        normal_load : float
+            F_N0 [N].
+        max_slip : float
+            g_A [µm].
+
+        Returns
+        -------
+        ExponentialLevels
+            The surface's :class:`~cusp.models.ContactLevels`.
+        """
         return ExponentialLevels(self, normal_load, max_slip)
 
     # ---------------------------------------------------------------- integrals (closed form)
@@ -55,7 +83,18 @@ class ExponentialRoughSurface(RoughSurface):
         return np.exp(-z / self.sigma) / self.sigma
 
     def load_integral(self, h):
-        """J(h) = Γ(5/2) σ*^{3/2} e^{−h/σ*}  [µm^{3/2}]."""
+        """Return J(h) = Γ(5/2) σ*^{3/2} e^{−h/σ*}.
+
+        Parameters
+        ----------
+        h : array_like
+            Level above the mean plane [µm].
+
+        Returns
+        -------
+        numpy.ndarray
+            J(h) [µm^{3/2}].
+        """
         h = check_finite_array("h", h, unit="µm")
         return _GAMMA_5_2 * self.sigma**1.5 * np.exp(-h / self.sigma)
 
@@ -64,7 +103,18 @@ class ExponentialRoughSurface(RoughSurface):
         return _LOG_GAMMA_5_2 + 1.5 * math.log(self.sigma) - h / self.sigma
 
     def load_integral_derivative(self, h):
-        """dJ/dh = −J/σ*  [µm^{1/2}]."""
+        """Return dJ/dh = −J/σ*.
+
+        Parameters
+        ----------
+        h : array_like
+            Level above the mean plane [µm].
+
+        Returns
+        -------
+        numpy.ndarray
+            dJ/dh [µm^{1/2}].
+        """
         return -self.load_integral(h) / self.sigma
 
     def area_integral(self, h):
@@ -80,7 +130,18 @@ class ExponentialRoughSurface(RoughSurface):
         return self.load_integral(h) * -np.expm1(-g / self.sigma)
 
     def load_integral_second_derivative(self, h):
-        """d²J/dh² = J/σ*²  [µm^{−1/2}]."""
+        """Return d²J/dh² = J/σ*².
+
+        Parameters
+        ----------
+        h : array_like
+            Level above the mean plane [µm].
+
+        Returns
+        -------
+        numpy.ndarray
+            d²J/dh² [µm^{−1/2}].
+        """
         return self.load_integral(h) / self.sigma**2
 
     def log_load_integral_second_derivative(self, h):
@@ -95,13 +156,31 @@ class ExponentialRoughSurface(RoughSurface):
         return self.tail_probability(h) * -np.expm1(-g / self.sigma)
 
     def slip_area_integral(self, h, g):
-        """∫_h^{h+g} (z − h) Φ dz = A(h) P(2, g/σ*) [µm] (P the regularized incomplete gamma
-        function)."""
+        """Return ∫_h^{h+g} (z − h) Φ dz = A(h) P(2, g/σ*), P the regularized gamma function.
+
+        Parameters
+        ----------
+        h : array_like
+            Level above the mean plane [µm].
+        g : array_like
+            Gap ≥ 0 [µm], broadcast against ``h``.
+
+        Returns
+        -------
+        numpy.ndarray
+            The integral [µm].
+        """
         h, g = self._hg(h, g)
         return self.area_integral(h) * sc.gammainc(2.0, g / self.sigma)
 
     def integral_rtol(self) -> float:
-        """Closed forms: a few ulp."""
+        """Return the relative error bound of the closed forms: a few ulp.
+
+        Returns
+        -------
+        float
+            16 machine epsilons.
+        """
         return 16.0 * float(np.finfo(float).eps)
 
     def slip_load_integral(self, h, g):
@@ -114,7 +193,23 @@ class ExponentialRoughSurface(RoughSurface):
         return self.load_integral(h) * _stick_force_ratio(-np.expm1(-x), x, np.exp(-x))
 
     def separation(self, F_N):
-        """d [µm] = −σ* ln(F_N / (K Γ(5/2) σ*^{3/2}))."""
+        """Return the separation d = −σ* ln(F_N / (K Γ(5/2) σ*^{3/2})).
+
+        Parameters
+        ----------
+        F_N : array_like
+            Normal load [N], > 0.
+
+        Returns
+        -------
+        numpy.ndarray
+            d [µm].
+
+        Raises
+        ------
+        MissingLoadScaleError
+            E, radius, density or nominal_area not given.
+        """
         F_N = check_finite_array("F_N", F_N, unit="N")
         if np.any(F_N <= 0.0):
             raise ModelParameterError(f"F_N must be > 0 [N], got {F_N!r}")
@@ -124,14 +219,42 @@ class ExponentialRoughSurface(RoughSurface):
 
     # ---------------------------------------------------------------- ratios (load independent)
     def force_ratio(self, g_T, normal_load=None, *, separation=None):
-        """F̂_T = 1 − exp(−g_T/(μλ))  (Eq 9); independent of the load."""
+        """Return F̂_T = 1 − exp(−g_T/(μλ)) (Eq 9), independent of the load.
+
+        Parameters
+        ----------
+        g_T : array_like
+            Tangential slip [µm], ≥ 0.
+        normal_load, separation : optional
+            Ignored: the ratios of the exponential density do not depend on the load.
+
+        Returns
+        -------
+        numpy.ndarray
+            F̂_T (dimensionless, in [0, 1]).
+        """
         _check_unused_load(normal_load, separation)
         with np.errstate(over="ignore"):  # x = g_T/(μλ) beyond the float range: F̂_T = 1
             return -np.expm1(-self.stick_threshold(g_T) / self.sigma)
 
     def tangential_force(self, g_T, F_N):
-        """F_T = μF_N(1 − e^{−x}), x = g_T/(μλ) [N] (Eq 9), as F_N (g_T/λ)(1 − e^{−x})/x: the
-        same number, but finite and exact where x underflows (a huge μλ)."""
+        """Return F_T = μF_N(1 − e^{−x}), x = g_T/(μλ) (Eq 9).
+
+        Computed as F_N (g_T/λ)(1 − e^{−x})/x: the same number, but finite and exact where x
+        underflows (a huge μλ).
+
+        Parameters
+        ----------
+        g_T : array_like
+            Tangential slip [µm], ≥ 0.
+        F_N : array_like
+            Normal load [N], > 0.
+
+        Returns
+        -------
+        numpy.ndarray
+            F_T [N].
+        """
         F_N = check_finite_array("F_N", F_N, unit="N")
         if np.any(F_N <= 0.0):
             raise ModelParameterError(f"F_N must be > 0 [N], got {F_N!r}")
@@ -147,14 +270,40 @@ class ExponentialRoughSurface(RoughSurface):
         return out[()] if out.ndim == 0 else out
 
     def stick_gap(self, FT_hat, normal_load=None, *, separation=None):
-        """g_N0 = −σ* log(1 − F̂_T)  [µm] (inverse of Eq 9); inf at F̂_T = 1."""
+        """Return g_N0 = −σ* log(1 − F̂_T) (inverse of Eq 9).
+
+        Parameters
+        ----------
+        FT_hat : array_like
+            F̂_T = F_T/(μ F_N) in [0, 1] (dimensionless).
+        normal_load, separation : optional
+            Ignored: the ratios of the exponential density do not depend on the load.
+
+        Returns
+        -------
+        numpy.ndarray
+            g_N0 [µm]; inf at F̂_T = 1.
+        """
         _check_unused_load(normal_load, separation)
         F = check_ratio(FT_hat)
         with np.errstate(divide="ignore"):
             return -self.sigma * np.log1p(-F)
 
     def stick_force_ratio(self, FT_hat, normal_load=None, *, separation=None):
-        """F̂_ST(F̂_T) = F̂_T − P(5/2, x), x = −ln(1 − F̂_T)  (Eq 12); exact to ~1e-15."""
+        """Return F̂_ST(F̂_T) = F̂_T − P(5/2, x), x = −ln(1 − F̂_T) (Eq 12); exact to ~1e-15.
+
+        Parameters
+        ----------
+        FT_hat : array_like
+            F̂_T = F_T/(μ F_N) in [0, 1] (dimensionless).
+        normal_load, separation : optional
+            Ignored: the ratios of the exponential density do not depend on the load.
+
+        Returns
+        -------
+        numpy.ndarray
+            F̂_ST (dimensionless).
+        """
         _check_unused_load(normal_load, separation)
         F = check_ratio(FT_hat)
         with np.errstate(divide="ignore"):
@@ -162,10 +311,22 @@ class ExponentialRoughSurface(RoughSurface):
         return _stick_force_ratio(F, x, 1.0 - F)
 
     def stick_area_ratio(self, FT_hat, normal_load=None, *, separation=None):
-        """Â_ST(F̂_T) = (1 − F̂_T)(1 − ln(1 − F̂_T)) = Q(2, x)  (Eq 15); 0 at F̂_T = 1.
+        """Return Â_ST(F̂_T) = (1 − F̂_T)(1 − ln(1 − F̂_T)) = Q(2, x) (Eq 15); 0 at F̂_T = 1.
 
         Below F̂_T = 1/2 it is 1 − P(2, x) (monotone after rounding: 1 − x²/2 + …); above,
         (1 − F̂_T)(1 + x) with 1 − F̂_T exact.
+
+        Parameters
+        ----------
+        FT_hat : array_like
+            F̂_T = F_T/(μ F_N) in [0, 1] (dimensionless).
+        normal_load, separation : optional
+            Ignored: the ratios of the exponential density do not depend on the load.
+
+        Returns
+        -------
+        numpy.ndarray
+            Â_ST (dimensionless, in [0, 1]).
         """
         _check_unused_load(normal_load, separation)
         F = check_ratio(FT_hat)

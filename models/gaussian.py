@@ -30,8 +30,20 @@ _EPS = float(np.finfo(float).eps)
 class GaussianRoughSurface(RoughSurface):
     """Composite rough surface with Gaussian summit heights (std σ* [µm], mean 0).
 
-    ``GaussianRoughSurface(sigma, nu, mu, E=None, radius=None, density=None,
-    nominal_area=None)``; see :class:`cusp.models.rough.RoughSurface` for the parameters.
+    The integrals are the Greenwood–Williamson functions of :mod:`cusp.models.gw`; the
+    ratios depend on the load level.
+
+    Parameters
+    ----------
+    sigma : float
+        Composite rms roughness σ* [µm], > 0 (the standard deviation of the heights).
+    nu : float
+        Poisson's ratio ν, in (−1, 0.5].
+    mu : float
+        Friction coefficient μ > 0.
+    E, radius, density, nominal_area : float, optional
+        The load scale, as for :class:`~cusp.models.RoughSurface`: E [N/µm²], ρ* [µm],
+        η [1/µm²], A_n [µm²].
     """
 
     load_dependent = True
@@ -43,7 +55,18 @@ class GaussianRoughSurface(RoughSurface):
         return np.exp(-0.5 * (np.asarray(z, dtype=float) / s) ** 2) / (s * math.sqrt(2 * math.pi))
 
     def load_integral(self, h):
-        """J(h) = σ*^{3/2} F_{3/2}(h/σ*)  [µm^{3/2}]."""
+        """Return J(h) = σ*^{3/2} F_{3/2}(h/σ*).
+
+        Parameters
+        ----------
+        h : array_like
+            Level above the mean plane [µm].
+
+        Returns
+        -------
+        numpy.ndarray
+            J(h) [µm^{3/2}].
+        """
         h = check_finite_array("h", h, unit="µm")
         return self.sigma**1.5 * gw_integral(1.5, h / self.sigma)
 
@@ -52,35 +75,98 @@ class GaussianRoughSurface(RoughSurface):
         return 1.5 * math.log(self.sigma) + log_gw_integral(1.5, h / self.sigma)
 
     def load_integral_derivative(self, h):
-        """dJ/dh = −(3/2) σ*^{1/2} F_{1/2}(h/σ*)  [µm^{1/2}]."""
+        """Return dJ/dh = −(3/2) σ*^{1/2} F_{1/2}(h/σ*).
+
+        Parameters
+        ----------
+        h : array_like
+            Level above the mean plane [µm].
+
+        Returns
+        -------
+        numpy.ndarray
+            dJ/dh [µm^{1/2}].
+        """
         h = check_finite_array("h", h, unit="µm")
         return -1.5 * math.sqrt(self.sigma) * gw_integral(0.5, h / self.sigma)
 
     def log_load_integral_derivative(self, h):
-        """d log J/dh = −(3/2) F_{1/2}/(σ* F_{3/2}) at h/σ*  [1/µm], from the logs (finite
-        far in the tail, where J and dJ/dh both underflow)."""
+        """Return d log J/dh = −(3/2) F_{1/2}/(σ* F_{3/2}) at h/σ*.
+
+        Computed from the logs: finite far in the tail, where J and dJ/dh both underflow.
+
+        Parameters
+        ----------
+        h : array_like
+            Level above the mean plane [µm].
+
+        Returns
+        -------
+        numpy.ndarray
+            d log J/dh [1/µm].
+        """
         h = check_finite_array("h", h, unit="µm")
         t = h / self.sigma
         return -1.5 / self.sigma * np.exp(log_gw_integral(0.5, t) - log_gw_integral(1.5, t))
 
     def integral_rtol(self) -> float:
-        """Relative error bound of the GW integrals and their differences at given levels
-        (measured ≤ 2e-14 against mpmath at the exact binary t: docs/benchmarks/gw.md and
-        tests/models/test_gw.py)."""
+        """Return the relative error bound of the GW integrals and their differences.
+
+        Measured ≤ 2e-14 against mpmath at the exact binary t (docs/benchmarks/gw.md and
+        tests/models/test_gw.py).
+
+        Returns
+        -------
+        float
+            The bound at given levels.
+        """
         return 3e-14
 
     def load_integral_second_derivative(self, h):
-        """d²J/dh² = (3/4) σ*^{−1/2} F_{−1/2}(h/σ*)  [µm^{−1/2}] (> 0)."""
+        """Return d²J/dh² = (3/4) σ*^{−1/2} F_{−1/2}(h/σ*) (> 0).
+
+        Parameters
+        ----------
+        h : array_like
+            Level above the mean plane [µm].
+
+        Returns
+        -------
+        numpy.ndarray
+            d²J/dh² [µm^{−1/2}].
+        """
         h = check_finite_array("h", h, unit="µm")
         return 0.75 / math.sqrt(self.sigma) * gw_integral(-0.5, h / self.sigma)
 
     def log_load_integral_second_derivative(self, h):
-        """log d²J/dh² (finite far in the tail, where J'' underflows)."""
+        """Return log d²J/dh², finite far in the tail where J'' underflows.
+
+        Parameters
+        ----------
+        h : array_like
+            Level above the mean plane [µm].
+
+        Returns
+        -------
+        numpy.ndarray
+            log(d²J/dh² / µm^{−1/2}).
+        """
         h = check_finite_array("h", h, unit="µm")
         return math.log(0.75) - 0.5 * math.log(self.sigma) + log_gw_integral(-0.5, h / self.sigma)
 
     def area_integral(self, h):
-        """A(h) = σ* F_1(h/σ*)  [µm]."""
+        """Return A(h) = σ* F_1(h/σ*).
+
+        Parameters
+        ----------
+        h : array_like
+            Level above the mean plane [µm].
+
+        Returns
+        -------
+        numpy.ndarray
+            A(h) [µm].
+        """
         h = check_finite_array("h", h, unit="µm")
         return self.sigma * gw_integral(1, h / self.sigma)
 
@@ -93,29 +179,96 @@ class GaussianRoughSurface(RoughSurface):
         return self.sigma**1.5 * gw_difference(1.5, h / self.sigma, g / self.sigma)
 
     def area_integral_difference(self, h, g):
-        """A(h) − A(h + g) = σ* [F_1(t) − F_1(t + x)] [µm], without cancellation."""
+        """Return A(h) − A(h + g) = σ* [F_1(t) − F_1(t + x)], without cancellation.
+
+        Parameters
+        ----------
+        h : array_like
+            Level above the mean plane [µm].
+        g : array_like
+            Gap ≥ 0 [µm], broadcast against ``h``.
+
+        Returns
+        -------
+        numpy.ndarray
+            The difference [µm].
+        """
         h, g = self._hg(h, g)
         return self.sigma * gw_difference(1, h / self.sigma, g / self.sigma)
 
     def tail_difference(self, h, g):
-        """∫_h^{h+g} Φ dz = ∫_t^{t+x} φ (dimensionless), without cancellation."""
+        """Return ∫_h^{h+g} Φ dz = ∫_t^{t+x} φ, without cancellation.
+
+        Parameters
+        ----------
+        h : array_like
+            Level above the mean plane [µm].
+        g : array_like
+            Gap ≥ 0 [µm], broadcast against ``h``.
+
+        Returns
+        -------
+        numpy.ndarray
+            The probability (dimensionless).
+        """
         h, g = self._hg(h, g)
         return _phi_moment(0, h / self.sigma, g / self.sigma)
 
     def slip_area_integral(self, h, g):
-        """∫_h^{h+g} (z − h) Φ dz = σ* ∫_0^x v φ(t + v) dv [µm] (the slipping summits' share
-        of the real contact area, Eq 14), without cancellation."""
+        """Return ∫_h^{h+g} (z − h) Φ dz = σ* ∫_0^x v φ(t + v) dv, without cancellation.
+
+        Parameters
+        ----------
+        h : array_like
+            Level above the mean plane [µm].
+        g : array_like
+            Gap ≥ 0 [µm], broadcast against ``h``.
+
+        Returns
+        -------
+        numpy.ndarray
+            The integral [µm]: the slipping summits' share of the real contact area (Eq 14).
+        """
         h, g = self._hg(h, g)
         return self.sigma * _phi_moment(1, h / self.sigma, g / self.sigma)
 
     def slip_load_integral(self, h, g):
-        """S = ∫_h^{h+g} (z − h)^{3/2} Φ dz  [µm^{3/2}], by quadrature with the (z − h)^{3/2}
-        end-point weight (QAWS)."""
+        """Return S = ∫_h^{h+g} (z − h)^{3/2} Φ dz (Eq 10), by weighted quadrature.
+
+        The quadrature carries the (z − h)^{3/2} end-point weight (QAWS).
+
+        Parameters
+        ----------
+        h : array_like
+            Level above the mean plane [µm].
+        g : array_like
+            Gap ≥ 0 [µm], broadcast against ``h``.
+
+        Returns
+        -------
+        numpy.ndarray
+            S [µm^{3/2}].
+        """
         return super().slip_load_integral(h, g)
 
     def stick_load_integral(self, h, g):
-        """T (Eq 7) [µm^{3/2}]: [J(h) − J(h + g)] − S while S is at most half the difference
-        (no cancellation, and T ≤ J(h) − J(h + g) exactly), else by direct quadrature."""
+        """Return the stick integral T of Eq 7.
+
+        T = [J(h) − J(h + g)] − S while S is at most half the difference (no cancellation,
+        and T ≤ J(h) − J(h + g) exactly), else by direct quadrature.
+
+        Parameters
+        ----------
+        h : array_like
+            Level above the mean plane [µm].
+        g : array_like
+            Gap ≥ 0 [µm], broadcast against ``h``.
+
+        Returns
+        -------
+        numpy.ndarray
+            T [µm^{3/2}].
+        """
         h, g = self._hg(h, g)
         diff = self.load_integral_difference(h, g)
         slip = super().slip_load_integral(h, g)

@@ -204,8 +204,27 @@ def _cf_tail(x: float) -> float:
 
 
 def log_gw_integral(n: float, t) -> np.ndarray:
-    """log F_n(t) for n ∈ {−1/2, 0, 1/2, 1, 3/2}; finite for every finite t (no underflow).
-    (F_{−1/2} = −2 dF_{1/2}/dt: (4/3)σ*^{1/2} J'' of a Gaussian surface.)"""
+    """Return log F_n(t), finite for every finite t (no underflow).
+
+    F_{−1/2} = −2 dF_{1/2}/dt is (4/3)σ*^{1/2} J'' of a Gaussian surface.
+
+    Parameters
+    ----------
+    n : {-0.5, 0, 0.5, 1, 1.5}
+        The order.
+    t : array_like
+        The level, in units of the rms height (dimensionless).
+
+    Returns
+    -------
+    numpy.ndarray
+        log F_n(t), the shape of ``t``.
+
+    Raises
+    ------
+    ModelParameterError
+        Another order, or a ``t`` that is not finite.
+    """
     n = _check_order(n)
     t = _finite(t)
     if n == 0:
@@ -232,7 +251,30 @@ def log_gw_integral(n: float, t) -> np.ndarray:
 
 
 def gw_integral(n: float, t) -> np.ndarray:
-    """F_n(t) = ∫_t^∞ (s − t)^n φ(s) ds for n ∈ {−1/2, 0, 1/2, 1, 3/2} (dimensionless)."""
+    """Return F_n(t) = ∫_t^∞ (s − t)^n φ(s) ds, φ the standard normal density.
+
+    Parameters
+    ----------
+    n : {-0.5, 0, 0.5, 1, 1.5}
+        The order.
+    t : array_like
+        The level, in units of the rms height (dimensionless).
+
+    Returns
+    -------
+    numpy.ndarray
+        F_n(t) (dimensionless), the shape of ``t``.
+
+    Raises
+    ------
+    ModelParameterError
+        Another order, or a ``t`` that is not finite.
+
+    Examples
+    --------
+    >>> float(gw_integral(0, 0.0)), float(gw_integral(1, 0.0))  # 1/2 and φ(0) = 1/√(2π)
+    (0.5, 0.3989422804014327)
+    """
     n = _check_order(n)
     t = _finite(t)
     t1 = np.atleast_1d(t)
@@ -267,12 +309,31 @@ def _half_integer(n: float, t: np.ndarray) -> np.ndarray:
 
 
 def gw_difference(n: float, t, delta) -> np.ndarray:
-    """F_n(t) − F_n(t + δ) for δ ≥ 0 and n ∈ {1/2, 1, 3/2}, without cancellation for small δ.
+    """Return F_n(t) − F_n(t + δ) for δ ≥ 0, without cancellation for small δ.
 
     For δ (max(t, 0) + δ + 1) ≤ 4, or t < 0 and δ ≤ 3|t|/4, it is n ∫_t^{t+δ} F_{n−1}(τ) dτ by
     20-point Gauss–Legendre (F_{n−1} is smooth on that interval: F_{−1/2} and F_{1/2} from the
     same trapezoidal rule); otherwise F_n(t + δ) is well below F_n(t) and the plain difference
     loses < 1 digit.
+
+    Parameters
+    ----------
+    n : {0.5, 1, 1.5}
+        The order.
+    t : array_like
+        The level, in units of the rms height (dimensionless).
+    delta : array_like
+        The increment δ ≥ 0 (dimensionless), broadcast against ``t``.
+
+    Returns
+    -------
+    numpy.ndarray
+        The difference (dimensionless), the broadcast shape.
+
+    Raises
+    ------
+    ModelParameterError
+        Another order, a value that is not finite, or δ < 0.
     """
     n = _check_order(n, (0.5, 1, 1.5))
     t, delta = np.broadcast_arrays(_finite(t), _finite(delta))

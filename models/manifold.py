@@ -101,14 +101,26 @@ DEFAULT_OPTIONS = ContinuationOptions(
 class Loci:
     """The loci of the points of the path (:func:`point_loci`).
 
-    ``parameter``: ``"mu"`` or ``"reduced_normal_load"``. ``columns``: every key of
-    :data:`LOCI_UNITS` (µm, N, N·µm), one entry per traced row in the order of the
-    parameter, NaN where a point does not exist or is not resolved there (C within
-    :data:`C_MARGIN` of the C boundary); the energies come with their error estimates
-    (``*_error``). ``events``: the located events, each ``{"event": name, **columns}``.
-    ``messages``: how each locus ended. ``branches``: the traced (nondimensional) loci of
-    the chains, ``"A-B-D"`` and, where C exists, ``"A-B-C-D"``; ``rows``: the rows of
-    ``columns`` as those chains' variables (``"A.q"``, ``"mu"``, ``"m_B"``, ...)."""
+    Parameters
+    ----------
+    parameter : {"mu", "reduced_normal_load"}
+        The parameter the loci run in (μ, or F'_N [N]).
+    columns : dict of str to numpy.ndarray, each shape (k,)
+        Every key of :data:`LOCI_UNITS` (in µm, N, N·µm), one entry per traced row in the
+        order of the parameter, NaN where a point does not exist or is not resolved there
+        (C within :data:`C_MARGIN` of the C boundary); the energies come with their error
+        estimates (``*_error``, N·µm).
+    events : list of dict
+        The located events, each ``{"event": name, **columns}``.
+    messages : list of str
+        How each locus ended.
+    branches : dict of str to Branch, optional
+        The traced (nondimensional) loci of the chains, ``"A-B-D"`` and, where C exists,
+        ``"A-B-C-D"``.
+    rows : list of dict of str to float, optional
+        The rows of ``columns`` as those chains' variables (``"A.q"``, ``"mu"``,
+        ``"m_B"``, ...).
+    """
 
     parameter: str
     columns: dict[str, np.ndarray]
@@ -118,8 +130,18 @@ class Loci:
     rows: list[dict[str, float]] = field(default_factory=list, repr=False)
 
     def start_at(self, i: int) -> dict[str, dict[str, float]]:
-        """Row ``i``'s points as the ``start`` of :func:`trace_loci` (with its ``mu`` and
-        ``m_B`` in :attr:`rows`)."""
+        """Return row ``i``'s points as the ``start`` of :func:`trace_loci`.
+
+        Parameters
+        ----------
+        i : int
+            A row of the loci (its ``mu`` and ``m_B`` are in ``rows[i]``).
+
+        Returns
+        -------
+        dict of str to dict of str to float
+            ``{point: {variable: value}}`` of the nondimensional leg variables.
+        """
         row = self.rows[i]
         out: dict[str, dict[str, float]] = {}
         for key, value in row.items():
@@ -171,16 +193,38 @@ def point_loci(
     at: Sequence[float] | np.ndarray = (),
     options: ContinuationOptions | None = None,
 ) -> Loci:
-    """The loci of A, B, D and C, and of the released energies, as ``parameter`` (``"mu"``
-    or ``"reduced_normal_load"`` [N]) runs over ``span`` (default: μ over (μ/100, 100μ),
-    F'_N over (F'_N/100, F_N0)), from the model's own path; each locus ends early where B
-    reaches F'_T = 0, D disappears or A's stick zone vanishes (located, in ``events``, with
-    the C boundary). A locus that stops for another reason (the levels of the body no longer
-    resolve a point) is kept as far as it went, and ``messages`` says so. ``at``: values of
-    the parameter that must be rows of the loci (located exactly, as targets).
-    ``options``: of the loci (default :data:`DEFAULT_OPTIONS`); the path they start from is
-    traced with the path's own (:data:`cusp.models.contact_loss.DEFAULT_OPTIONS`) at their
-    ``rtol``."""
+    """Trace the loci of A, B, D and C, and of the released energies, as a parameter varies.
+
+    The loci start from the model's own path; each ends early where B reaches F'_T = 0, D
+    disappears or A's stick zone vanishes (located, in ``events``, with the C boundary). A
+    locus that stops for another reason (the levels of the body no longer resolve a point)
+    is kept as far as it went, and ``messages`` says so.
+
+    Parameters
+    ----------
+    model : ContactLoss
+        The contact-loss path whose points are followed.
+    parameter : {"mu", "reduced_normal_load"}, optional
+        μ (default), or F'_N [N].
+    span : tuple of (float, float), optional
+        The parameter's range, holding the model's value (default: μ over (μ/100, 100μ),
+        F'_N over (F'_N/100, F_N0) [N]).
+    at : sequence of float, optional
+        Values of the parameter that must be rows of the loci (located exactly).
+    options : ContinuationOptions, optional
+        Of the loci (default :data:`DEFAULT_OPTIONS`); the path they start from is traced
+        with the path's own options at their ``rtol``.
+
+    Returns
+    -------
+    Loci
+        The loci: columns in µm, N and N·µm, events and messages.
+
+    Raises
+    ------
+    ModelParameterError
+        An unknown ``parameter``, or a ``span`` that does not hold the model's value.
+    """
     _, lo, hi = _span(model, parameter, span)
     res = model.run(None if options is None else PATH_OPTIONS.replace(rtol=options.rtol))
     start = {name: res.legs[leg].point(row) for name, (leg, row) in res.point_rows.items()}
@@ -198,12 +242,32 @@ def trace_loci(
     at: Sequence[float] | np.ndarray = (),
     options: ContinuationOptions | None = None,
 ) -> Loci:
-    """:func:`point_loci` from given points: ``start`` holds each of A, B and D (if it
-    exists) and C (if it exists) as ``{point: {variable: value}}`` (the nondimensional
-    variables of the legs, as the rows of :attr:`Loci.rows`), at ``params`` (``mu`` and
-    ``m_B`` = 1 − F'_N/F_N0); ``span`` in the units of ``parameter``. ``options``: of the
-    loci (default :data:`DEFAULT_OPTIONS`); their ``rtol`` sets the tolerances of the
-    traces and the quadrature of the energies (``quad_tol``)."""
+    """Trace the loci of :func:`point_loci` from given points.
+
+    Parameters
+    ----------
+    model : ContactLoss
+        The contact-loss path whose points are followed.
+    parameter : {"mu", "reduced_normal_load"}
+        μ, or F'_N [N].
+    span : tuple of (float, float)
+        The parameter's range, in its units.
+    start : mapping of str to mapping of str to float
+        Each of A, B, D (if it exists) and C (if it exists) as ``{point: {variable:
+        value}}``: the nondimensional variables of the legs, as ``Loci.rows``.
+    params : mapping of str to float
+        ``mu`` and ``m_B`` = 1 − F'_N/F_N0 at ``start``.
+    at : sequence of float, optional
+        Values of the parameter that must be rows of the loci.
+    options : ContinuationOptions, optional
+        Of the loci (default :data:`DEFAULT_OPTIONS`); their ``rtol`` sets the tolerances
+        of the traces and the quadrature of the energies (``quad_tol``).
+
+    Returns
+    -------
+    Loci
+        The loci: columns in µm, N and N·µm, events and messages.
+    """
     free = LOCUS_PARAMETERS[parameter]
     lo, hi = sorted(_chain_value(model, free, float(v)) for v in span)
     o = options or DEFAULT_OPTIONS

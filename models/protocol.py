@@ -117,13 +117,13 @@ class ContactLevels(Protocol):
 
     Attributes
     ----------
-    names:
-        the physical names of (p, q), e.g. ``("d", "d0")`` or ``("a", "c")``: the column
+    names : tuple of (str, str)
+        The physical names of (p, q), e.g. ``("d", "d0")`` or ``("a", "c")``: the column
         names of the levels in the path's points, ``path()`` and ``branch.csv``.
-    scale:
+    scale : float
         µm per unit of level: p·scale and q·scale are the levels as lengths [µm].
-    p0:
-        the contact level under the normal load F_N0 of the path, so that
+    p0 : float
+        The contact level under the normal load F_N0 of the path, so that
         ``log_normal_load(p0) == 0``; the path starts at p = q = p0 (no slip, O).
     """
 
@@ -132,39 +132,132 @@ class ContactLevels(Protocol):
     p0: float
 
     def log_normal_load(self, p: float) -> tuple[float, float]:
-        """ℓ(p) = log(F_N/F_N0) and dℓ/dp: normal equilibrium (Eq 11 for a rough surface,
-        log of Hertz's F_N ∝ a³ for a sphere). Dimensionless."""
+        """Return ℓ(p) = log(F_N/F_N0) and dℓ/dp: the normal equilibrium.
+
+        Eq 11 for a rough surface, the log of Hertz's F_N ∝ a³ for a sphere.
+
+        Parameters
+        ----------
+        p : float
+            The contact level (dimensionless; ``p·scale`` in µm).
+
+        Returns
+        -------
+        value : float
+            ℓ(p) (dimensionless).
+        d_dp : float
+            Its derivative in p.
+        """
         ...
 
     def tangential_ratio(self, p: float, q: float) -> tuple[float, float, float]:
-        """F̂_T = F_T/(μF_N) and its derivatives in p and q: tangential equilibrium
-        (Eq 9: 1 − J(d0)/J(d) for a rough surface; Eq 19: 1 − (c/a)³ for a sphere).
-        Dimensionless, in [0, 1]; 0 at q = p (no slip)."""
+        """Return F̂_T = F_T/(μF_N) and its derivatives: the tangential equilibrium.
+
+        Eq 9, 1 − J(d0)/J(d), for a rough surface; Eq 19, 1 − (c/a)³, for a sphere.
+
+        Parameters
+        ----------
+        p : float
+            The contact level (dimensionless; ``p·scale`` in µm).
+        q : float
+            The stick level (dimensionless; ``q·scale`` in µm).
+
+        Returns
+        -------
+        value : float
+            F̂_T (dimensionless, in [0, 1]; 0 at q = p: no slip).
+        d_dp : float
+            Its derivative in p.
+        d_dq : float
+            Its derivative in q.
+        """
         ...
 
     def slip(self, p: float, q: float) -> tuple[float, float, float]:
-        """s(p, q) [µm] with g_T = μ s, and its derivatives: the compliance law (Eqs 4–5:
-        (λ/σ*)(d0 − d) for a rough surface; Eq 2 with Hertz: κ(a² − c²) for a sphere)."""
+        """Return s(p, q) with g_T = μ s, and its derivatives: the compliance law.
+
+        Eqs 4–5, (λ/σ*)(d0 − d), for a rough surface; Eq 2 with Hertz, κ(a² − c²), for a
+        sphere.
+
+        Parameters
+        ----------
+        p : float
+            The contact level (dimensionless; ``p·scale`` in µm).
+        q : float
+            The stick level (dimensionless; ``q·scale`` in µm).
+
+        Returns
+        -------
+        value : float
+            s [µm].
+        d_dp : float
+            Its derivative in p.
+        d_dq : float
+            Its derivative in q.
+        """
         ...
 
     def stick_area(self, p: float, q: float) -> tuple[float, float, float]:
-        """Â_ST = A_ST/A_r, the stick share of the current real contact area, and its
-        derivatives (Eq 14 over Eq 13 for a rough surface; (c/a)² for a sphere).
-        Dimensionless, in [0, 1]; 1 at q = p."""
+        """Return Â_ST = A_ST/A_r, the stick share of the real contact area, and derivatives.
+
+        Eq 14 over Eq 13 for a rough surface; (c/a)² for a sphere.
+
+        Parameters
+        ----------
+        p : float
+            The contact level (dimensionless; ``p·scale`` in µm).
+        q : float
+            The stick level (dimensionless; ``q·scale`` in µm).
+
+        Returns
+        -------
+        value : float
+            Â_ST (dimensionless, in [0, 1]; 1 at q = p).
+        d_dp : float
+            Its derivative in p.
+        d_dq : float
+            Its derivative in q.
+        """
         ...
 
     def area_ratio(self, p: float) -> tuple[float, float]:
-        """A_r(p)/A_r(p0), the real contact area over the one under F_N0, and d/dp; enters
-        the slipped area of Eq 32 as ΔA_r/A_r = 1 − area_ratio. Dimensionless."""
+        """Return A_r(p)/A_r(p0), the real contact area over the one under F_N0, and d/dp.
+
+        It enters the slipped area of Eq 32 as ΔA_r/A_r = 1 − area_ratio.
+
+        Parameters
+        ----------
+        p : float
+            The contact level (dimensionless; ``p·scale`` in µm).
+
+        Returns
+        -------
+        value : float
+            A_r(p)/A_r(p0) (dimensionless).
+        d_dp : float
+            Its derivative in p.
+        """
         ...
 
     def slip_limit(self, p: float) -> float:
-        """s(p, q_slide) [µm], the slip at which the stick zone vanishes at contact level p
-        (q_slide the stick level of gross sliding: 0, or the finite end of ``stick_bounds``):
-        μ times it is the slip g_T at which the body slides as a whole under that load
-        (κ(a/a0)² for a sphere, Eq 2); inf if it never does at finite slip (a rough
-        surface). The path refuses g_A ≥ μ·slip_limit(p0); when it is finite the reloading
-        leg is bounded at q_slide (the stick zone gone)."""
+        """Return s(p, q_slide), the slip at which the stick zone vanishes at level p.
+
+        q_slide is the stick level of gross sliding (0, or the finite end of
+        ``stick_bounds``): μ times the result is the slip g_T at which the body slides as a
+        whole under that load (κ(a/a0)² for a sphere, Eq 2); inf if it never does at finite
+        slip (a rough surface). The path refuses g_A ≥ μ·slip_limit(p0); when it is finite
+        the reloading leg is bounded at q_slide (the stick zone gone).
+
+        Parameters
+        ----------
+        p : float
+            The contact level (dimensionless; ``p·scale`` in µm).
+
+        Returns
+        -------
+        float
+            s(p, q_slide) [µm], or inf.
+        """
         ...
 
 
@@ -172,19 +265,51 @@ class ContactLevels(Protocol):
 class PathBody(Protocol):
     """A body that can follow the contact-loss path (module docstring).
 
-    ``mu``: friction coefficient μ > 0. ``tangential_force(g_T, F_N)``: F_T [N] on the
-    loading curve at slip g_T [µm] and normal load F_N [N]. ``contact_levels(normal_load,
-    max_slip)``: the body's :class:`ContactLevels` for F_N0 [N] and g_A [µm] (raises
-    :class:`~cusp.models.errors.NoComplianceLawError` for a body without a compliance law,
-    :class:`~cusp.models.errors.ModelParameterError` for one missing a parameter the path
-    needs).
+    Its attribute ``mu`` is the friction coefficient μ > 0.
     """
 
     mu: Any
 
-    def tangential_force(self, g_T: Any, F_N: Any) -> Any: ...
+    def tangential_force(self, g_T: Any, F_N: Any) -> Any:
+        """Return F_T on the loading curve.
 
-    def contact_levels(self, normal_load: float, max_slip: float) -> ContactLevels: ...
+        Parameters
+        ----------
+        g_T : array_like
+            Tangential slip [µm].
+        F_N : array_like
+            Normal load [N].
+
+        Returns
+        -------
+        numpy.ndarray
+            F_T [N].
+        """
+        ...
+
+    def contact_levels(self, normal_load: float, max_slip: float) -> ContactLevels:
+        """Return the body's levels for the contact-loss path.
+
+        Parameters
+        ----------
+        normal_load : float
+            F_N0 [N].
+        max_slip : float
+            g_A [µm].
+
+        Returns
+        -------
+        ContactLevels
+            The levels.
+
+        Raises
+        ------
+        NoComplianceLawError
+            For a body without a compliance law.
+        ModelParameterError
+            For one missing a parameter the path needs.
+        """
+        ...
 
 
 _BODY_MEMBERS = ("mu", "tangential_force", "contact_levels")

@@ -50,12 +50,22 @@ REGIMES = (
 class RegimeMap:
     """The regime map (:func:`regime_map`).
 
-    ``mu`` (m,), ``loads`` (k,): the grid [-, N]. ``snap_back``, ``snap_through`` (k, m):
-    the energies [N·µm], NaN where the point does not exist, is not resolved (see the loci)
-    or lies above the spine (ΔF_N < 1e-3·F_N0). ``regimes`` (k, m): index into
-    :data:`REGIMES` (−1 at a μ the spine did not reach).
-    ``boundaries``: name -> (μ, F'_N) arrays, each a curve between regimes. ``messages``:
-    what the loci said about where they ended."""
+    Parameters
+    ----------
+    mu : numpy.ndarray, shape (m,)
+        The friction coefficients of the grid (dimensionless).
+    loads : numpy.ndarray, shape (k,)
+        The reduced normal loads F'_N of the grid [N].
+    snap_back, snap_through : numpy.ndarray, shape (k, m)
+        The released energies [N·µm], NaN where the point does not exist, is not resolved
+        (see the loci) or lies above the spine (ΔF_N < 1e-3·F_N0).
+    regimes : numpy.ndarray of int, shape (k, m)
+        Index into :data:`REGIMES` (−1 at a μ the spine did not reach).
+    boundaries : dict of str to tuple of (numpy.ndarray, numpy.ndarray)
+        Name -> (μ, F'_N [N]) arrays, each a curve between regimes.
+    messages : list of str
+        What the loci said about where they ended.
+    """
 
     mu: np.ndarray
     loads: np.ndarray
@@ -75,11 +85,33 @@ def regime_map(
     loads: int | Sequence[float] = 40,
     options: ContinuationOptions | None = None,
 ) -> RegimeMap:
-    """The regime map of ``model``'s body at its F_N0 and g_A over ``mu_span`` × ``load_span``
-    (F'_N in N, up to F_N0). ``mus``, ``loads``: the grid (numbers of points spaced evenly,
-    μ logarithmically, or the values). The model's own μ must lie in ``mu_span``.
-    ``options``: of the loci (default :data:`cusp.models.manifold.DEFAULT_OPTIONS`; for
-    another accuracy, ``DEFAULT_OPTIONS.replace(rtol=...)``)."""
+    """Compute the regime map of ``model``'s body at its F_N0 and g_A over μ × F'_N.
+
+    Parameters
+    ----------
+    model : ContactLoss
+        The path whose body, F_N0 [N] and g_A [µm] are used; its own μ must lie in
+        ``mu_span``.
+    mu_span : tuple of (float, float)
+        The range of μ (dimensionless).
+    load_span : tuple of (float, float)
+        The range of F'_N [N], increasing, within (0, F_N0].
+    mus, loads : int or sequence of float, optional
+        The grid: numbers of points spaced evenly (μ logarithmically), or the values.
+    options : ContinuationOptions, optional
+        Of the loci (default :data:`cusp.models.manifold.DEFAULT_OPTIONS`; for another
+        accuracy, ``DEFAULT_OPTIONS.replace(rtol=...)``).
+
+    Returns
+    -------
+    RegimeMap
+        The energies [N·µm], the regime of each grid point and the boundary curves.
+
+    Raises
+    ------
+    ModelParameterError
+        A span or grid out of range.
+    """
     lo, hi = _load_span(model, load_span)
     mu_grid = _grid(mus, mu_span, log=True, name="mus")
     load_grid = _grid(loads, (lo, hi), log=False, name="loads")
@@ -145,11 +177,22 @@ def _load_span(model: ContactLoss, load_span) -> tuple[float, float]:
 class RegimeBoundaries:
     """The boundaries of the regime map without its energies (:func:`regime_boundaries`).
 
-    ``mu`` (n,) [-] and ``F_A`` (n,) [N]: the locus of A in μ along its dense output (A does
-    not depend on F'_N), from which ``boundaries["C boundary"]`` F'_N = F_A/μ and
-    ``boundaries["F'_T = 0"]`` F'_N = F_N0 − F_A/μ follow (name -> (μ, F'_N) arrays, as in
-    :class:`RegimeMap`, with ``"D disappears"`` for a body that slides as a whole).
-    ``F_N0`` [N]: the normal load before the reduction. ``messages``: how the loci ended."""
+    Parameters
+    ----------
+    mu : numpy.ndarray, shape (n,)
+        μ (dimensionless) along the locus of A, sampled along its dense output (A does not
+        depend on F'_N).
+    F_A : numpy.ndarray, shape (n,)
+        The tangential force at A [N] at those μ.
+    F_N0 : float
+        The normal load before the reduction [N].
+    boundaries : dict of str to tuple of numpy.ndarray
+        Name -> (μ, F'_N [N]) arrays, as in :class:`RegimeMap`: ``"C boundary"``
+        F'_N = F_A/μ, ``"F'_T = 0"`` F'_N = F_N0 − F_A/μ, and ``"D disappears"`` for a body
+        that slides as a whole.
+    messages : list of str
+        How the loci ended.
+    """
 
     mu: np.ndarray
     F_A: np.ndarray
@@ -166,12 +209,35 @@ def regime_boundaries(
     options: ContinuationOptions | None = None,
     per_step: int = 4,
 ) -> RegimeBoundaries:
-    """The boundaries between the regimes of :func:`regime_map` over ``mu_span`` ×
-    ``load_span`` [N], traced as curves, without the energies on a grid: the locus of A in μ
-    alone (one point, no reduction), sampled along its dense output (``per_step`` points
-    per traced step, within the locus' rtol); for a body that slides as a whole (a sphere)
-    also the curve where D disappears (as :func:`regime_map`, from the loci of A, B, D).
-    ``options``: of the loci (default :data:`cusp.models.manifold.DEFAULT_OPTIONS`)."""
+    """Trace the boundaries between the regimes of :func:`regime_map` as curves.
+
+    No energies on a grid: the locus of A in μ alone (one point, no reduction), sampled
+    along its dense output; for a body that slides as a whole (a sphere) also the curve
+    where D disappears (as :func:`regime_map`, from the loci of A, B, D).
+
+    Parameters
+    ----------
+    model : ContactLoss
+        The path whose body, F_N0 [N] and g_A [µm] are used.
+    mu_span : tuple of (float, float)
+        The range of μ (dimensionless, increasing, positive).
+    load_span : tuple of (float, float)
+        The range of F'_N [N], increasing, within (0, F_N0].
+    options : ContinuationOptions, optional
+        Of the loci (default :data:`cusp.models.manifold.DEFAULT_OPTIONS`).
+    per_step : int, optional
+        Points sampled per traced step of the locus (within its rtol; default 4).
+
+    Returns
+    -------
+    RegimeBoundaries
+        The locus of A and the boundary curves.
+
+    Raises
+    ------
+    ModelParameterError
+        A span out of range.
+    """
     lo, hi = _load_span(model, load_span)
     mus = (float(mu_span[0]), float(mu_span[1]))
     if not 0.0 < mus[0] < mus[1]:

@@ -64,8 +64,25 @@ __all__ = [
 class Parameter:
     """A numeric parameter: its name, unit and allowed range.
 
-    ``lower``/``upper`` are the bounds (±inf for none), ``*_inclusive`` whether the bound
-    itself is allowed; the value must also be finite. The default is ``> 0``.
+    The value must also be finite. The default range is ``> 0``.
+
+    Parameters
+    ----------
+    name : str
+        The keyword (a Python identifier), as in a scene's ``[surface]``.
+    unit : str, optional
+        Its unit (``"µm"``, ``"N"``, ``"N/µm²"``, ``"1/µm²"``, ``"µm²"``; "" if none).
+    lower, upper : float, optional
+        The bounds (±inf for none; default 0 and inf).
+    lower_inclusive, upper_inclusive : bool, optional
+        Whether each bound itself is allowed.
+    description : str, optional
+        What it is, in words.
+
+    Raises
+    ------
+    ModelParameterError
+        A name that is no identifier, or ``lower >= upper``.
     """
 
     name: str
@@ -88,7 +105,13 @@ class Parameter:
             )
 
     def range_text(self) -> str:
-        """The allowed range as written in messages: ``(-1, 0.5]``, ``> 0``, ``<= 1``."""
+        """Return the allowed range as written in messages.
+
+        Returns
+        -------
+        str
+            ``(-1, 0.5]``, ``> 0``, ``<= 1``, or "" for any finite number.
+        """
         lo, hi = self.lower, self.upper
         if math.isfinite(lo) and math.isfinite(hi):
             left = "[" if self.lower_inclusive else "("
@@ -101,13 +124,30 @@ class Parameter:
         return ""
 
     def allowed(self) -> str:
-        """``a finite number <range> [<unit>]``, the allowed values in messages."""
+        """Return the allowed values as written in messages.
+
+        Returns
+        -------
+        str
+            ``a finite number <range> [<unit>]``.
+        """
         rng = self.range_text()
         unit = f" [{self.unit}]" if self.unit else ""
         return f"a finite number{' ' + rng if rng else ''}{unit}"
 
     def accepts(self, value: float) -> bool:
-        """Is the float ``value`` finite and within the range?"""
+        """Return whether ``value`` is finite and within the range.
+
+        Parameters
+        ----------
+        value : float
+            The value, in the parameter's unit.
+
+        Returns
+        -------
+        bool
+            True if allowed.
+        """
         lo_ok = value >= self.lower if self.lower_inclusive else value > self.lower
         hi_ok = value <= self.upper if self.upper_inclusive else value < self.upper
         return math.isfinite(value) and lo_ok and hi_ok
@@ -191,18 +231,40 @@ def register_body(
     description: str = "",
     replace: bool = False,
 ) -> BodyEntry:
-    """Register a body under the scene model name ``name``; returns its entry.
+    """Register a body under the scene model name ``name``.
 
-    ``factory``: ``"module:attribute"`` (imported only when a body is built; dotted
-    attributes such as ``"module:Class.method"`` work) or a callable, taking the parameters
-    as keywords and returning a :class:`~cusp.models.protocol.PathBody`. ``required``: the
-    parameters a scene must give. ``optional``: an all-or-none group (a scene gives every one
-    of them or none; ``optional_name`` names the group in messages, e.g. "the load scale").
-    ``refusal``: for a body without a contact-loss path, why (a scene naming it is refused
-    with this text). ``replace``: allow replacing an entry of the same name.
+    Parameters
+    ----------
+    name : str
+        The scene's ``[surface] model`` name.
+    factory : str or callable
+        ``"module:attribute"`` (imported only when a body is built; dotted attributes such
+        as ``"module:Class.method"`` work) or a callable, taking the parameters as keywords
+        and returning a :class:`~cusp.models.PathBody`.
+    required : sequence of Parameter, optional
+        The parameters a scene must give.
+    optional : sequence of Parameter, optional
+        An all-or-none group: a scene gives every one of them or none.
+    optional_name : str, optional
+        The group's name in messages, e.g. "the load scale".
+    refusal : str or None, optional
+        For a body without a contact-loss path, why (a scene naming it is refused with
+        this text).
+    description : str, optional
+        What the body is, in words.
+    replace : bool, optional
+        Allow replacing an entry of the same name.
 
-    Raises ModelParameterError for a name already taken (without ``replace``), an empty
-    name, a malformed factory, or a parameter given twice or named ``model``.
+    Returns
+    -------
+    BodyEntry
+        The new entry.
+
+    Raises
+    ------
+    ModelParameterError
+        A name already taken (without ``replace``), an empty name, a malformed factory, or
+        a parameter given twice or named ``model``.
     """
     if not isinstance(name, str) or not name.strip() or name != name.strip():
         raise ModelParameterError(f"body name must be a non-empty string, got {name!r}")
@@ -246,7 +308,23 @@ def register_body(
 
 
 def unregister_body(name: str) -> BodyEntry:
-    """Remove a body from the registry; returns its entry (ModelParameterError if unknown)."""
+    """Remove a body from the registry.
+
+    Parameters
+    ----------
+    name : str
+        The registered name.
+
+    Returns
+    -------
+    BodyEntry
+        The entry removed.
+
+    Raises
+    ------
+    ModelParameterError
+        No body of that name is registered.
+    """
     entry = body_entry(name)
     del _REGISTRY[name]
     return entry
@@ -256,9 +334,24 @@ def unregister_body(name: str) -> BodyEntry:
 def registered_body(
     name: str, factory: str | Callable[..., Any], **kwargs: Any
 ) -> Iterator[BodyEntry]:
-    """Register a body for the duration of a ``with`` block (arguments as for
-    :func:`register_body`); afterwards the registry is as before (an entry it replaced is
-    put back)."""
+    """Register a body for the duration of a ``with`` block.
+
+    Afterwards the registry is as before (an entry it replaced is put back).
+
+    Parameters
+    ----------
+    name : str
+        The scene's ``[surface] model`` name.
+    factory : str or callable
+        As for :func:`register_body`.
+    **kwargs
+        The other arguments of :func:`register_body`.
+
+    Yields
+    ------
+    BodyEntry
+        The entry, registered inside the block.
+    """
     previous = _REGISTRY.get(name)
     entry = register_body(name, factory, **kwargs)
     try:

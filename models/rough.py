@@ -33,6 +33,8 @@ from typing import TYPE_CHECKING, cast
 
 import numpy as np
 
+from ._height_integrals import HeightIntegrals
+from ._roots import expand_bracket, gap_high, gap_low, monotone_root
 from .errors import (
     GrossSlidingError,
     MissingLoadScaleError,
@@ -52,82 +54,28 @@ __all__ = ["RoughSurface", "RoughLevels", "monotone_root", "slip_in_mu_lambda"]
 _LOAD_SCALE_KEYS = ("E", "radius", "density", "nominal_area")
 
 
-def monotone_root(f, target, lo, hi, *, maxiter: int = 200, xtol: float = 0.0) -> np.ndarray:
-    """Solve f(x) = target elementwise for an increasing f on a bracket [lo, hi].
-
-    ``f(x, idx)`` maps the values x of the elements ``idx`` (an index array into the full
-    problem) to f there; ``lo``/``hi`` must satisfy f(lo) ≤ target ≤ f(hi)
-    (use :func:`expand_bracket`). Illinois regula falsi, with a bisection every third step so
-    the bracket at least halves; stops when the bracket is a few ulp wide.
-    """
-    target, lo, hi = np.broadcast_arrays(target, lo, hi)
-    shape = lo.shape
-    target, lo, hi = (np.array(a, dtype=float).ravel() for a in (target, lo, hi))
-    everything = np.arange(lo.size)
-    flo = np.asarray(f(lo, everything), dtype=float).ravel() - target
-    fhi = np.asarray(f(hi, everything), dtype=float).ravel() - target
-    x = np.where(np.abs(flo) <= np.abs(fhi), lo, hi)
-    done = (flo == 0.0) | (fhi == 0.0)
-    x = np.where(flo == 0.0, lo, np.where(fhi == 0.0, hi, x))
-    for it in range(maxiter):
-        width = hi - lo
-        active = ~done & (width > 4.0 * np.spacing(np.maximum(np.abs(lo), np.abs(hi))) + xtol)
-        if not np.any(active):
-            break
-        a, b, fa, fb = lo[active], hi[active], flo[active], fhi[active]
-        with np.errstate(invalid="ignore", divide="ignore"):
-            xs = b - fb * (b - a) / (fb - fa)
-        mid = a + 0.5 * (b - a)
-        bad = ~np.isfinite(xs) | (xs <= a) | (xs >= b)
-        xn = np.where(bad | (it % 3 == 2), mid, xs)
-        fx = np.asarray(f(xn, everything[active]), dtype=float).ravel() - target[active]
-        left = fx < 0.0  # root to the right of xn
-        # Illinois-type: halve the function value kept at the end that did not move
-        new_lo = np.where(left, xn, a)
-        new_hi = np.where(left, b, xn)
-        new_flo = np.where(left, fx, 0.5 * fa)
-        new_fhi = np.where(left, 0.5 * fb, fx)
-        lo[active], hi[active], flo[active], fhi[active] = new_lo, new_hi, new_flo, new_fhi
-        x[active] = xn
-        done[active] = fx == 0.0
-    return x.reshape(shape)
-
-
-def expand_bracket(f, target, lo, hi, *, step: float = 1.0, maxiter: int = 200):
-    """Grow [lo, hi] until an increasing f brackets target (f(lo) ≤ target ≤ f(hi))."""
-    target, lo, hi = np.broadcast_arrays(target, lo, hi)
-    shape = lo.shape
-    target, lo, hi = (np.array(a, dtype=float).ravel() for a in (target, lo, hi))
-    everything = np.arange(lo.size)
-    s = np.full(lo.shape, float(step))
-    for _ in range(maxiter):
-        below = np.asarray(f(lo, everything)).ravel() > target
-        above = np.asarray(f(hi, everything)).ravel() < target
-        if not (np.any(below) or np.any(above)):
-            return lo.reshape(shape), hi.reshape(shape)
-        lo = np.where(below, lo - s, lo)
-        hi = np.where(above, hi + s, hi)
-        s = np.where(below | above, 2.0 * s, s)
-    raise ModelParameterError(
-        f"could not bracket the root: target {target!r} not reached in [{lo!r}, {hi!r}]"
-    )
-
-
-class RoughSurface:
+class RoughSurface(HeightIntegrals):
     """A composite rough surface on a rigid flat (base class; see module docstring).
+
+    E, radius, density and nominal_area form the load scale K, needed only for absolute d,
+    F_N and A_r (:class:`~cusp.models.MissingLoadScaleError` otherwise).
 
     Parameters
     ----------
-    sigma : composite rms roughness σ* [µm], > 0.
-    nu : Poisson's ratio ν in (−1, 0.5].
-    mu : friction coefficient μ > 0.
-
-    Other parameters (the load scale; needed only for absolute d, F_N, A_r)
-    ----------------------------------------------------------------------
-    E : Young's modulus of each body [N/µm²]; E* = E/[2(1 − ν²)].
-    radius : composite summit radius ρ* [µm].
-    density : summit density η [1/µm²].
-    nominal_area : nominal contact area A_n [µm²].
+    sigma : float
+        Composite rms roughness σ* [µm], > 0.
+    nu : float
+        Poisson's ratio ν, in (−1, 0.5].
+    mu : float
+        Friction coefficient μ > 0.
+    E : float, optional
+        Young's modulus of each body [N/µm²]; E* = E/[2(1 − ν²)].
+    radius : float, optional
+        Composite summit radius ρ* [µm].
+    density : float, optional
+        Summit density η [1/µm²].
+    nominal_area : float, optional
+        Nominal contact area A_n [µm²].
     """
 
     #: does the stick/slip split depend on the load level (False only for the exponential)?
@@ -164,6 +112,7 @@ class RoughSurface:
     # ---------------------------------------------------------------- load scale
     @property
     def has_load_scale(self) -> bool:
+        """Whether E, radius, density and nominal_area are all given."""
         return all(getattr(self, k) is not None for k in _LOAD_SCALE_KEYS)
 
     def _require_load_scale(self, what: str) -> None:
@@ -200,123 +149,108 @@ class RoughSurface:
 
     @property
     def area_scale(self) -> float:
-        """π ρ* η A_n  [µm], so that A_r = area_scale · A(d)."""
+        """The area scale π ρ* η A_n [µm], so that A_r = area_scale · A(d)."""
         _, radius, density, nominal_area = self._load_scale_values("the real contact area")
         return math.pi * radius * density * nominal_area
 
     # ---------------------------------------------------------------- density integrals
-    # Defaults by quadrature over self.pdf; closed-form subclasses override them.
+    # Defaults by quadrature over self.pdf (HeightIntegrals); closed-form subclasses override.
     def pdf(self, z):
-        """Φ(z) [1/µm], the summit-height density at heights z [µm] (each density defines
-        it)."""
+        """Return Φ(z) [1/µm], the summit-height density (each density defines it).
+
+        Parameters
+        ----------
+        z : array_like
+            Heights [µm].
+
+        Returns
+        -------
+        numpy.ndarray
+            Φ(z) [1/µm].
+        """
         raise NotImplementedError(f"{type(self).__name__} defines no height density pdf(z)")
-
-    def load_integral(self, h):
-        """J(h) = ∫_h^∞ (z − h)^{3/2} Φ(z) dz  [µm^{3/2}]."""
-        from ._quadrature import moment
-
-        return moment(self, 1.5, check_finite_array("h", h, unit="µm"))
-
-    def log_load_integral(self, h):
-        """log J(h) (J in µm^{3/2})."""
-        with np.errstate(divide="ignore"):
-            return np.log(self.load_integral(h))
-
-    def load_integral_derivative(self, h):
-        """dJ/dh = −(3/2) ∫_h^∞ (z − h)^{1/2} Φ dz  [µm^{1/2}]."""
-        from ._quadrature import moment
-
-        return -1.5 * moment(self, 0.5, check_finite_array("h", h, unit="µm"))
-
-    def area_integral(self, h):
-        """A(h) = ∫_h^∞ (z − h) Φ(z) dz  [µm]."""
-        from ._quadrature import moment
-
-        return moment(self, 1.0, check_finite_array("h", h, unit="µm"))
-
-    def tail_probability(self, h):
-        """∫_h^∞ Φ(z) dz (dimensionless)."""
-        from ._quadrature import moment
-
-        return moment(self, 0.0, check_finite_array("h", h, unit="µm"))
-
-    def slip_load_integral(self, h, g):
-        """S(h, g) = ∫_h^{h+g} (z − h)^{3/2} Φ dz  [µm^{3/2}] (sliding summits, Eq 10)."""
-        from ._quadrature import slip_integral
-
-        return slip_integral(self, *self._hg(h, g))
-
-    def stick_load_integral(self, h, g):
-        """T(h, g) = ∫_{h+g}^∞ [(z − h)^{3/2} − (z − h − g)^{3/2}] Φ dz  [µm^{3/2}] (Eq 7)."""
-        from ._quadrature import stick_integral
-
-        return stick_integral(self, *self._hg(h, g))
-
-    def load_integral_difference(self, h, g):
-        """J(h) − J(h + g) = S + T ≥ 0 [µm^{3/2}], without cancellation for tiny g."""
-        h, g = self._hg(h, g)
-        return self.slip_load_integral(h, g) + self.stick_load_integral(h, g)
-
-    def load_integral_second_derivative(self, h):
-        """d²J/dh² = (3/4) ∫_h^∞ (z − h)^{−1/2} Φ dz > 0  [µm^{−1/2}]."""
-        from ._quadrature import moment
-
-        return 0.75 * moment(self, -0.5, check_finite_array("h", h, unit="µm"))
-
-    def log_load_integral_second_derivative(self, h):
-        """log d²J/dh² (J'' in µm^{−1/2})."""
-        with np.errstate(divide="ignore"):
-            return np.log(self.load_integral_second_derivative(h))
-
-    def slip_area_integral(self, h, g):
-        """∫_h^{h+g} (z − h) Φ dz [µm]: the slipping summits' share of the real contact area
-        over π ρ* η A_n (A(h) minus the stick area of Eq 14), without cancellation."""
-        from ._quadrature import slip_integral
-
-        h, g = self._hg(h, g)
-        return slip_integral(self, h, g, k=1.0)
-
-    def tail_difference(self, h, g):
-        """∫_h^{h+g} Φ dz (dimensionless), without cancellation for tiny g."""
-        from ._quadrature import slip_integral
-
-        h, g = self._hg(h, g)
-        return slip_integral(self, h, g, k=0.0)
-
-    def area_integral_difference(self, h, g):
-        """A(h) − A(h + g) = ∫_h^{h+g} (z − h) Φ dz + g ∫_{h+g}^∞ Φ dz ≥ 0 [µm] (two
-        nonnegative terms)."""
-        h, g = self._hg(h, g)
-        return self.slip_area_integral(h, g) + g * self.tail_probability(h + g)
-
-    def integral_rtol(self) -> float:
-        """A bound on the relative error of this surface's integrals (QUADPACK asked for
-        1.2e-14, measured up to 1.4e-13 on Weibull densities; the bounds of the path's points
-        and energies use it)."""
-        return 2e-13
-
-    @staticmethod
-    def _hg(h, g):
-        h = check_finite_array("h", h, unit="µm")
-        g = check_finite_array("g", g, lower=0.0, unit="µm")
-        h, g = np.broadcast_arrays(h, g)
-        return np.array(h), np.array(g)
 
     # ---------------------------------------------------------------- normal contact
     def normal_load(self, d):
-        """F_N(d) = K J(d)  [N] at mean-plane separation d [µm] (Eq 11)."""
+        """Return the normal load F_N(d) = K J(d) (Eq 11).
+
+        Parameters
+        ----------
+        d : array_like
+            Mean-plane separation [µm].
+
+        Returns
+        -------
+        numpy.ndarray
+            F_N [N].
+
+        Raises
+        ------
+        MissingLoadScaleError
+            E, radius, density or nominal_area not given.
+        """
         return self.load_scale * self.load_integral(d)
 
     def normal_load_derivative(self, d):
-        """dF_N/dd = K J'(d)  [N/µm] (negative)."""
+        """Return dF_N/dd = K J'(d) (negative).
+
+        Parameters
+        ----------
+        d : array_like
+            Mean-plane separation [µm].
+
+        Returns
+        -------
+        numpy.ndarray
+            dF_N/dd [N/µm].
+
+        Raises
+        ------
+        MissingLoadScaleError
+            E, radius, density or nominal_area not given.
+        """
         return self.load_scale * self.load_integral_derivative(d)
 
     def real_contact_area(self, d):
-        """A_r(d) = π ρ* η A_n ∫_d^∞ (z − d) Φ dz  [µm²] (Eq 13)."""
+        """Return the real contact area A_r(d) = π ρ* η A_n ∫_d^∞ (z − d) Φ dz (Eq 13).
+
+        Parameters
+        ----------
+        d : array_like
+            Mean-plane separation [µm].
+
+        Returns
+        -------
+        numpy.ndarray
+            A_r [µm²].
+
+        Raises
+        ------
+        MissingLoadScaleError
+            E, radius, density or nominal_area not given.
+        """
         return self.area_scale * self.area_integral(d)
 
     def separation(self, F_N):
-        """Mean-plane separation d [µm] carrying the normal load F_N [N] > 0 (root of Eq 11)."""
+        """Return the mean-plane separation d carrying the normal load F_N (root of Eq 11).
+
+        Parameters
+        ----------
+        F_N : array_like
+            Normal load [N], > 0.
+
+        Returns
+        -------
+        numpy.ndarray
+            d [µm].
+
+        Raises
+        ------
+        MissingLoadScaleError
+            E, radius, density or nominal_area not given.
+        ModelParameterError
+            A load ≤ 0 or not finite.
+        """
         F_N = check_finite_array("F_N", F_N, unit="N")
         if np.any(F_N <= 0.0):
             raise ModelParameterError(f"F_N must be > 0 [N], got {F_N!r}")
@@ -337,7 +271,18 @@ class RoughSurface:
 
     # ---------------------------------------------------------------- tangential contact
     def stick_threshold(self, g_T):
-        """g_N0 = 2 (1 − ν) g_T / [μ (2 − ν)] = g_T σ*/(μ λ)  [µm] (Eq 5)."""
+        """Return the stick threshold g_N0 = 2 (1 − ν) g_T / [μ (2 − ν)] = g_T σ*/(μ λ) (Eq 5).
+
+        Parameters
+        ----------
+        g_T : array_like
+            Tangential slip [µm], ≥ 0.
+
+        Returns
+        -------
+        numpy.ndarray
+            g_N0 [µm].
+        """
         g_T = check_finite_array("g_T", g_T, lower=0.0, unit="µm")
         return g_T * self._sigma_over_lam / self.mu
 
@@ -355,7 +300,22 @@ class RoughSurface:
         return self.separation(normal_load)
 
     def force_ratio(self, g_T, normal_load=None, *, separation=None):
-        """F̂_T = F_T/(μ F_N) = [J(d) − J(d + g_N0)]/J(d) at slip g_T [µm] (Eq 9)."""
+        """Return F̂_T = F_T/(μ F_N) = [J(d) − J(d + g_N0)]/J(d) at slip g_T (Eq 9).
+
+        Parameters
+        ----------
+        g_T : array_like
+            Tangential slip [µm], ≥ 0.
+        normal_load : array_like, optional
+            F_N [N] (needs the load scale), or give ``separation``.
+        separation : array_like, optional
+            Mean-plane separation d [µm] (the exponential density needs neither).
+
+        Returns
+        -------
+        numpy.ndarray
+            F̂_T (dimensionless, in [0, 1]).
+        """
         d = self._d_of(normal_load, separation)
         g = self.stick_threshold(g_T)
         d, g = np.broadcast_arrays(d, g)
@@ -363,7 +323,20 @@ class RoughSurface:
         return np.where(g == 0.0, 0.0, out)
 
     def tangential_force(self, g_T, F_N):
-        """F_T(g_T; F_N)  [N] on the loading curve at normal load F_N [N] (Eq 9)."""
+        """Return F_T(g_T; F_N) on the loading curve (Eq 9).
+
+        Parameters
+        ----------
+        g_T : array_like
+            Tangential slip [µm], ≥ 0.
+        F_N : array_like
+            Normal load [N], > 0.
+
+        Returns
+        -------
+        numpy.ndarray
+            F_T [N].
+        """
         F_N = check_finite_array("F_N", F_N, unit="N")
         if np.any(F_N <= 0.0):
             raise ModelParameterError(f"F_N must be > 0 [N], got {F_N!r}")
@@ -373,9 +346,24 @@ class RoughSurface:
         return self.mu * F_N * self.force_ratio(g_T, separation=sep)
 
     def tangential_slip(self, F_T, F_N):
-        """Inverse of :meth:`tangential_force`: the slip g_T [µm] at which F_T [N] is reached.
+        """Return the slip g_T at which F_T is reached (inverse of :meth:`tangential_force`).
 
-        Requires 0 ≤ F_T < μ F_N; F_T ≥ μ F_N is gross sliding and raises GrossSlidingError.
+        Parameters
+        ----------
+        F_T : array_like
+            Tangential force [N], 0 ≤ F_T < μ F_N.
+        F_N : array_like
+            Normal load [N], > 0.
+
+        Returns
+        -------
+        numpy.ndarray
+            g_T [µm].
+
+        Raises
+        ------
+        GrossSlidingError
+            F_T ≥ μ F_N (gross sliding).
         """
         F_T = check_finite_array("F_T", F_T, lower=0.0, unit="N")
         F_N = check_finite_array("F_N", F_N, unit="N")
@@ -394,7 +382,22 @@ class RoughSurface:
         return g * self.mu / self._sigma_over_lam
 
     def stick_gap(self, FT_hat, normal_load=None, *, separation=None):
-        """g_N0 [µm] at which F̂_T is reached (inverse of :meth:`force_ratio` in g_N0)."""
+        """Return the g_N0 at which F̂_T is reached (inverse of :meth:`force_ratio` in g_N0).
+
+        Parameters
+        ----------
+        FT_hat : array_like
+            F̂_T = F_T/(μ F_N) in [0, 1] (dimensionless).
+        normal_load : array_like, optional
+            F_N [N] (needs the load scale), or give ``separation``.
+        separation : array_like, optional
+            Mean-plane separation d [µm] (the exponential density needs neither).
+
+        Returns
+        -------
+        numpy.ndarray
+            g_N0 [µm] (inf at F̂_T = 1).
+        """
         FT_hat = check_ratio(FT_hat)
         d = self._d_of(normal_load, separation)
         d, F = np.broadcast_arrays(d, FT_hat)
@@ -404,43 +407,28 @@ class RoughSurface:
         low = (F > 0.0) & (F <= 0.5)
         high = (F > 0.5) & (F < 1.0)
         if np.any(low):
-            g[low] = self._gap_low(d[low], F[low])
+            g[low] = gap_low(self, d[low], F[low])
         if np.any(high):
-            g[high] = self._gap_high(d[high], F[high])
+            g[high] = gap_high(self, d[high], F[high])
         return g
-
-    def _gap_low(self, d, F):
-        # log[J(d) − J(d + e^u)] − log J(d) = log F̂_T, increasing in u = log g
-        log_j = self.log_load_integral(d)
-        slope = -self.load_integral_derivative(d) / self.load_integral(d)
-
-        def f(u, idx):
-            with np.errstate(divide="ignore", over="ignore"):
-                diff = self.load_integral_difference(d[idx], np.exp(u))
-                return np.log(diff) - log_j[idx]
-
-        u0 = np.log(F) - np.log(slope)
-        lo, hi = expand_bracket(f, np.log(F), u0 - 1.0, u0 + 1.0)
-        return np.exp(monotone_root(f, np.log(F), lo, hi))
-
-    def _gap_high(self, d, F):
-        # −log J(d + g) = −log J(d) − log(1 − F̂_T), increasing in g
-        target = -self.log_load_integral(d) - np.log1p(-F)
-
-        def f(g, idx):
-            return -self.log_load_integral(d[idx] + g)
-
-        lo, hi = expand_bracket(
-            f, target, np.zeros_like(d), np.full_like(d, self.sigma), step=self.sigma
-        )
-        return monotone_root(f, target, lo, hi)
 
     # ---------------------------------------------------------------- stick ratios
     def stick_force_ratio(self, FT_hat, normal_load=None, *, separation=None):
-        """F̂_ST = T/J(d) as a function of F̂_T ∈ [0, 1] (Eq 12 in general form).
+        """Return F̂_ST = T/J(d) as a function of F̂_T ∈ [0, 1] (Eq 12 in general form).
 
-        For load-dependent densities give ``normal_load`` [N] (needs the load scale) or the
-        mean-plane ``separation`` d [µm].
+        Parameters
+        ----------
+        FT_hat : array_like
+            F̂_T = F_T/(μ F_N) in [0, 1] (dimensionless).
+        normal_load : array_like, optional
+            F_N [N] (needs the load scale), or give ``separation``.
+        separation : array_like, optional
+            Mean-plane separation d [µm] (the exponential density needs neither).
+
+        Returns
+        -------
+        numpy.ndarray
+            F̂_ST (dimensionless, ≤ F̂_T).
         """
         F = check_ratio(FT_hat)
         d = self._d_of(normal_load, separation)
@@ -455,7 +443,22 @@ class RoughSurface:
         return np.minimum(out, F)
 
     def stick_area_ratio(self, FT_hat, normal_load=None, *, separation=None):
-        """Â_ST = A_ST/A_r as a function of F̂_T ∈ [0, 1] (Eq 15 in general form)."""
+        """Return Â_ST = A_ST/A_r as a function of F̂_T ∈ [0, 1] (Eq 15 in general form).
+
+        Parameters
+        ----------
+        FT_hat : array_like
+            F̂_T = F_T/(μ F_N) in [0, 1] (dimensionless).
+        normal_load : array_like, optional
+            F_N [N] (needs the load scale), or give ``separation``.
+        separation : array_like, optional
+            Mean-plane separation d [µm] (the exponential density needs neither).
+
+        Returns
+        -------
+        numpy.ndarray
+            Â_ST (dimensionless, in [0, 1]).
+        """
         F = check_ratio(FT_hat)
         d = self._d_of(normal_load, separation)
         g = self.stick_gap(F, separation=d) if self.load_dependent else self.stick_gap(F)
@@ -472,9 +475,25 @@ class RoughSurface:
 
     # ---------------------------------------------------------------- contact-loss path
     def contact_levels(self, normal_load: float, max_slip: float) -> ContactLevels:
-        """The levels of this surface for the contact-loss path at F_N0 = ``normal_load`` [N]
-        and g_A = ``max_slip`` [µm] (:class:`RoughLevels`; needs the load scale, else
-        MissingLoadScaleError)."""
+        """Return the levels of this surface for the contact-loss path.
+
+        Parameters
+        ----------
+        normal_load : float
+            F_N0 [N].
+        max_slip : float
+            g_A [µm].
+
+        Returns
+        -------
+        RoughLevels
+            The surface's :class:`~cusp.models.ContactLevels`.
+
+        Raises
+        ------
+        MissingLoadScaleError
+            E, radius, density or nominal_area not given.
+        """
         return RoughLevels(self, normal_load, max_slip)
 
     def __repr__(self) -> str:

@@ -38,9 +38,24 @@ __all__ = ["Sphere", "SphereLevels"]
 class Sphere:
     """Two identical elastic spheres in contact (per pair).
 
-    ``Sphere(radius=None, E=None, nu=None, mu=None)``: radius R [µm] of each sphere, Young's
-    modulus E [N/µm²], Poisson ratio ν ∈ (−1, 0.5], friction coefficient μ > 0. None of them is
-    needed for the stick ratios; all four are needed for the compliance law (Eq 2).
+    None of the parameters is needed for the stick ratios; all four are needed for the
+    compliance law (Eq 2) and the contact-loss path.
+
+    Parameters
+    ----------
+    radius : float, optional
+        Radius R of each sphere [µm].
+    E : float, optional
+        Young's modulus of each sphere [N/µm²].
+    nu : float, optional
+        Poisson's ratio ν, in (−1, 0.5].
+    mu : float, optional
+        Friction coefficient μ > 0.
+
+    Examples
+    --------
+    >>> round(float(Sphere.stick_zone_ratio(0.875)), 12)  # c/a = (1 − 7/8)^{1/3} = 1/2
+    0.5
     """
 
     def __init__(self, radius=None, E=None, nu=None, mu=None) -> None:
@@ -52,14 +67,46 @@ class Sphere:
     # ------------------------------------------------------------------ ratios
     @staticmethod
     def stick_zone_ratio(FT_hat):
-        """c/a = (1 − F̂_T)^{1/3}  (Eq 19)."""
+        """Return the stick-zone ratio c/a = (1 − F̂_T)^{1/3} (Eq 19).
+
+        Parameters
+        ----------
+        FT_hat : array_like
+            F̂_T = F_T/(μ F_N) in [0, 1] (dimensionless).
+
+        Returns
+        -------
+        numpy.ndarray
+            c/a (dimensionless), the shape of ``FT_hat``.
+
+        Raises
+        ------
+        ModelParameterError
+            A ratio outside [0, 1] or not finite.
+        """
         F = check_ratio(FT_hat)
         with np.errstate(divide="ignore"):
             return np.where(F <= 0.5, np.exp(np.log1p(-F) / 3.0), np.cbrt(1.0 - F))
 
     @staticmethod
     def stick_force_ratio(FT_hat):
-        """F̂_ST(F̂_T) = F̂_T − [1 − (1 − F̂_T)^{2/3}]^{3/2}  (Eq 21)."""
+        """Return F̂_ST(F̂_T) = F̂_T − [1 − (1 − F̂_T)^{2/3}]^{3/2} (Eq 21).
+
+        Parameters
+        ----------
+        FT_hat : array_like
+            F̂_T = F_T/(μ F_N) in [0, 1] (dimensionless).
+
+        Returns
+        -------
+        numpy.ndarray
+            F̂_ST (dimensionless), the shape of ``FT_hat``.
+
+        Raises
+        ------
+        ModelParameterError
+            A ratio outside [0, 1] or not finite.
+        """
         F = check_ratio(FT_hat)
         m = 1.0 - F  # exact for F ≥ 1/2
         with np.errstate(divide="ignore"):
@@ -75,7 +122,23 @@ class Sphere:
 
     @staticmethod
     def stick_area_ratio(FT_hat):
-        """Â_ST(F̂_T) = (c/a)² = (1 − F̂_T)^{2/3}  (Eq 22)."""
+        """Return Â_ST(F̂_T) = (c/a)² = (1 − F̂_T)^{2/3} (Eq 22).
+
+        Parameters
+        ----------
+        FT_hat : array_like
+            F̂_T = F_T/(μ F_N) in [0, 1] (dimensionless).
+
+        Returns
+        -------
+        numpy.ndarray
+            Â_ST (dimensionless), the shape of ``FT_hat``.
+
+        Raises
+        ------
+        ModelParameterError
+            A ratio outside [0, 1] or not finite.
+        """
         F = check_ratio(FT_hat)
         with np.errstate(divide="ignore"):
             low = np.exp(np.log1p(-F) * (2.0 / 3.0))
@@ -113,19 +176,71 @@ class Sphere:
         return E / (2.0 * (1.0 + nu))
 
     def contact_radius(self, F_N):
-        """Hertz a = [3 F_N R*/(4 E*)]^{1/3}, R* = R/2  [µm] at normal load F_N [N]."""
+        """Return the Hertz contact radius a = [3 F_N R*/(4 E*)]^{1/3}, R* = R/2.
+
+        Parameters
+        ----------
+        F_N : array_like
+            Normal load [N], > 0.
+
+        Returns
+        -------
+        numpy.ndarray
+            a [µm], the shape of ``F_N``.
+
+        Raises
+        ------
+        ModelParameterError
+            A parameter of the sphere missing (all four are needed), or a load ≤ 0.
+        """
         radius = self._values("contact_radius")[0]
         F_N = _positive_load(F_N)
         return np.cbrt(3.0 * F_N * (0.5 * radius) / (4.0 * self.E_star))
 
     def slip_limit(self, F_N):
-        """g_T at the onset of gross sliding, 3 (2 − ν) μ F_N / (8 G a)  [µm]."""
+        """Return the slip at the onset of gross sliding, g_lim = 3 (2 − ν) μ F_N / (8 G a).
+
+        Parameters
+        ----------
+        F_N : array_like
+            Normal load [N], > 0.
+
+        Returns
+        -------
+        numpy.ndarray
+            g_lim [µm], the shape of ``F_N``.
+
+        Raises
+        ------
+        ModelParameterError
+            A parameter of the sphere missing (all four are needed), or a load ≤ 0.
+        """
         _, _, nu, mu = self._values("slip_limit")
         F_N = _positive_load(F_N)
         return 3.0 * (2.0 - nu) * mu * F_N / (8.0 * self.G * self.contact_radius(F_N))
 
     def tangential_slip(self, F_T, F_N):
-        """g_T(F_T; F_N) [µm] by Eq 2; F_T ≥ μ F_N (gross sliding) raises GrossSlidingError."""
+        """Return the slip g_T(F_T; F_N) by Eq 2.
+
+        Parameters
+        ----------
+        F_T : array_like
+            Tangential force [N], 0 ≤ F_T < μ F_N.
+        F_N : array_like
+            Normal load [N], > 0 (broadcast against ``F_T``).
+
+        Returns
+        -------
+        numpy.ndarray
+            g_T [µm].
+
+        Raises
+        ------
+        GrossSlidingError
+            F_T ≥ μ F_N (gross sliding).
+        ModelParameterError
+            A parameter of the sphere missing, or a force out of range.
+        """
         mu = self._values("tangential_slip")[3]
         F_T = check_finite_array("F_T", F_T, lower=0.0, unit="N")
         F_N = _positive_load(F_N)
@@ -140,9 +255,26 @@ class Sphere:
         return self.slip_limit(F_N) * -np.expm1(np.log1p(-ratio) * (2.0 / 3.0))
 
     def tangential_force(self, g_T, F_N):
-        """F_T(g_T; F_N) [N], the inverse of Eq 2: μ F_N [1 − (1 − g_T/g_lim)^{3/2}].
+        """Return F_T(g_T; F_N), the inverse of Eq 2: μ F_N [1 − (1 − g_T/g_lim)^{3/2}].
 
         For g_T ≥ g_lim (:meth:`slip_limit`) the spheres slide: F_T = μ F_N.
+
+        Parameters
+        ----------
+        g_T : array_like
+            Tangential slip [µm], ≥ 0.
+        F_N : array_like
+            Normal load [N], > 0 (broadcast against ``g_T``).
+
+        Returns
+        -------
+        numpy.ndarray
+            F_T [N].
+
+        Raises
+        ------
+        ModelParameterError
+            A parameter of the sphere missing (all four are needed), or a load ≤ 0.
         """
         mu = self._values("tangential_force")[3]
         g_T = check_finite_array("g_T", g_T, lower=0.0, unit="µm")
@@ -154,9 +286,25 @@ class Sphere:
 
     # ------------------------------------------------------------------ contact-loss path
     def contact_levels(self, normal_load: float, max_slip: float) -> SphereLevels:
-        """The levels of this sphere for the contact-loss path at F_N0 = ``normal_load`` [N]
-        and g_A = ``max_slip`` [µm] (:class:`SphereLevels`; needs all four parameters, else
-        ModelParameterError)."""
+        """Return the levels of this sphere for the contact-loss path.
+
+        Parameters
+        ----------
+        normal_load : float
+            F_N0 [N].
+        max_slip : float
+            g_A [µm].
+
+        Returns
+        -------
+        SphereLevels
+            The sphere's :class:`~cusp.models.ContactLevels`.
+
+        Raises
+        ------
+        ModelParameterError
+            A parameter of the sphere missing (all four are needed), or a load ≤ 0.
+        """
         return SphereLevels(self, normal_load, max_slip)
 
     def __repr__(self) -> str:

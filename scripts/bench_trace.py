@@ -210,7 +210,7 @@ def _phases_once(pb, rounds):
     wrap(sr, "correct", "corrector (steps and start)")  # the start's corrector
     wrap(tr, "locate_crossings", "special-point location")
     wrap(tr, "corner_folds", "special-point location")
-    wrap(tr, "located_point", "special-point location")
+    wrap(ins, "located_point", "special-point location")  # (called by _insert.link_located)
     wrap(cr, "tangent_at", "special-point location")
     wrap(ins, "tangent_at", "special-point location")
     wrap(tr.Tracer, "__init__", "setup and result")

@@ -327,6 +327,32 @@ def test_script_helpers_import_no_optional_dependency(package_modules):
     assert not loaded & {"contique", "pacopy", "mpmath", "matplotlib"}
 
 
+def _docstring(node):
+    body = getattr(node, "body", None)
+    if (
+        body
+        and isinstance(body[0], ast.Expr)
+        and isinstance(body[0].value, ast.Constant)
+        and isinstance(body[0].value.value, str)
+    ):
+        return body[0]
+    return None
+
+
+def _code_lines(text: str) -> int:
+    """A module's lines less those of its docstrings (module, classes, functions): the
+    numpydoc sections the public API carries (issue 32) document a module, they do not make
+    it harder to follow, and the function limit has excluded them from the start."""
+    tree = ast.parse(text)
+    doc_lines = sum(
+        d.end_lineno - d.lineno + 1
+        for node in ast.walk(tree)
+        if isinstance(node, (ast.Module, ast.ClassDef, ast.FunctionDef, ast.AsyncFunctionDef))
+        and (d := _docstring(node)) is not None
+    )
+    return text.count("\n") - doc_lines
+
+
 def _body_lines(node) -> int:
     n = node.end_lineno - node.lineno + 1
     body = node.body
@@ -346,8 +372,9 @@ def test_small_modules_and_functions(package_modules):
     long_modules, long_functions = [], []
     for name, path in package_modules.items():
         text = path.read_text(encoding="utf-8")
-        if text.count("\n") > MAX_MODULE_LINES:
-            long_modules.append(f"{name}: {text.count(chr(10))} lines")
+        code = _code_lines(text)
+        if code > MAX_MODULE_LINES:
+            long_modules.append(f"{name}: {code} lines besides docstrings")
         limit = MAX_ENGINE_FUNCTION_LINES if _engine_rank(name) is not None else MAX_FUNCTION_LINES
         for node in ast.walk(ast.parse(text)):
             if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef)):

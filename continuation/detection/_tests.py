@@ -72,10 +72,19 @@ class Ending(NamedTuple):
 class TestFunction:
     """Base class of the test functions (see the module docstring).
 
-    ``kind``: the special point's kind (a :class:`~.._outcomes.Kind`, or a string of one's
-    own); ``label``: its name on the branch; ``with_respect_to``: the component it concerns
-    (or None); ``direction``: +1 only upward crossings count, −1 only downward, 0 both;
-    ``terminal``: the branch ends at the located point.
+    A subclass sets the class attribute ``kind`` (the special point's kind: a
+    :class:`~.._outcomes.Kind`, or a string of one's own) and defines :meth:`value`.
+
+    Parameters
+    ----------
+    label : str
+        The located points' name on the branch.
+    with_respect_to : str or None, optional
+        The component the test concerns (None: none).
+    direction : {0, 1, -1}, optional
+        +1 only upward crossings count, −1 only downward, 0 both (default).
+    terminal : bool, optional
+        Whether the branch ends at the located point.
     """
 
     __slots__ = ("label", "with_respect_to", "direction", "terminal")
@@ -99,10 +108,41 @@ class TestFunction:
         return f"<{type(self).__name__} {self.label!r}>"
 
     def value(self, system: CurveSystem, z: np.ndarray, t: Any, sdet: Any) -> float:
+        """Evaluate the test at a point of the curve (a subclass defines it).
+
+        Parameters
+        ----------
+        system : CurveSystem
+            The curve system valid at the point.
+        z : numpy.ndarray, shape (dim,)
+            The curve's components at the point.
+        t : numpy.ndarray, shape (dim,), or None
+            The unit tangent there (None while locating).
+        sdet : object or None
+            The sign and log-determinant of the bordered Jacobian there, if computed.
+
+        Returns
+        -------
+        float
+            The test's value; its zeros are the special points.
+        """
         raise NotImplementedError  # pragma: no cover - interface
 
     def crossed(self, old: float | None, new: float) -> bool:
-        """Does the change ``old → new`` between two accepted points count?"""
+        """Return whether the change ``old → new`` between two accepted points counts.
+
+        Parameters
+        ----------
+        old : float or None
+            The value at the earlier point (None: not known).
+        new : float
+            The value at the later point.
+
+        Returns
+        -------
+        bool
+            True for a sign change in the test's ``direction``.
+        """
         if old is None or old == 0.0:
             return False
         if new == 0.0:
@@ -116,24 +156,73 @@ class TestFunction:
         return (self.direction > 0) == up
 
     def splits_on(self, system: CurveSystem) -> bool:
-        """Whether :meth:`split_points` can see anything on curves of ``system``."""
+        """Return whether :meth:`split_points` can see anything on curves of ``system``.
+
+        Parameters
+        ----------
+        system : CurveSystem
+            The curve's system.
+
+        Returns
+        -------
+        bool
+            True when the subclass defines :meth:`split_points`.
+        """
         return type(self).split_points is not TestFunction.split_points
 
     def split_points(self, old: float, new: float, span: Span) -> tuple[float, ...]:
-        """Where to split a step in which the test may have more than one zero (two, which
-        leave no net sign change, or three): θ ∈ (0, 1) between the zeros the test sees a
-        sign of, ascending (empty: none seen). ``span``: the step's ends, their unit
-        tangents, its pseudo-arclength and the cosine of its turn."""
+        """Return where to split a step in which the test may have more than one zero.
+
+        Two zeros leave no net sign change, three one; the split points separate them.
+
+        Parameters
+        ----------
+        old, new : float
+            The test's values at the step's ends.
+        span : Span
+            The step's ends, their unit tangents, its pseudo-arclength and the cosine of its
+            turn.
+
+        Returns
+        -------
+        tuple of float
+            θ ∈ (0, 1) between the zeros the test sees a sign of, ascending (empty: none
+            seen).
+        """
         return ()
 
     def next_split_point(self, samples: list[tuple[float, float]]) -> float | None:
-        """After the split points were corrected and none shows the other sign: another
-        θ ∈ (0, 1) to sample in a search for the zeros they suggest, or None (done).
-        ``samples``: (θ, value) at the step's ends and at every point sampled, ascending."""
+        """Return another θ to sample in a search for zeros, or None (done).
+
+        Asked after the split points were corrected and none shows the other sign.
+
+        Parameters
+        ----------
+        samples : list of tuple of (float, float)
+            ``(θ, value)`` at the step's ends and at every point sampled, ascending.
+
+        Returns
+        -------
+        float or None
+            θ ∈ (0, 1) to sample next, or None.
+        """
         return None
 
     def locate(self, br: Bracket, f_a: float, f_b: float) -> Located:
-        """The zero inside the step ``br`` (``f_a``, ``f_b``: the values at its ends)."""
+        """Locate the zero inside a step.
+
+        Parameters
+        ----------
+        br : Bracket
+            The step (or part of one) holding a sign change.
+        f_a, f_b : float
+            The test's values at its ends.
+
+        Returns
+        -------
+        Located
+            The located point, its status and the locating method's details.
+        """
 
         def f(z: np.ndarray) -> float:
             return self.value(br.system, z, None, None)
@@ -141,7 +230,23 @@ class TestFunction:
         return locate_on_arc(br, f, f_a, f_b)
 
     def record(self, system: CurveSystem, loc: Located, interval: tuple[float, float]) -> Record:
-        """The special-point record of a located zero (``interval``: the step's)."""
+        """Return the special-point record of a located zero.
+
+        Parameters
+        ----------
+        system : CurveSystem
+            The curve system at the point.
+        loc : Located
+            The located zero.
+        interval : tuple of (float, float)
+            The step's pseudo-arclength interval.
+
+        Returns
+        -------
+        Record
+            The record, made a :class:`~cusp.continuation.SpecialPoint` when the branch is
+            assembled.
+        """
         details = dict(loc.details)
         details["iterations"] = loc.iterations
         return Record(
@@ -154,7 +259,18 @@ class TestFunction:
         )
 
     def ending(self, loc: Located) -> Ending:
-        """For a terminal test: how the branch ends at the located point."""
+        """Return how the branch ends at the located point of a terminal test.
+
+        Parameters
+        ----------
+        loc : Located
+            The located zero.
+
+        Returns
+        -------
+        Ending
+            The status, message and end-point records.
+        """
         end = Record(
             kind=Kind.ENDPOINT,
             label=self.label,

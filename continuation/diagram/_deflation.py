@@ -40,11 +40,24 @@ from ..problem._problem import ContinuationProblem, as_problem
 class Deflation:
     """The solutions :func:`deflate` found, in the order found.
 
-    ``solutions``: the unknowns of each (polished by Newton on R); ``residual_norms``: the
-    max-norm of R at each; ``iterations``: the deflated Newton iterations that reached each;
-    ``params``: the parameter values; ``runs``: deflated Newton runs (one per solution found
-    and one per run that found none); ``solves``: linear solves in all (deflated and
-    polishing Newton).
+    ``len(deflation)`` is the number of solutions.
+
+    Parameters
+    ----------
+    unknowns : tuple of str
+        The problem's unknowns, the order of each solution's entries.
+    params : dict of str to float
+        The parameter values.
+    solutions : tuple of numpy.ndarray, each shape (n,)
+        The unknowns of each solution (polished by Newton on R).
+    residual_norms : tuple of float
+        The max-norm of R at each.
+    iterations : tuple of int
+        The deflated Newton iterations that reached each.
+    runs : int
+        Deflated Newton runs (one per solution found and one per run that found none).
+    solves : int
+        Linear solves in all (deflated and polishing Newton).
     """
 
     unknowns: tuple[str, ...]
@@ -99,27 +112,35 @@ def deflate(
         Starting points of deflated Newton.
     params : mapping of str to float, optional
         Parameter values overriding ``problem.params``.
-    max_solutions : int
+    max_solutions : int, optional
         At most this many solutions (not counting ``known``).
-    known : sequence of array_like
+    known : sequence of array_like, optional
         Solutions already known: deflated from the start, not returned.
-    power, shift : float
+    power, shift : float, optional
         The deflation operator's ``p`` (> 0) and ``σ`` (> 0; the paper's defaults 2 and 1).
     scales : mapping of str to float, optional
         Typical sizes of unknowns for the norm (default 1).
-    tol : float
+    tol : float, optional
         A solution's residual (max-norm) must be at most this, after polishing.
-    step_tol : float
+    step_tol : float, optional
         Newton stops when its undeflated update is this small (the norm above).
-    max_iterations : int
+    max_iterations : int, optional
         Deflated Newton iterations per run.
-    distinct : float
+    distinct : float, optional
         Solutions closer than this (the norm above) are the same.
 
     Returns
     -------
     Deflation
+        The solutions found, with their residuals and the work done.
 
+    Raises
+    ------
+    ProblemDefinitionError
+        A setting out of its range, or a guess or known solution of the wrong shape.
+
+    Examples
+    --------
     >>> from cusp.continuation import Problem, deflate
     >>> prob = Problem(lambda u, p: [(u[0] - 1) * (u[0] - 2) * (u[0] - 3)], ["x"], {})
     >>> found = deflate(prob, [[0.0]], max_solutions=5)

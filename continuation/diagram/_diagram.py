@@ -59,9 +59,20 @@ CHECKS = 9
 
 @dataclass(frozen=True)
 class DeflationStarts:
-    """Where :func:`diagram` looks for branches by deflation: at each value of the free
-    parameter in ``at``, :func:`~._deflation.deflate` from ``guesses`` (the known branches'
-    points there deflated first), at most ``max_solutions`` new ones per value."""
+    """Where :func:`diagram` looks for branches by deflation.
+
+    At each value of the free parameter in ``at``, :func:`~cusp.continuation.deflate` runs
+    from ``guesses`` (the known branches' points there deflated first).
+
+    Parameters
+    ----------
+    at : tuple of float
+        Values of the free parameter.
+    guesses : tuple of tuple of float, each of length n
+        Starting points of deflated Newton (unknowns).
+    max_solutions : int, optional
+        At most this many new solutions per value (default 10).
+    """
 
     at: tuple[float, ...]
     guesses: tuple[tuple[float, ...], ...]
@@ -123,15 +134,15 @@ def diagram(
         the free parameter's at least).
     params : mapping of str to float, optional
         Parameter values overriding ``problem.params``.
-    max_depth : int
+    max_depth : int, optional
         Branch switching recurses this deep (0: the start's branch only).
-    max_branches : int
+    max_branches : int, optional
         At most this many branches are kept; branch points beyond say so in their notes.
     monitor, scales : optional
         As for :func:`~cusp.continuation.trace`, for every branch.
     options : ContinuationOptions, optional
         The numerical settings of every branch.
-    rtol : float
+    rtol : float, optional
         Overrides ``options.rtol``; also sets ``tol = DUPLICATE_FACTOR·rtol``.
     deflation : DeflationStarts or mapping, optional
         ``{"at": [values of free], "guesses": [[u…], …], "max_solutions": k}``.
@@ -139,7 +150,16 @@ def diagram(
     Returns
     -------
     Diagram
+        The distinct branches and the branch points linking them.
 
+    Raises
+    ------
+    ProblemDefinitionError
+        A bad ``max_depth``, ``max_branches`` or ``deflation``, or ``bounds`` without the
+        free parameter.
+
+    Examples
+    --------
     >>> from cusp.continuation import Problem, diagram
     >>> prob = Problem(lambda u, p: [u[0] * (p["p"] - u[0] ** 2)], ["x"], {"p": -1.0})
     >>> d = diagram(prob, [0.0], free="p", bounds={"p": (-1.0, 1.0)})

@@ -20,13 +20,22 @@ from ._deflation import Deflation
 class DiagramBranch:
     """One branch of a :class:`Diagram`.
 
-    ``branch``: the traced :class:`~cusp.continuation.Branch` (both ways from its start,
-    unless ``closed``). ``depth``: 0 for the start's branch and branches started from
-    deflated solutions, one more than its parent's for a branch switched into. ``origin``:
-    ``"start"``, ``"branch_point"`` or ``"deflation"``. ``source``: the index in
-    :attr:`Diagram.points` of the branch point it leaves (None otherwise). ``closed``: it
-    returned to its start (an isola, or a loop). ``ends``: how each half ended (the minus
-    half's status, then the plus half's; ``("closed",)`` for a closed branch).
+    Parameters
+    ----------
+    branch : Branch
+        The traced branch (both ways from its start, unless ``closed``).
+    depth : int
+        0 for the start's branch and branches started from deflated solutions, one more
+        than its parent's for a branch switched into.
+    origin : {"start", "branch_point", "deflation"}
+        How the branch was found.
+    source : int or None
+        The index in ``Diagram.points`` of the branch point it leaves (None otherwise).
+    closed : bool
+        Whether it returned to its start (an isola, or a loop).
+    ends : tuple of str
+        How each half ended (the minus half's status, then the plus half's;
+        ``("closed",)`` for a closed branch).
     """
 
     branch: Branch
@@ -41,11 +50,19 @@ class DiagramBranch:
 class DiagramPoint:
     """A branch point of a :class:`Diagram`, once however many branches located it.
 
-    ``point``: the first located :class:`~cusp.continuation.SpecialPoint` (values, tangents
-    and switching data). ``on``: the indices of the branches it lies on (those that located
-    it, and the branches that leave it). ``leaving``: the branches switched into from it
-    (traced from it, or recognised as already traced). ``notes``: what was done at it, one
-    sentence per branch that located it (switched, recognised, not switched and why).
+    Parameters
+    ----------
+    point : SpecialPoint
+        The first located record of it (values, tangents and switching data).
+    on : tuple of int
+        The indices of the branches it lies on (those that located it, and the branches
+        that leave it).
+    leaving : tuple of int
+        The branches switched into from it (traced from it, or recognised as already
+        traced).
+    notes : tuple of str
+        What was done at it, one sentence per branch that located it (switched,
+        recognised, not switched and why).
     """
 
     point: SpecialPoint
@@ -58,13 +75,27 @@ class DiagramPoint:
 class Diagram:
     """A whole bifurcation diagram (:func:`~cusp.continuation.diagram`).
 
-    ``branches`` and ``points`` (see :class:`DiagramBranch`, :class:`DiagramPoint`);
-    ``free``: the free parameter; ``tol``: the distance (weighted, relative to the typical
-    sizes) within which two branches or points are the same; ``recognised``: one sentence per
-    branch found again and not kept (before tracing, from a branch point whose other branch
-    is known; or after, a traced branch lying on a known one; or a deflated solution on a
-    known branch); ``deflation``: the :class:`~cusp.continuation.Deflation` runs, one per
-    parameter value; ``traces``: the branches traced (kept or not).
+    ``len(diagram)`` is the number of branches.
+
+    Parameters
+    ----------
+    branches : tuple of DiagramBranch
+        The distinct branches.
+    points : tuple of DiagramPoint
+        The distinct branch points linking them.
+    free : str
+        The free parameter.
+    tol : float
+        The distance (weighted, relative to the typical sizes) within which two branches
+        or points are the same.
+    recognised : tuple of str
+        One sentence per branch found again and not kept (before tracing, from a branch
+        point whose other branch is known; or after, a traced branch lying on a known one;
+        or a deflated solution on a known branch).
+    deflation : tuple of Deflation
+        The deflation runs, one per parameter value.
+    traces : int
+        The branches traced (kept or not).
     """
 
     branches: tuple[DiagramBranch, ...]
@@ -87,15 +118,43 @@ class Diagram:
         )
 
     def save(self, path: Any) -> Any:
-        """Save the diagram to one ``.npz`` file (as :meth:`Branch.save
-        <cusp.continuation.Branch.save>`: atomic, readable by numpy alone); read it back
-        with :func:`~cusp.continuation.load`. Returns the path."""
+        """Save the diagram to one ``.npz`` file, atomically, readable by numpy alone.
+
+        As :meth:`Branch.save <cusp.continuation.Branch.save>`; read it back with
+        :func:`~cusp.continuation.load`.
+
+        Parameters
+        ----------
+        path : str or os.PathLike
+            The file to write (replaced atomically if it exists).
+
+        Returns
+        -------
+        pathlib.Path
+            The path written.
+        """
         return save_diagram(self, path)
 
     def plot(self, x: str, y: str, ax: Any = None, *, points: bool = True) -> Any:
-        """Draw every branch (``y`` against ``x``) and the branch points (matplotlib imported
-        lazily); a branch carrying a column ``n_unstable`` is drawn solid where it is 0 and
-        dashed elsewhere. Returns the Axes."""
+        """Draw every branch (``y`` against ``x``) and the branch points.
+
+        matplotlib is imported when first used. A branch carrying a column ``n_unstable``
+        is drawn solid where it is 0 and dashed elsewhere.
+
+        Parameters
+        ----------
+        x, y : str
+            The columns on the horizontal and vertical axes.
+        ax : matplotlib.axes.Axes, optional
+            Where to draw (default: a new figure's axes).
+        points : bool, optional
+            Whether to mark the branch points (default True).
+
+        Returns
+        -------
+        matplotlib.axes.Axes
+            The axes drawn on.
+        """
         from ._plot import plot_diagram
 
         return plot_diagram(self, x, y, ax=ax, points=points)
@@ -119,12 +178,25 @@ def save_diagram(diagram: Diagram, path: str | os.PathLike[str]) -> Path:
 
 
 def load(path: str | os.PathLike[str]) -> Any:
-    """Load a results file written by :meth:`Branch.save` (a branch, a fold curve, a locus)
-    or :meth:`Diagram.save`: the object as it was saved, bit for bit.
+    """Load a results file written by :meth:`Branch.save` or :meth:`Diagram.save`.
 
-    Raises :class:`~cusp.continuation.ResultsFileError` (naming the path and what is wrong)
-    for a file that is not a zip archive, not a cusp results file, truncated or damaged,
-    or written in a newer format; :class:`FileNotFoundError` for no file.
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The ``.npz`` file (a branch, a fold or Hopf curve, a locus, or a whole diagram).
+
+    Returns
+    -------
+    Branch or Diagram
+        The object as it was saved, bit for bit.
+
+    Raises
+    ------
+    ResultsFileError
+        A file that is not a zip archive, not a cusp results file, truncated or damaged,
+        or written in a newer format (the message names the path and what is wrong).
+    FileNotFoundError
+        No file at ``path``.
     """
     meta, arrays = read_results(path)
     kind = meta.get("type")

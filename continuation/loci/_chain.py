@@ -24,12 +24,22 @@ Target = float | str | tuple[str, str]
 class ChainPoint:
     """One point of a :class:`PointChain`.
 
-    ``name``: the point's name (its variables are ``"name.variable"`` in the chain).
-    ``problem``: the leg it lies on. ``control``: the leg's free parameter (a variable of the
-    point, beside the problem's unknowns). ``at``: ``(variable, target)``, the condition that
-    locates the point on its leg (the end of the leg: its control or any unknown held at the
-    target, see :data:`Target`). ``links``: ``{parameter of the problem: (point, variable)}``,
-    parameters taken from other points of the chain (a level frozen at an earlier corner)."""
+    Parameters
+    ----------
+    name : str
+        The point's name (its variables are ``"name.variable"`` in the chain).
+    problem : Problem or ContinuationProblem
+        The leg it lies on.
+    control : str
+        The leg's free parameter (a variable of the point, beside the problem's unknowns).
+    at : tuple of (str, float or str or tuple of (str, str))
+        ``(variable, target)``, the condition that locates the point on its leg (the end of
+        the leg: its control or any unknown held at the target). The target is a number, a
+        parameter of the chain (by name) or another point's variable ``(point, variable)``.
+    links : mapping of str to tuple of (str, str), optional
+        ``{parameter of the problem: (point, variable)}``: parameters taken from other
+        points of the chain (a level frozen at an earlier corner).
+    """
 
     name: str
     problem: Any
@@ -39,13 +49,28 @@ class ChainPoint:
 
 
 class PointChain:
-    """The points of a :class:`ChainPoint` sequence as one problem.
+    """The points of a :class:`ChainPoint` sequence as one continuation problem.
 
-    A :class:`~cusp.continuation.ContinuationProblem` with unknowns ``"point.variable"``
-    (each point's problem unknowns, then its control), parameters every parameter of the
-    legs that is neither a control nor linked, plus the names conditions hold variables at;
-    the residual stacks each point's ``R`` and its condition, and the Jacobian is assembled
-    from the legs' own derivatives."""
+    A :class:`~cusp.continuation.ContinuationProblem` whose unknowns are
+    ``"point.variable"`` (each point's problem unknowns, then its control) and whose
+    parameters are every parameter of the legs that is neither a control nor linked, plus
+    the names conditions hold variables at; the residual stacks each point's ``R`` and its
+    condition, and the Jacobian is assembled from the legs' own derivatives.
+
+    Parameters
+    ----------
+    points : sequence of ChainPoint
+        The points, with distinct names.
+    params : mapping of str to float, optional
+        Values of the chain's parameters overriding the legs' own (required for a
+        parameter a condition holds a variable at).
+
+    Raises
+    ------
+    ProblemDefinitionError
+        Repeated point names, a control that is not a parameter of its leg, a condition or
+        link naming no variable of the chain, or ``params`` naming no parameter of it.
+    """
 
     def __init__(self, points: Sequence[ChainPoint], params: Mapping[str, float] | None = None):
         self.points = tuple(points)
@@ -144,6 +169,20 @@ class PointChain:
         return float(p[target]) if isinstance(target, str) else float(target)
 
     def residual(self, u, p) -> np.ndarray:
+        """Evaluate the stacked residual: each point's ``R`` and its condition.
+
+        Parameters
+        ----------
+        u : array_like, shape (n,)
+            The chain's unknowns, in the order of :attr:`unknowns`.
+        p : mapping of str to float
+            The chain's parameters.
+
+        Returns
+        -------
+        numpy.ndarray, shape (n,)
+            The residual.
+        """
         z = np.asarray(u, dtype=float)
         out: list[Any] = []
         for i in range(len(self.points)):
@@ -154,6 +193,20 @@ class PointChain:
         return np.concatenate(out)
 
     def jacobian(self, u, p) -> np.ndarray:
+        """Assemble ``∂R/∂u`` of the chain from the legs' own derivatives.
+
+        Parameters
+        ----------
+        u : array_like, shape (n,)
+            The chain's unknowns.
+        p : mapping of str to float
+            The chain's parameters.
+
+        Returns
+        -------
+        numpy.ndarray, shape (n, n)
+            The dense Jacobian.
+        """
         z = np.asarray(u, dtype=float)
         m = z.size
         jac = np.zeros((m, m))
@@ -176,6 +229,22 @@ class PointChain:
         return jac
 
     def param_jacobian(self, u, p, name: str) -> np.ndarray:
+        """Evaluate ``∂R/∂p[name]`` of the chain.
+
+        Parameters
+        ----------
+        u : array_like, shape (n,)
+            The chain's unknowns.
+        p : mapping of str to float
+            The chain's parameters.
+        name : str
+            The parameter differentiated against.
+
+        Returns
+        -------
+        numpy.ndarray, shape (n,)
+            The derivative.
+        """
         z = np.asarray(u, dtype=float)
         out = np.zeros(z.size)
         row = 0
@@ -190,7 +259,23 @@ class PointChain:
         return out
 
     def start(self, values: Mapping[str, Mapping[str, float]]) -> np.ndarray:
-        """The chain's unknowns from each point's values (``{point: {variable: value}}``)."""
+        """Return the chain's unknowns from each point's values.
+
+        Parameters
+        ----------
+        values : mapping of str to mapping of str to float
+            ``{point: {variable: value}}`` for every variable of every point.
+
+        Returns
+        -------
+        numpy.ndarray, shape (n,)
+            The unknowns, in the order of :attr:`unknowns`.
+
+        Raises
+        ------
+        ProblemDefinitionError
+            A variable missing.
+        """
         try:
             return np.array(
                 [values[pt.name][v] for pt, vs in zip(self.points, self._vars) for v in vs],

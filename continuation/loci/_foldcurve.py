@@ -97,27 +97,22 @@ def fold_curve(
         parameter, or in a monitored unknown: the fold curve of a snap-back).
     free : (str, str)
         ``(p1, p2)``: the branch's free parameter and the second parameter.
-    direction : {"both", 1, -1}
+    direction : {"both", 1, -1}, optional
         ``"both"`` (default: the two halves joined at the starting fold), ``+1`` or ``-1``
         (the sign of the initial change of ``p2``).
-    bounds, targets, events, monitor, scales, throw
-        As for :func:`trace`; they apply to the fold curve (bounds may name any unknown or
-        either parameter). An unknown whose value at the fold is far below its typical size
-        on the branch (0, or 0 up to rounding) takes that size unless ``scales`` gives one.
+    bounds, targets, events, monitor, scales : optional
+        As for :func:`~cusp.continuation.trace`; they apply to the fold curve (bounds may
+        name any unknown or either parameter). An unknown whose value at the fold is far
+        below its typical size on the branch (0, or 0 up to rounding) takes that size
+        unless ``scales`` gives one.
     options : ContinuationOptions, optional
         Default: ``ContinuationOptions(detect_branch_points=False)``.
-    stability : bool or StabilityOptions
+    throw : bool, optional
+        If False, a failure returns the partial curve with its status instead of raising.
+    stability : bool or StabilityOptions, optional
         For a problem declared a vector field (``Problem(..., mass=...)``) and a fold in
         the free parameter: also detect and locate ``"bogdanov_takens"`` and
         ``"zero_hopf"`` points (:mod:`~..detection._foldhopf`).
-
-    Other Parameters
-    ----------------
-    rtol, ds, ds_min, ds_max, max_steps, tol, step_tol, max_step_solves, \
-max_newton_iterations, target_newton_iterations, max_angle, target_angle, \
-target_contraction, target_distance, curve_tol, growth, predictor, state_weight, \
-detect_folds, detect_branch_points, locate_tol, max_locate_iterations
-        The field of the same name of ``options``, overridden.
 
     Returns
     -------
@@ -127,6 +122,22 @@ detect_folds, detect_branch_points, locate_tol, max_locate_iterations
         ``"codim2"`` (a second zero eigenvalue); with ``stability``, ``"bogdanov_takens"``
         and ``"zero_hopf"`` (``details["omega"]``). ``info["direction"]`` says which way(s)
         were traced and ``info["start_index"]`` where the starting fold is.
+
+    Other Parameters
+    ----------------
+    rtol, ds, ds_min, ds_max, max_steps, tol, step_tol, max_step_solves, \
+max_newton_iterations, target_newton_iterations, max_angle, target_angle, \
+target_contraction, target_distance, curve_tol, growth, predictor, state_weight, \
+detect_folds, detect_branch_points, locate_tol, max_locate_iterations : optional
+        The field of the same name of ``options``, overridden.
+
+    Raises
+    ------
+    ProblemDefinitionError
+        ``fold_point`` not a fold, ``free`` not a pair of the problem's parameters, a bad
+        ``direction``, or ``stability`` on a problem that is no vector field.
+    ContinuationError
+        A failure of the continuation (with ``throw=True``).
     """
     problem = as_problem(problem)
     start = _fold_setup(problem, fold_point, free)

@@ -160,25 +160,19 @@ def hopf_curve(
         A converged ``"hopf"`` special point of ``trace(..., stability=True)``.
     free : (str, str)
         ``(p1, p2)``: the branch's free parameter and the second parameter.
-    direction : {"both", 1, -1}
+    direction : {"both", 1, -1}, optional
         ``"both"`` (default: the two halves joined at the starting point), ``+1`` or ``-1``
         (the sign of the initial change of ``p1``).
-    bounds, targets, events, scales, throw
-        As for :func:`trace`, on the Hopf curve: bounds may name any unknown, ``p1``, ``p2``
-        or ``"omega"``.
-    codim2 : bool
+    bounds, targets, events, scales : optional
+        As for :func:`~cusp.continuation.trace`, on the Hopf curve: bounds may name any
+        unknown, ``p1``, ``p2`` or ``"omega"``.
+    codim2 : bool, optional
         Detect and locate ``"bautin"``, ``"bogdanov_takens"`` and ``"zero_hopf"`` (see the
         module; default True).
     options : ContinuationOptions, optional
         Default: ``ContinuationOptions(detect_branch_points=False)``.
-
-    Other Parameters
-    ----------------
-    rtol, ds, ds_min, ds_max, max_steps, tol, step_tol, max_step_solves, \
-max_newton_iterations, target_newton_iterations, max_angle, target_angle, \
-target_contraction, target_distance, curve_tol, growth, predictor, state_weight, \
-detect_folds, detect_branch_points, locate_tol, max_locate_iterations
-        The field of the same name of ``options``, overridden.
+    throw : bool, optional
+        If False, a failure returns the partial curve with its status instead of raising.
 
     Returns
     -------
@@ -187,6 +181,22 @@ detect_folds, detect_branch_points, locate_tol, max_locate_iterations
         ``"qi:<name>"``, ``"omega"`` and the parameters; its codimension-2 points as
         special points of their kinds (``details``: ``omega``, and ``first_lyapunov`` at a
         Bautin point).
+
+    Other Parameters
+    ----------------
+    rtol, ds, ds_min, ds_max, max_steps, tol, step_tol, max_step_solves, \
+max_newton_iterations, target_newton_iterations, max_angle, target_angle, \
+target_contraction, target_distance, curve_tol, growth, predictor, state_weight, \
+detect_folds, detect_branch_points, locate_tol, max_locate_iterations : optional
+        The field of the same name of ``options``, overridden.
+
+    Raises
+    ------
+    ProblemDefinitionError
+        ``hopf_point`` not a converged Hopf point, ``free`` not a pair of the problem's
+        parameters, a bad ``direction``, or a problem that is no vector field.
+    ContinuationError
+        A failure of the continuation (with ``throw=True``).
     """
     problem = as_problem(problem)
     mass = vector_field_mass(problem)

@@ -93,24 +93,34 @@ def locus(
         reported as a fold.
     params : mapping of str to float, optional
         The chain's parameter values (only with a sequence of points).
-    direction : {"both", 1, -1}
+    direction : {"both", 1, -1}, optional
         ``"both"`` (default; the two halves joined at the start, ``info["start_index"]``),
         +1 or −1.
-    bounds, targets, events, monitor, scales, options, throw
-        As for :func:`~..stepping._trace.trace`, on the chain's names (``"B.g"``) and
+    bounds, targets, events, monitor, scales, options, throw : optional
+        As for :func:`~cusp.continuation.trace`, on the chain's names (``"B.g"``) and
         parameters.
+
+    Returns
+    -------
+    Branch
+        The locus: a column per chain variable (``"B.g"``) and parameter, its folds in
+        ``free`` among the special points.
 
     Other Parameters
     ----------------
     rtol, ds, ds_min, ds_max, max_steps, tol, step_tol, max_step_solves, \
 max_newton_iterations, target_newton_iterations, max_angle, target_angle, \
 target_contraction, target_distance, curve_tol, growth, predictor, state_weight, \
-detect_folds, detect_branch_points, locate_tol, max_locate_iterations
+detect_folds, detect_branch_points, locate_tol, max_locate_iterations : optional
         The field of the same name of ``options``, overridden.
 
-    Returns
-    -------
-    Branch
+    Raises
+    ------
+    ProblemDefinitionError
+        ``free`` not a parameter of the chain, ``params`` given with a built chain, a bad
+        ``direction`` or start.
+    ContinuationError
+        A failure of the continuation (with ``throw=True``).
     """
     options = with_overrides(options, DEFAULT_OPTIONS, locals())
     chain, u0 = _chain_start(chain, start, free, params, direction)
@@ -183,10 +193,12 @@ def point_locus(
     locate_tol: float | Keep = KEEP,
     max_locate_iterations: int | Keep = KEEP,
 ) -> Branch:
-    """The locus of a located point of a branch of ``problem`` as the second parameter of
-    ``free = (p1, p2)`` varies (``p1``: the branch's free parameter): a fold by
-    :func:`~._foldcurve.fold_curve`, a bound hit or target by holding its variable at its
-    value (:func:`locus` of a one-point chain, whose variables keep their problem's names).
+    """The locus of a located point of a branch as a second parameter varies.
+
+    ``free = (p1, p2)``: ``p1`` is the branch's free parameter, ``p2`` the one that varies
+    along the locus. A fold is continued by :func:`~cusp.continuation.fold_curve`; a bound
+    hit or target by holding its variable at its value (:func:`locus` of a one-point chain,
+    whose variables keep their problem's names).
 
     Parameters
     ----------
@@ -196,21 +208,29 @@ def point_locus(
         A fold, a target or a bound hit (``"endpoint"`` with ``with_respect_to``).
     free : (str, str)
         ``(p1, p2)``.
-    direction, bounds, targets, events, monitor, scales, options, throw
-        As for :func:`locus` (for a fold, :func:`~._foldcurve.fold_curve`, whose default
-        options detect no branch points).
+    direction, bounds, targets, events, monitor, scales, options, throw : optional
+        As for :func:`locus` (for a fold, :func:`~cusp.continuation.fold_curve`, whose
+        default options detect no branch points).
+
+    Returns
+    -------
+    Branch
+        The locus in ``(p1, p2)`` and the unknowns.
 
     Other Parameters
     ----------------
     rtol, ds, ds_min, ds_max, max_steps, tol, step_tol, max_step_solves, \
 max_newton_iterations, target_newton_iterations, max_angle, target_angle, \
 target_contraction, target_distance, curve_tol, growth, predictor, state_weight, \
-detect_folds, detect_branch_points, locate_tol, max_locate_iterations
+detect_folds, detect_branch_points, locate_tol, max_locate_iterations : optional
         The field of the same name of ``options``, overridden.
 
-    Returns
-    -------
-    Branch
+    Raises
+    ------
+    ProblemDefinitionError
+        ``point`` not a fold, target or bound hit of a branch, or ``p2`` not a parameter.
+    ContinuationError
+        A failure of the continuation (with ``throw=True``).
     """
     if not isinstance(point, SpecialPoint):
         raise ProblemDefinitionError(f"point must be a SpecialPoint of a branch, got {point!r}")

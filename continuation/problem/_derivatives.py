@@ -197,10 +197,18 @@ def extrapolated(differenced: Callable[[float], Any]) -> Any:
 
 @dataclass(frozen=True)
 class JacobianCheck:
-    """Result of :func:`check_jacobian`.
+    """Result of :func:`check_jacobian`; true when the derivatives agree.
 
-    ``ok`` is True when every entry agrees with central differences within the tolerance;
-    ``worst`` lists (row, column name, supplied, finite-difference) for the worst entries.
+    Parameters
+    ----------
+    ok : bool
+        True when every entry agrees with central differences within the tolerance.
+    max_error : float
+        The largest scaled error (an entry fails above 1).
+    worst : list of tuple of (int, str, float, float), optional
+        ``(row, column name, supplied, finite-difference)`` for the worst failing entries.
+    message : str, optional
+        The same in words (``str(check)``).
     """
 
     ok: bool
@@ -222,6 +230,32 @@ def check_jacobian(
 
     The error of an entry is ``|supplied − fd| / (atol + rtol·max(|fd|, scale))`` with
     ``scale`` the largest magnitude in the column; an entry fails when that exceeds 1.
+
+    Parameters
+    ----------
+    problem : Problem or ContinuationProblem
+        The problem whose ``jacobian`` and ``param_jacobian`` are checked.
+    u : array_like, shape (n,)
+        The unknowns at which to compare.
+    p : mapping of str to float, optional
+        The parameter values (default: ``problem.params``).
+    rtol, atol : float, optional
+        The relative and absolute tolerances of the comparison.
+    show : int, optional
+        At most this many failing entries are listed in ``worst``.
+
+    Returns
+    -------
+    JacobianCheck
+        Whether they agree, the largest error and the worst entries.
+
+    Examples
+    --------
+    >>> from cusp.continuation import Problem, check_jacobian
+    >>> prob = Problem(lambda u, p: [u[0] ** 2 - p["a"]], ["x"], {"a": 2.0},
+    ...                jacobian=lambda u, p: [[3.0 * u[0]]])  # wrong: 2x
+    >>> bool(check_jacobian(prob, [1.0]))
+    False
     """
     u = np.asarray(u, dtype=float)
     p = dict(problem.params if p is None else p)

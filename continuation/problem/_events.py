@@ -14,8 +14,21 @@ from .._errors import ProblemDefinitionError
 class Event:
     """A zero of ``function(u, p)`` to locate and insert into the branch.
 
-    ``direction``: +1 only upward crossings, −1 only downward, 0 both. ``terminal``: the
-    branch ends at the located point.
+    Parameters
+    ----------
+    function : callable
+        ``function(u, p) -> float`` of the unknowns (shape ``(n,)``) and the parameters.
+    direction : {0, 1, -1}, optional
+        +1 only upward crossings, −1 only downward, 0 both (default).
+    label : str, optional
+        The label of the located special points (default ``"event"``).
+    terminal : bool, optional
+        Whether the branch ends at the located point.
+
+    Raises
+    ------
+    ProblemDefinitionError
+        ``function`` not callable, or another ``direction``.
     """
 
     function: Callable[[np.ndarray, Mapping[str, float]], float]

@@ -23,16 +23,67 @@ class ContinuationProblem(Protocol):
     """
 
     @property
-    def unknowns(self) -> tuple[str, ...]: ...
+    def unknowns(self) -> tuple[str, ...]:
+        """The names of the unknowns, in the order of ``u`` (length ``n``)."""
+        ...
 
     @property
-    def params(self) -> Mapping[str, float]: ...
+    def params(self) -> Mapping[str, float]:
+        """Every parameter name and its value."""
+        ...
 
-    def residual(self, u: np.ndarray, p: Mapping[str, float]) -> np.ndarray: ...
+    def residual(self, u: np.ndarray, p: Mapping[str, float]) -> np.ndarray:
+        """Evaluate the residual ``R(u, p)``.
 
-    def jacobian(self, u: np.ndarray, p: Mapping[str, float]) -> Any: ...
+        Parameters
+        ----------
+        u : numpy.ndarray, shape (n,)
+            The unknowns.
+        p : mapping of str to float
+            Every parameter's value.
 
-    def param_jacobian(self, u: np.ndarray, p: Mapping[str, float], name: str) -> np.ndarray: ...
+        Returns
+        -------
+        numpy.ndarray, shape (n,)
+            ``R(u, p)``.
+        """
+        ...
+
+    def jacobian(self, u: np.ndarray, p: Mapping[str, float]) -> Any:
+        """Evaluate the Jacobian ``∂R/∂u``.
+
+        Parameters
+        ----------
+        u : numpy.ndarray, shape (n,)
+            The unknowns.
+        p : mapping of str to float
+            Every parameter's value.
+
+        Returns
+        -------
+        numpy.ndarray or scipy.sparse matrix, shape (n, n)
+            ``∂R/∂u`` at ``(u, p)``.
+        """
+        ...
+
+    def param_jacobian(self, u: np.ndarray, p: Mapping[str, float], name: str) -> np.ndarray:
+        """Evaluate the derivative ``∂R/∂p[name]``.
+
+        Parameters
+        ----------
+        u : numpy.ndarray, shape (n,)
+            The unknowns.
+        p : mapping of str to float
+            Every parameter's value.
+        name : str
+            The parameter differentiated against.
+
+        Returns
+        -------
+        numpy.ndarray, shape (n,)
+            ``∂R/∂p[name]`` at ``(u, p)``.
+        """
+        ...
 
 
 class Problem:
@@ -40,32 +91,45 @@ class Problem:
 
     Parameters
     ----------
-    residual:
-        ``residual(u, p) -> array of n``; ``u`` is a float array (complex under the
-        ``"complex"`` strategy), ``p`` maps every parameter name to its value.
-    unknowns:
-        names of the unknowns, in the order of ``u``.
-    params:
-        parameter names and their values (the free parameter is chosen per computation).
-
-    Other parameters
-    ----------------
-    jacobian:
-        optional ``jacobian(u, p)`` returning the ``n × n`` matrix ``∂R/∂u``, dense or
+    residual : callable
+        ``residual(u, p) -> array of n``; ``u`` is a float array of shape ``(n,)`` (complex
+        under the ``"complex"`` strategy), ``p`` maps every parameter name to its value.
+    unknowns : sequence of str, or str
+        Names of the unknowns, in the order of ``u`` (one name may be given alone).
+    params : mapping of str to float
+        Parameter names and their (finite) values; the free parameter is chosen per
+        computation.
+    jacobian : callable, optional
+        ``jacobian(u, p)`` returning the ``n × n`` matrix ``∂R/∂u``, dense or
         ``scipy.sparse``.
-    param_jacobian:
-        optional ``param_jacobian(u, p, name)`` returning ``∂R/∂p[name]`` (length ``n``).
-    derivatives:
-        fallback for what is not supplied: ``"central"`` (default), ``"forward"`` or
-        ``"complex"`` (complex step; the residual must accept complex input).
-    sparsity:
-        the nonzero pattern of ``∂R/∂u`` (any sparse or dense matrix): finite differences then
-        use column grouping and return sparse Jacobians.
-    mass:
-        declares the residual a vector field, ``M u' = R(u, p)``: ``True`` for ``M = I``, or
+    param_jacobian : callable, optional
+        ``param_jacobian(u, p, name)`` returning ``∂R/∂p[name]``, shape ``(n,)``.
+    derivatives : {"central", "forward", "complex"}, optional
+        Fallback for what is not supplied: central (default) or forward differences, or
+        the complex step (the residual must accept complex input).
+    sparsity : array_like or scipy.sparse matrix, shape (n, n), optional
+        The nonzero pattern of ``∂R/∂u``: finite differences then use column grouping and
+        return sparse Jacobians.
+    name : str, optional
+        A label shown by ``repr`` and in messages.
+    mass : bool or array_like or scipy.sparse matrix, shape (n, n), optional
+        Declares the residual a vector field, ``M u' = R(u, p)``: ``True`` for ``M = I``, or
         the constant ``n × n`` mass matrix (dense or sparse; singular for algebraic
         equations). Only stability and Hopf points use it (``trace(..., stability=True)``);
         None (default): ``R`` is not a vector field, and stability is refused.
+
+    Raises
+    ------
+    ProblemDefinitionError
+        A malformed argument: ``residual`` or a derivative not callable, empty or repeated
+        unknowns, a non-finite parameter, an unknown ``derivatives`` strategy, a
+        ``sparsity`` or ``mass`` of the wrong shape (the message names it).
+
+    Examples
+    --------
+    >>> prob = Problem(lambda u, p: [u[0] ** 2 - p["a"]], ["x"], {"a": 4.0})
+    >>> prob.residual([3.0], prob.params).tolist()
+    [5.0]
     """
 
     def __init__(
@@ -112,10 +176,12 @@ class Problem:
 
     @property
     def n(self) -> int:
+        """The number of unknowns (and of equations)."""
         return len(self.unknowns)
 
     @property
     def has_jacobian(self) -> bool:
+        """Whether ``∂R/∂u`` is the user's own function."""
         return self._jacobian is not None
 
     @property
@@ -141,7 +207,23 @@ class Problem:
         return f"<Problem{label}: unknowns={shown}, params={self.params}>"
 
     def with_params(self, **values: float) -> Problem:
-        """A copy with some parameter values changed."""
+        """Return a copy with some parameter values changed.
+
+        Parameters
+        ----------
+        **values : float
+            New values of existing parameters, by name.
+
+        Returns
+        -------
+        Problem
+            The copy (this problem is left as it is).
+
+        Raises
+        ------
+        ProblemDefinitionError
+            A name that is not a parameter of the problem.
+        """
         unknown = set(values) - set(self.params)
         if unknown:
             raise ProblemDefinitionError(
@@ -155,10 +237,24 @@ class Problem:
     def with_scales(
         self, unknowns: np.ndarray | None, params: Mapping[str, float] | None = None
     ) -> Problem:
-        """A copy whose finite differences step relative to these scales (typical sizes) of
-        the unknowns (an array) and parameters (by name) — ``h = rel·max(scale, |x|)`` instead
-        of ``rel·max(1, |x|)`` — so that badly scaled variables are differenced accurately.
-        The tracer sets them from the branch's own scales."""
+        """Return a copy whose finite differences step relative to typical sizes.
+
+        The step is ``h = rel·max(scale, |x|)`` instead of ``rel·max(1, |x|)``, so that badly
+        scaled variables are differenced accurately. The tracer sets the scales from the
+        branch's own.
+
+        Parameters
+        ----------
+        unknowns : numpy.ndarray, shape (n,), or None
+            Typical sizes of the unknowns (None: 1).
+        params : mapping of str to float, optional
+            Typical sizes of parameters, by name (1 for those not given).
+
+        Returns
+        -------
+        Problem
+            The copy (this problem is left as it is).
+        """
         new = object.__new__(Problem)
         new.__dict__.update(self.__dict__)
         new._scales_u = 1.0 if unknowns is None else np.asarray(unknowns, dtype=float)
@@ -166,10 +262,18 @@ class Problem:
         return new
 
     def callbacks(self) -> tuple[Callable, Callable, Callable]:
-        """``(residual, jacobian, param_jacobian)`` for inner loops: the user's own functions
-        where given (results as returned: pass them through :func:`as_vector` and
-        :func:`as_matrix`), the finite-difference methods for derivatives not given. Saves a
-        call layer per evaluation (a third of the cost of a tiny system)."""
+        """Return ``(residual, jacobian, param_jacobian)`` for inner loops.
+
+        These are the user's own functions where given (results as returned: pass them
+        through :func:`as_vector` and :func:`as_matrix`), the finite-difference methods for
+        derivatives not given. Saves a call layer per evaluation (a third of the cost of a
+        tiny system).
+
+        Returns
+        -------
+        tuple of callable
+            ``(residual, jacobian, param_jacobian)``.
+        """
         return (
             self._residual,
             self.jacobian if self._jacobian is None else self._jacobian,
@@ -177,9 +281,47 @@ class Problem:
         )
 
     def residual(self, u, p):
+        """Evaluate the residual ``R(u, p)``, checked to be real.
+
+        Parameters
+        ----------
+        u : array_like, shape (n,)
+            The unknowns.
+        p : mapping of str to float
+            Every parameter's value.
+
+        Returns
+        -------
+        numpy.ndarray, shape (n,)
+            ``R(u, p)`` as floats.
+
+        Raises
+        ------
+        ProblemDefinitionError
+            A complex or malformed result (the message names the point).
+        """
         return as_vector(self._residual(u, p), "the residual", lambda: _point(self, u, p))
 
     def jacobian(self, u, p):
+        """Evaluate ``∂R/∂u``: the user's function, or finite differences / complex step.
+
+        Parameters
+        ----------
+        u : array_like, shape (n,)
+            The unknowns.
+        p : mapping of str to float
+            Every parameter's value.
+
+        Returns
+        -------
+        numpy.ndarray or scipy.sparse matrix, shape (n, n)
+            ``∂R/∂u`` at ``(u, p)`` (sparse when ``sparsity`` was given).
+
+        Raises
+        ------
+        ProblemDefinitionError
+            A complex or malformed result (the message names the point).
+        """
         if self._jacobian is not None:
             return as_matrix(self._jacobian(u, p), "the jacobian", lambda: _point(self, u, p))
         return fd_jacobian(
@@ -193,6 +335,27 @@ class Problem:
         )
 
     def param_jacobian(self, u, p, name):
+        """Evaluate ``∂R/∂p[name]``: the user's function, or a finite difference.
+
+        Parameters
+        ----------
+        u : array_like, shape (n,)
+            The unknowns.
+        p : mapping of str to float
+            Every parameter's value.
+        name : str
+            The parameter differentiated against.
+
+        Returns
+        -------
+        numpy.ndarray, shape (n,)
+            ``∂R/∂p[name]`` at ``(u, p)``.
+
+        Raises
+        ------
+        ProblemDefinitionError
+            A complex or malformed result (the message names the point).
+        """
         if self._param_jacobian is not None:
             return as_vector(
                 self._param_jacobian(u, p, name),

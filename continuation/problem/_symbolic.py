@@ -33,14 +33,39 @@ def from_sympy(
     sparse: bool = False,
     name: str | None = None,
 ) -> Problem:
-    """A problem whose residual, Jacobian and parameter derivatives are lambdified from
-    sympy expressions (derivatives exact, differentiated symbolically).
+    """Build a problem whose residual and derivatives are lambdified from sympy.
 
-    ``unknowns`` are sympy symbols (or names); ``params`` maps symbols (or names) to values.
+    The Jacobian and parameter derivatives are exact, differentiated symbolically.
     A residual may be a string, parsed without ``eval`` by :func:`parse_expression` (the
     declared names, numbers, arithmetic and the functions of :data:`FUNCTIONS`; nothing
     else).
 
+    Parameters
+    ----------
+    residuals : sequence of sympy.Expr or str
+        One expression per unknown.
+    unknowns : sequence of sympy.Symbol or str
+        The unknowns (symbols, or their names).
+    params : mapping of sympy.Symbol or str to float
+        Every parameter and its value.
+    sparse : bool, optional
+        Whether the Jacobian is returned as a ``scipy.sparse`` matrix.
+    name : str, optional
+        The problem's label.
+
+    Returns
+    -------
+    Problem
+        The problem, with ``jacobian`` and ``param_jacobian`` of its own.
+
+    Raises
+    ------
+    ProblemDefinitionError
+        A string that does not parse, a name not declared, or a count of residuals other
+        than of unknowns.
+
+    Examples
+    --------
     >>> import sympy as sp
     >>> x, a, b = sp.symbols("x a b")
     >>> prob = from_sympy([x**3 - a*x - b], [x], {a: 1.0, b: -1.0})

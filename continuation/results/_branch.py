@@ -14,17 +14,40 @@ from .._outcomes import Kind, PointStatus, Status
 class SpecialPoint:
     """A located point of interest on a branch.
 
-    ``kind`` (a :class:`~.._outcomes.Kind`, equal to its string, or a test function's own
-    kind): ``"fold"`` (a turning point with respect to ``with_respect_to``),
-    ``"branch_point"``, ``"cusp"``, ``"codim2"``, ``"event"``, ``"target"`` or
-    ``"endpoint"``; with stability (``trace(..., stability=True)``) also ``"hopf"``, and on
-    Hopf and fold curves ``"bautin"``, ``"bogdanov_takens"`` and ``"zero_hopf"``.
-    ``index``: its row in the branch arrays. ``values``: every unknown and
-    parameter. ``status`` (a :class:`~.._outcomes.PointStatus`): ``"converged"`` (located
-    to tolerance) or ``"guess"`` (only bracketed: the ``interval`` of arclength holds it).
-    ``details``: kind-specific data (test-function values, null vectors, Newton iterations,
-    ...). ``scales``: the typical sizes of the components of the branch it lies on (a
-    branch or fold curve started from it uses them).
+    Records are made by the tracer (read them from :meth:`Branch.special`); the fields are
+    its attributes.
+
+    Parameters
+    ----------
+    kind : str
+        A :class:`~.._outcomes.Kind` (equal to its string) or a test function's own kind:
+        ``"fold"`` (a turning point with respect to ``with_respect_to``),
+        ``"branch_point"``, ``"cusp"``, ``"codim2"``, ``"event"``, ``"target"`` or
+        ``"endpoint"``; with stability (``trace(..., stability=True)``) also ``"hopf"``,
+        and on Hopf and fold curves ``"bautin"``, ``"bogdanov_takens"`` and
+        ``"zero_hopf"``.
+    index : int
+        Its row in the branch arrays.
+    values : dict of str to float
+        Every unknown and parameter at the point.
+    tangent : numpy.ndarray, shape (n + 1,)
+        The unit tangent of the curve there, in the order of ``Branch.variables``.
+    status : PointStatus or str, optional
+        ``"converged"`` (located to tolerance, the default) or ``"guess"`` (only
+        bracketed: the ``interval`` of arclength holds it).
+    label : str, optional
+        The event's or target's label ("" if none).
+    with_respect_to : str or None, optional
+        For a fold: the component it turns in (the free parameter or a monitored unknown).
+    s : float, optional
+        Its pseudo-arclength on the branch (NaN if not known).
+    interval : tuple of (float, float) or None, optional
+        For a guess: the arclength interval that brackets the point.
+    details : dict, optional
+        Kind-specific data (test-function values, null vectors, Newton iterations, ...).
+    scales : dict of str to float or None, optional
+        The typical sizes of the components of the branch it lies on (a branch or fold
+        curve started from it uses them).
     """
 
     kind: str
@@ -49,18 +72,42 @@ class SpecialPoint:
 class Branch:
     """A traced curve: ``branch[name]`` is the array of an unknown or parameter along it.
 
-    Attributes: ``s`` (arclength), ``tangents`` (rows, in the order of ``variables``),
-    ``special_points``, ``status`` (a :class:`~.._outcomes.Status`, equal to its string:
-    ``"bound"``, ``"max_steps"``, ``"terminal_event"``, ``"convergence_failure"``,
-    ``"nonfinite_residual"``, ...), ``success``,
-    ``message`` (a sentence), ``stats`` (per-point arrays ``newton_iterations``,
-    ``rejected_steps``, ``residual_norm``, ``ds``; a point inserted inside a step, such as a
-    located fold, has ``ds = 0`` and the locating method's iterations), ``variables`` (the
-    names of the traced components, i.e. the unknowns and the free parameter(s)),
-    ``kinds`` (the kinds of special point the curve's test functions report: with every
-    :class:`~.._outcomes.Kind` and the kinds on the branch, what :meth:`special` accepts),
-    ``eigenvalues`` (traced with ``stability=True``: per row, the computed eigenvalues of
-    the equilibrium by decreasing real part, and the column ``"n_unstable"``; else None).
+    Branches are made by the entry points (:func:`~cusp.continuation.trace`,
+    :func:`~cusp.continuation.fold_curve`, ...); the constructor's arguments are kept as
+    attributes of the same names. ``len(branch)`` is the number of points ``m``.
+
+    Parameters
+    ----------
+    columns : dict of str to numpy.ndarray, each shape (m,)
+        Every unknown and parameter (and derived columns such as ``"n_unstable"``) along
+        the curve, read as ``branch[name]``.
+    variables : tuple of str
+        The names of the traced components: the unknowns and the free parameter(s).
+    s : numpy.ndarray, shape (m,)
+        The pseudo-arclength of each point.
+    tangents : numpy.ndarray, shape (m, len(variables))
+        The unit tangent at each point, in the order of ``variables``.
+    special_points : list of SpecialPoint
+        The located points, in branch order.
+    status : Status or str
+        How the curve ended (a :class:`~.._outcomes.Status`, equal to its string):
+        ``"bound"``, ``"max_steps"``, ``"terminal_event"``, ``"convergence_failure"``,
+        ``"nonfinite_residual"``, ...
+    message : str
+        The same, as a sentence.
+    stats : dict of str to numpy.ndarray, each shape (m,)
+        Per-point ``newton_iterations``, ``rejected_steps``, ``residual_norm``, ``ds``
+        (a point inserted inside a step, such as a located fold, has ``ds = 0`` and the
+        locating method's iterations), ``interpolation_error``.
+    info : dict, optional
+        Entry-point specific data (e.g. ``direction``, ``start_index``).
+    kinds : frozenset of str, optional
+        The kinds of special point the curve's test functions report: with every
+        :class:`~.._outcomes.Kind` and the kinds on the branch, what :meth:`special`
+        accepts.
+    eigenvalues : list of numpy.ndarray or None, optional
+        Traced with ``stability=True``: per row, the computed eigenvalues of the
+        equilibrium by decreasing real part (with the column ``"n_unstable"``); else None.
     """
 
     def __init__(
@@ -92,8 +139,10 @@ class Branch:
 
     @property
     def success(self) -> bool:
-        """Whether the branch ended normally: a bound or a terminal event (``"max_steps"``
-        is no success: the branch stopped short of its bounds)."""
+        """Whether the branch ended normally: at a bound or a terminal event.
+
+        ``"max_steps"`` is no success: the branch stopped short of its bounds.
+        """
         return self.status.success
 
     def __getitem__(self, name: str) -> np.ndarray:
@@ -111,10 +160,28 @@ class Branch:
         return self.s.size
 
     def keys(self):
+        """Return the names of the columns, as ``dict.keys()``.
+
+        Returns
+        -------
+        collections.abc.KeysView of str
+            Every name ``branch[name]`` accepts.
+        """
         return self._columns.keys()
 
     def point(self, i: int) -> dict[str, float]:
-        """All values at row ``i``."""
+        """Return all values at row ``i``.
+
+        Parameters
+        ----------
+        i : int
+            The row (negative counts from the end).
+
+        Returns
+        -------
+        dict of str to float
+            Every column's value at that row.
+        """
         return {k: float(v[i]) for k, v in self._columns.items()}
 
     def special(
@@ -125,12 +192,33 @@ class Branch:
         label: str | None = None,
         status: str | None = None,
     ) -> list[SpecialPoint]:
-        """The special points of ``kind`` (None: all), in branch order; ``with_respect_to``,
-        ``label`` and ``status`` filter further.
+        """Return the special points of ``kind`` (None: all), in branch order.
 
-        A ``kind`` that is no :class:`~.._outcomes.Kind` and that no test function of this
-        branch reports (a typo: ``"folds"``) raises ``ValueError`` naming the kinds.
+        Parameters
+        ----------
+        kind : str, optional
+            ``"fold"``, ``"branch_point"``, ``"hopf"``, ... (any of :attr:`kinds`); None
+            selects every kind.
+        with_respect_to : str, optional
+            Only folds in this component.
+        label : str, optional
+            Only events or targets with this label.
+        status : {"converged", "guess"}, optional
+            Only points of this status.
 
+        Returns
+        -------
+        list of SpecialPoint
+            The matching points, in branch order.
+
+        Raises
+        ------
+        ValueError
+            A ``kind`` that is no :class:`~.._outcomes.Kind` and that no test function of
+            this branch reports (a typo: ``"folds"``); the message names the kinds.
+
+        Examples
+        --------
         >>> from cusp.continuation import Problem, trace
         >>> prob = Problem(lambda u, p: [u[0]**2 - p["p"]], ["x"], {"p": 1.0})
         >>> br = trace(prob, [1.0], free="p", bounds={"p": (-1.0, 2.0)}, direction=-1)
@@ -162,14 +250,32 @@ class Branch:
         return f"<Branch {len(self)} points, status={status!r}, special points {kinds}>"
 
     def interpolate(self, s) -> dict[str, np.ndarray]:
-        """Dense output: the branch at pseudo-arclengths ``s`` (within ``self.s``), by the
-        solver's interpolant, without Newton: the cubic Hermite arcs between its points,
-        which the step control kept within ``rtol`` of the curve (weighted norm, relative
-        to the typical sizes; ``stats["interpolation_error"]`` holds each step's measured
-        error). Returns ``{column: array}``. Raises
-        :class:`~cusp.continuation.AccuracyError` on a segment whose arc is not within
-        ``rtol`` (then use :func:`~cusp.continuation.points_at`, which runs Newton).
+        """Evaluate the branch at pseudo-arclengths ``s`` by the solver's interpolant.
 
+        Dense output without Newton: the cubic Hermite arcs between the points, which the
+        step control kept within ``rtol`` of the curve (weighted norm, relative to the
+        typical sizes; ``stats["interpolation_error"]`` holds each step's measured error).
+
+        Parameters
+        ----------
+        s : array_like, shape (k,)
+            Pseudo-arclengths within ``[self.s[0], self.s[-1]]``.
+
+        Returns
+        -------
+        dict of str to numpy.ndarray, each shape (k,)
+            Every traced component at each ``s``.
+
+        Raises
+        ------
+        AccuracyError
+            A segment whose arc is not within ``rtol`` (then use
+            :func:`~cusp.continuation.points_at`, which runs Newton).
+        ProblemDefinitionError
+            An ``s`` outside the branch or not finite.
+
+        Examples
+        --------
         >>> from cusp.continuation import Problem, trace
         >>> prob = Problem(lambda u, p: [u[0]**2 + p["b"]**2 - 1], ["x"], {"b": 0.0})
         >>> br = trace(prob, [1.0], free="b", bounds={"b": (-0.5, 0.5)}, rtol=1e-8)
@@ -182,20 +288,54 @@ class Branch:
         return interpolate(self, s)
 
     def interpolate_at(self, name: str, values) -> dict[str, np.ndarray]:
-        """Dense output where component ``name`` takes each of ``values`` (the first
-        crossing in branch order): the interpolant of :meth:`interpolate`, solved for the
-        value on its segment (no Newton on the problem)."""
+        """Evaluate the branch where component ``name`` takes each of ``values``.
+
+        The interpolant of :meth:`interpolate`, solved for the value on the segment of its
+        first crossing in branch order (no Newton on the problem).
+
+        Parameters
+        ----------
+        name : str
+            A traced component (one of :attr:`variables`).
+        values : array_like, shape (k,)
+            The values wanted, each reached on the branch.
+
+        Returns
+        -------
+        dict of str to numpy.ndarray, each shape (k,)
+            Every traced component at each crossing (``name``'s column is ``values``).
+
+        Raises
+        ------
+        AccuracyError
+            The crossing lies on a segment whose arc is not within ``rtol``.
+        ProblemDefinitionError
+            ``name`` is not traced, a value is not finite or is not reached.
+        """
         from ._dense import interpolate_at
 
         return interpolate_at(self, name, values)
 
     def save(self, path) -> Any:
-        """Save the branch to one ``.npz`` file at ``path`` (atomically: a temporary file
-        beside it, then moved over it), readable by numpy alone
-        (``np.load(path, allow_pickle=False)``: its arrays, and ``"metadata.json"`` with
-        the rest); :func:`~cusp.continuation.load` reads it back bit for bit. Returns the
-        path (a :class:`pathlib.Path`). See docs/continuation.md, "Saving, loading and
-        resuming".
+        """Save the branch to one ``.npz`` file, atomically, readable by numpy alone.
+
+        A temporary file beside ``path`` is written, then moved over it; numpy reads it
+        alone (``np.load(path, allow_pickle=False)``: the arrays, and ``"metadata.json"``
+        with the rest), and :func:`~cusp.continuation.load` reads it back bit for bit
+        (docs/continuation.md, "Saving, loading and resuming").
+
+        Parameters
+        ----------
+        path : str or os.PathLike
+            The file to write (replaced atomically if it exists).
+
+        Returns
+        -------
+        pathlib.Path
+            The path written.
+
+        Examples
+        --------
 
         >>> import tempfile, pathlib
         >>> from cusp.continuation import Problem, load, trace
@@ -211,17 +351,44 @@ class Branch:
         return save_branch(self, path)
 
     def to_pandas(self) -> Any:
-        """The branch as a :class:`pandas.DataFrame`: one row a point; its columns, ``s``,
-        the statistics (``stats.ds``, ...) and ``special`` (the kinds of special point at
-        the row, comma-separated). Needs pandas (``pip install 'cusp[pandas]'``)."""
+        """The branch as a :class:`pandas.DataFrame`, one row a point.
+
+        Needs pandas (``pip install 'cusp[pandas]'``).
+
+        Returns
+        -------
+        pandas.DataFrame
+            The columns, ``s``, the statistics (``stats.ds``, ...) and ``special`` (the
+            kinds of special point at the row, comma-separated).
+        """
         from ._persist import to_pandas
 
         return to_pandas(self)
 
     def plot(self, x: str, y: str, ax=None, *, special: bool = True, points: bool = True, **kwargs):
-        """Plot column ``y`` against ``x`` along the dense output (:meth:`interpolate`; the
-        chords where there is none), the rows marked as dots (``points``) and the special
-        points by kind (matplotlib imported lazily); returns the Axes."""
+        """Plot column ``y`` against ``x`` along the dense output, the special points marked.
+
+        The curve follows the dense output (:meth:`interpolate`; chords where there is none);
+        matplotlib is imported when first used.
+
+        Parameters
+        ----------
+        x, y : str
+            The columns on the horizontal and vertical axes.
+        ax : matplotlib.axes.Axes, optional
+            Where to draw (default: a new figure's axes).
+        special : bool, optional
+            Whether to mark the special points by kind (default True).
+        points : bool, optional
+            Whether to mark the rows as dots (default True).
+        **kwargs
+            Passed to :meth:`matplotlib.axes.Axes.plot` for the curve.
+
+        Returns
+        -------
+        matplotlib.axes.Axes
+            The axes drawn on.
+        """
         from ._plotting import plot_branch
 
         return plot_branch(self, x, y, ax=ax, special=special, points=points, **kwargs)

@@ -37,22 +37,28 @@ def points_at(
 ) -> dict[str, np.ndarray]:
     """The points of ``branch`` where component ``name`` takes each of ``values``.
 
+    Each point is corrected by Newton from the branch's interpolant (unlike
+    :meth:`Branch.interpolate_at`, which does not run Newton).
+
     Parameters
     ----------
-    problem:
-        the problem the branch was traced from (with the same parameter values).
-    branch:
-        a branch from :func:`~cusp.continuation.trace` (one free parameter).
-    name:
-        an unknown or the free parameter of the branch.
-    values:
-        where to put the points; each must lie within the range the branch covers. When the
-        component is not monotone along the branch the first crossing (in branch order) is
-        used.
+    problem : Problem or ContinuationProblem
+        The problem the branch was traced from (with the same parameter values).
+    branch : Branch
+        A branch from :func:`~cusp.continuation.trace` (one free parameter).
+    name : str
+        An unknown or the free parameter of the branch.
+    values : array_like, shape (k,)
+        Where to put the points; each must lie within the range the branch covers. When
+        the component is not monotone along the branch the first crossing (in branch
+        order) is used.
+    options : ContinuationOptions, optional
+        The Newton settings (default: ``ContinuationOptions()``).
 
     Returns
     -------
-    ``{column: array}`` for every unknown and parameter, one entry per value.
+    dict of str to numpy.ndarray, each shape (k,)
+        Every unknown and parameter, one entry per value.
 
     Raises
     ------

@@ -10,6 +10,7 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from .._errors import NonFiniteResidualError, ProblemDefinitionError, SingularMatrixError
 from .._outcomes import Kind, PointStatus
@@ -249,4 +250,20 @@ def scales_by_motion(
     return system, t0, not np.array_equal(system.scales, provisional) and rounds > 0
 
 
-__all__ = ["Beginning", "StartAt", "scales_by_motion", "start_state"]
+def as_array(x: ArrayLike | None) -> np.ndarray | None:
+    """``x`` as a float array, None kept."""
+    return None if x is None else np.asarray(x, dtype=float)
+
+
+def by_index(system: CurveSystem, scales: Mapping[str, float] | None) -> dict[int, float]:
+    """Scales by name (of a curve a start lies on) as ``{component index: scale}``, for the
+    components of ``system`` they name."""
+    out = {}
+    for name, size in (scales or {}).items():
+        k = system.index(name)
+        if k is not None and math.isfinite(size) and size > 0.0:
+            out[k] = float(size)
+    return out
+
+
+__all__ = ["Beginning", "StartAt", "as_array", "by_index", "scales_by_motion", "start_state"]

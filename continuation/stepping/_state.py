@@ -81,11 +81,32 @@ class Point:
 
 @dataclass(slots=True, eq=False)
 class TracerState:
-    """Immutable solver state (built by keyword, :meth:`of`; never changed after it is
-    made): the last point (with the branch behind it), the curve system valid beyond it
-    (augmented systems carry their bordering vectors here), the next step size, the test
-    functions' values at the last point, the step count and, once finished, the status and
-    message."""
+    """Immutable solver state of a :class:`~cusp.continuation.Tracer`.
+
+    Built by keyword (:meth:`of`) and never changed after it is made.
+
+    Parameters
+    ----------
+    last : Point
+        The last point, with the branch behind it (linked rows).
+    system : CurveSystem
+        The curve system valid beyond it (augmented systems carry their bordering vectors
+        here).
+    ds : float
+        The next step size.
+    test_values : tuple
+        The value of each of the tracer's test functions at ``last`` (None: not yet known).
+    steps : int
+        The accepted steps so far.
+    status : Status or None, optional
+        How the curve ended (None while it goes on).
+    message : str, optional
+        The same, as a sentence.
+    n_points : int, optional
+        The number of points of the branch so far.
+    stalled : int, optional
+        Consecutive steps taken with ``ds`` near ``ds_min``.
+    """
 
     last: Point
     system: CurveSystem
@@ -113,8 +134,38 @@ class TracerState:
         n_points: int = 1,
         stalled: int = 0,
     ) -> TracerState:
-        """Built by keyword, fast: a class called with keywords first gathers them in a
-        dict (three times the cost of this call, on every step)."""
+        """Build a state by keyword, fast.
+
+        A class called with keywords first gathers them in a dict (three times the cost of
+        this call, on every step).
+
+        Parameters
+        ----------
+        last : Point
+            The last point, with the branch behind it (linked rows).
+        system : CurveSystem
+            The curve system valid beyond it (augmented systems carry their bordering vectors
+            here).
+        ds : float
+            The next step size.
+        test_values : tuple
+            The value of each of the tracer's test functions at ``last`` (None: not yet known).
+        steps : int
+            The accepted steps so far.
+        status : Status or None, optional
+            How the curve ended (None while it goes on).
+        message : str, optional
+            The same, as a sentence.
+        n_points : int, optional
+            The number of points of the branch so far.
+        stalled : int, optional
+            Consecutive steps taken with ``ds`` near ``ds_min``.
+
+        Returns
+        -------
+        TracerState
+            The new state.
+        """
         self = object.__new__(cls)
         self.last, self.system, self.ds, self.test_values = last, system, ds, test_values
         self.steps, self.status, self.message = steps, status, message
@@ -122,7 +173,18 @@ class TracerState:
         return self
 
     def replaced(self, **changes: Any) -> TracerState:
-        """A copy with the fields given by keyword changed (this state is left as it is)."""
+        """Return a copy with the fields given by keyword changed.
+
+        Parameters
+        ----------
+        **changes
+            New values of fields, by name.
+
+        Returns
+        -------
+        TracerState
+            The copy (this state is left as it is).
+        """
         fields = {name: getattr(self, name) for name in self.__slots__}
         fields.update(changes)
         return TracerState.of(**fields)

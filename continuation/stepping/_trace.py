@@ -67,8 +67,11 @@ def trace(
     locate_tol: float | Keep = KEEP,
     max_locate_iterations: int | Keep = KEEP,
 ) -> Branch:
-    """Trace the branch of ``problem`` through ``u0`` with ``free`` as the continuation
-    parameter.
+    """Trace the branch of ``problem`` through ``u0`` with ``free`` as the parameter.
+
+    The branch is a curve of solutions of ``R(u, p) = 0`` followed by pseudo-arclength
+    continuation in the unknowns and the free parameter, its folds, branch points, events
+    and targets located on the way.
 
     Parameters
     ----------
@@ -95,9 +98,9 @@ def trace(
         exactly on the bound it meets.
     targets : mapping of str to sequence of float, optional
         ``{name: [values]}``: points located exactly at these values and inserted.
-    events : sequence of Event
+    events : sequence of Event, optional
         Zeros of user functions located and inserted (terminal ones end the branch).
-    monitor : sequence of str
+    monitor : sequence of str, optional
         Unknowns whose turning points are reported as folds too (``with_respect_to`` names
         them): a snap-back is a turning point of a controlled displacement.
     scales : mapping of str to float, optional
@@ -107,9 +110,9 @@ def trace(
         its own direction).
     options : ContinuationOptions, optional
         The numerical settings (default: ``ContinuationOptions()``).
-    throw : bool
+    throw : bool, optional
         If False, a failure returns the partial branch with its status instead of raising.
-    stability : bool or StabilityOptions
+    stability : bool or StabilityOptions, optional
         For a problem declared a vector field (``Problem(..., mass=...)``): the eigenvalues
         of every point (``branch.eigenvalues``), the column ``"n_unstable"`` (the number
         with positive real part) and the Hopf points located (``"hopf"`` special points
@@ -126,19 +129,19 @@ def trace(
         trace that lasts over a second: steps taken, their rate, the free parameter. Nothing
         is shown when standard error is not a terminal.
 
+    Returns
+    -------
+    Branch
+        The traced curve: columns, arclength, tangents, special points, status.
+
     Other Parameters
     ----------------
     rtol, ds, ds_min, ds_max, max_steps, tol, step_tol, max_step_solves, \
 max_newton_iterations, target_newton_iterations, max_angle, target_angle, \
 target_contraction, target_distance, curve_tol, growth, predictor, state_weight, \
-detect_folds, detect_branch_points, locate_tol, max_locate_iterations
+detect_folds, detect_branch_points, locate_tol, max_locate_iterations : optional
         The field of the same name of ``options``, overridden for this computation
         (documented and validated by :class:`~cusp.continuation.ContinuationOptions`).
-
-    Returns
-    -------
-    Branch
-        The traced curve: columns, arclength, tangents, special points, status.
 
     Raises
     ------
@@ -190,9 +193,12 @@ def stability_options(stability: bool | StabilityOptions) -> StabilityOptions | 
 
 
 def run(tracer: Tracer, state: TracerState, watch: Watch | None = None) -> TracerState:
-    """Step ``tracer`` from ``state`` until the curve ends (numpy's floating-point warnings
-    silenced once for all the steps: see :meth:`Tracer.step`); ``watch``: checkpoints and
-    progress (None: none, and no cost per step)."""
+    """Step ``tracer`` from ``state`` until the curve ends.
+
+    numpy's floating-point warnings are silenced once for all the steps (see
+    :meth:`Tracer.step`); ``watch``: checkpoints and progress (None: none, and no cost per
+    step).
+    """
     if watch is not None:
         return watch.run(tracer, state)
     with np.errstate(all="ignore"):

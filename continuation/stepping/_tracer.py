@@ -1,44 +1,32 @@
-"""Pseudo-arclength continuation: the step-level API (:class:`Tracer`) and :func:`trace`.
+"""Pseudo-arclength continuation: the step-level API (:class:`Tracer`).
 
-A step has five phases:
+A step (docs/continuation.md) has five phases: 1. predict and correct (:func:`~._step.advance`:
+predictor, Newton corrector, the three guards of :func:`~._control.guard_factor`, a shorter
+step on rejection; the corner step and the step aimed at a bound are variants, :mod:`._advance`);
+2. accept and adapt (the curve system refreshed, :func:`~._control.next_step_size`);
+3. evaluate the test functions (:func:`~._crossings.evaluate`; a sign change of a test of the
+curve's geometry is confirmed by the half step, :func:`~._confirm.confirm_step`: one it does
+not reproduce was a jump, and the step is redone shorter; a fold is confirmed where it lies on
+the step's arc, :func:`~._confirm.located_on_arc`); 4. locate and insert the zeros inside the
+step (:func:`~._crossings.splits`, :func:`~._crossings.locate_crossings`), in arclength order;
+5. terminate (a bound, a terminal event, or ``max_steps`` with a
+:class:`~.._errors.MaxStepsWarning`: the branch is incomplete, not a success).
 
-1. **predict and correct** (:func:`~._step.advance`): tangent (or secant) predictor,
-   Newton corrector on the bordered system and the three guards (first contraction,
-   predictor-corrector distance, tangent turn; :func:`~._control.guard_factor`), a shorter
-   step on rejection; the corner step and the step aimed at a bound are variants of it
-   (:mod:`._advance`);
-2. **accept and adapt**: the curve system is refreshed at the new point (augmented systems
-   update their borders) and the next step size is set (:func:`~._control.next_step_size`);
-3. **evaluate** the test functions (the generic ones of the curve and those the tracer is
-   given) at the new point (:func:`~._crossings.evaluate`); when a test of the curve's
-   geometry changed sign the step is confirmed by its half step
-   (:func:`~._confirm.confirm_step`), and a sign change that the half step does not
-   reproduce was a jump: the step is redone shorter (a fold is located first, and the step
-   confirmed when the fold lies on the step's arc: :func:`~._confirm.located_on_arc`; the
-   half step decides otherwise);
-4. **locate and insert**: a sign change between the two ends of the step, or several zeros
-   of one test inside it (:func:`~._crossings.splits`), is located inside it
-   (:func:`~._crossings.locate_crossings`) and the located points are linked in, in
-   arclength order;
-5. **terminate**: a bound or a terminal event ends the branch (``max_steps`` too, with a
-   :class:`~.._errors.MaxStepsWarning`: the branch is incomplete, not a success).
-
-The solver state (:class:`~._state.TracerState`) is an immutable record replaced at every
-step; it holds the curve system valid at its last point, so stepping twice from the same
-state gives the same points, bit for bit.
+The solver state (:class:`~._state.TracerState`) is an immutable record replaced at every step;
+it holds the curve system valid at its last point: stepping twice from a state gives the same
+points, bit for bit.
 """
 
 from __future__ import annotations
 
 import logging
 import math
-import warnings
 from collections.abc import Mapping, Sequence
 
 import numpy as np
 from numpy.typing import ArrayLike
 
-from .._errors import MaxStepsWarning, NonFiniteResidualError, ProblemDefinitionError, format_values
+from .._errors import NonFiniteResidualError, ProblemDefinitionError
 from .._options import KEEP, ContinuationOptions, Keep, with_overrides
 from .._outcomes import Kind, PointStatus, Status
 from ..detection._tests import BoundTest, ComponentTest, Record, TestFunction, generic_tests
@@ -51,7 +39,7 @@ from ..systems._branch import BranchSystem
 from ..systems._consistency import check_consistent
 from ..systems._curve import CurveSystem
 from ._advance import advance
-from ._begin import Beginning, StartAt, start_state
+from ._begin import Beginning, StartAt, as_array, by_index, start_state
 from ._confirm import confirm_step, located_on_arc
 from ._control import next_step_size
 from ._crossings import (
@@ -63,10 +51,10 @@ from ._crossings import (
     splits,
     step_bracket,
 )
-from ._insert import Linked, endpoint_record, located_point
+from ._insert import endpoint_record, link_located
 from ._state import Point, TracerState, assemble_branch, resume_record
 from ._step import STALL_FACTOR, Failure, StepRules, Trial, wnorm
-from ._work import OutOfWork, StepWork, stalled
+from ._work import OutOfWork, StepWork, max_steps_message, stalled
 
 logger = logging.getLogger(__name__)
 
@@ -76,6 +64,24 @@ DEFAULT_OPTIONS = ContinuationOptions()  # frozen: shared (validation costs 20 Â
 class Tracer:
     """Step-level continuation of one curve.
 
+    The tracer holds only configuration; all that changes, the curve system included, lives
+    in the :class:`~cusp.continuation.TracerState` records.
+
+    Parameters
+    ----------
+    problem : Problem or ContinuationProblem
+        The equations ``R(u, p) = 0``.
+    free : str
+        The parameter that varies along the branch.
+    params, bounds, targets, events, monitor, scales, direction, options, throw, rtol, ds, \
+ds_min, ds_max, max_steps, tol, step_tol, max_step_solves, max_newton_iterations, \
+target_newton_iterations, max_angle, target_angle, target_contraction, target_distance, \
+curve_tol, growth, predictor, state_weight, detect_folds, detect_branch_points, \
+locate_tol, max_locate_iterations : optional
+        As for :func:`~cusp.continuation.trace`, which documents them and what is raised.
+
+    Examples
+    --------
     >>> from cusp.continuation import Problem, Tracer
     >>> problem = Problem(lambda u, p: [u[0]**3 - u[0] - p["b"]], ["x"], {"b": -1.0})
     >>> tracer = Tracer(problem, free="b", bounds={"b": (-1, 1)})
@@ -85,9 +91,6 @@ class Tracer:
     >>> branch = tracer.result(state)
     >>> branch.status, [round(sp.values["b"], 10) for sp in branch.special("fold")]
     ('bound', [0.3849001795, -0.3849001795])
-
-    The arguments are those of :func:`trace`. The tracer holds only configuration; all that
-    changes, the curve system included, lives in the :class:`~._state.TracerState` records.
     """
 
     def __init__(
@@ -160,20 +163,26 @@ class Tracer:
         throw: bool = True,
         tests: Sequence[TestFunction] = (),
     ) -> Tracer:
-        """A tracer for any curve system (fold curves and other augmented systems).
+        """Build a tracer for any curve system (fold curves and other augmented systems).
 
         Parameters
         ----------
         system : CurveSystem
             The curve (its start system).
         options : ContinuationOptions
-        bounds, targets, events, monitor, scales, direction, throw
-            As for :func:`trace`, on the curve's components.
-        tests : sequence of TestFunction
+            The numerical settings.
+        bounds, targets, events, monitor, scales, direction, throw : optional
+            As for :func:`~cusp.continuation.trace`, on the curve's components.
+        tests : sequence of TestFunction, optional
             Test functions evaluated besides the generic ones of the curve (folds of its
             ``fold_components`` and of the monitored components, branch points, targets,
             bounds, events; :func:`~..detection._tests.generic_tests`), after them: the
             cusp and codimension-2 tests of a fold curve, or tests of one's own.
+
+        Returns
+        -------
+        Tracer
+            The tracer (start it with :meth:`init_at`).
         """
         self = object.__new__(cls)
         self._configure(
@@ -237,10 +246,25 @@ class Tracer:
     ) -> TracerState:
         """Correct the starting point and compute the first tangent.
 
-        ``u0``: initial guess of the unknowns (at the problem's parameter values), or a
-        :class:`~..results._branch.SpecialPoint` (a ``"branch_point"`` starts on the other
-        branch). ``tangent``: the start's tangent, if known (the start is then not
-        corrected).
+        Parameters
+        ----------
+        u0 : array_like, shape (n,), or SpecialPoint
+            Initial guess of the unknowns (at the problem's parameter values), or a special
+            point of a branch (a ``"branch_point"`` starts on the other branch).
+        tangent : array_like, shape (n + 1,), optional
+            The start's tangent, if known (the start is then not corrected).
+
+        Returns
+        -------
+        TracerState
+            The state at the start.
+
+        Raises
+        ------
+        ProblemDefinitionError
+            A ``u0`` of the wrong shape or not finite, or a branch point without switching data.
+        ContinuationError
+            The start could not be corrected (with ``throw=True``).
         """
         if isinstance(u0, SpecialPoint):
             return self._init_at_special(u0, tangent)
@@ -255,14 +279,16 @@ class Tracer:
         if not math.isfinite(max_abs(u)):
             raise ProblemDefinitionError(f"u0 must be finite, got {u}")
         z0 = system.start_vector(u)
-        return self._start(StartAt(system=system, z0=z0, tangent=_array(tangent), from_guess=True))
+        return self._start(
+            StartAt(system=system, z0=z0, tangent=as_array(tangent), from_guess=True)
+        )
 
     def _init_at_special(self, sp: SpecialPoint, tangent: ArrayLike | None) -> TracerState:
         system = self.system.with_values(sp.values)
         z0 = np.array([sp.values[name] for name in system.names], dtype=float)
         label = "start"
         skip_bp = False
-        t0 = _array(tangent)
+        t0 = as_array(tangent)
         if sp.kind == Kind.BRANCH_POINT and t0 is None:
             if "other_tangent" not in sp.details:
                 raise ProblemDefinitionError("this branch point carries no switching data")
@@ -279,7 +305,7 @@ class Tracer:
             skip_bp = True
         elif sp.kind == Kind.FOLD:
             skip_bp = True
-        inherited = _by_index(system, sp.scales)
+        inherited = by_index(system, sp.scales)
         at = StartAt(
             system=system, z0=z0, tangent=t0, label=label, skip_bp=skip_bp, inherited=inherited
         )
@@ -292,17 +318,34 @@ class Tracer:
         start_label: str = "start",
         scales: Mapping[str, float] | None = None,
     ) -> TracerState:
-        """Start from a full curve vector ``z0`` (corrected with its last component fixed).
-        ``scales``: the scales (typical sizes) on a curve the start lies on (a branch whose
-        fold this curve continues), for the components whose value at ``z0`` is far below
-        them."""
+        """Start from a full curve vector ``z0``, corrected with its last component fixed.
+
+        Parameters
+        ----------
+        z0 : array_like, shape (dim,)
+            The curve's components (``system.names``).
+        start_label : str, optional
+            The label of the start's special point.
+        scales : mapping of str to float, optional
+            Typical sizes on a curve the start lies on (whose fold this curve continues).
+
+        Returns
+        -------
+        TracerState
+            The state at the start.
+
+        Raises
+        ------
+        ProblemDefinitionError
+            A ``z0`` of the wrong shape.
+        """
         z = np.asarray(z0, dtype=float)
         if z.shape != (self.system.dim,):
             raise ProblemDefinitionError(
                 f"z0 must hold {self.system.dim} values {list(self.system.names)}, "
                 f"got shape {z.shape}"
             )
-        inherited = _by_index(self.system, scales)
+        inherited = by_index(self.system, scales)
         return self._start(
             StartAt(system=self.system, z0=z, label=start_label, inherited=inherited)
         )
@@ -316,14 +359,37 @@ class Tracer:
     # ------------------------------------------------------------------ step
 
     def done(self, state: TracerState) -> bool:
-        """Whether the curve of ``state`` has ended."""
+        """Return whether the curve of ``state`` has ended.
+
+        Parameters
+        ----------
+        state : TracerState
+            A state of this tracer.
+
+        Returns
+        -------
+        bool
+            True once the state has a status.
+        """
         return state.status is not None
 
     def step(self, state: TracerState) -> TracerState:
-        """One accepted continuation step (with its special points), or the end. numpy's
-        floating-point warnings are silenced inside it: a trial point where the user's
+        """Take one accepted continuation step (with its special points), or end the curve.
+
+        numpy's floating-point warnings are silenced inside it: a trial point where the user's
         functions overflow or take the square root of a negative number gives a non-finite
-        value, which the step rejects like any other (and reports if it persists)."""
+        value, which the step rejects like any other (and reports if it persists).
+
+        Parameters
+        ----------
+        state : TracerState
+            The state to step from (not changed).
+
+        Returns
+        -------
+        TracerState
+            The state after the step.
+        """
         with np.errstate(all="ignore"):
             return self._step(state)
 
@@ -444,7 +510,7 @@ class Tracer:
         status: Status | None = None
         message, end_special, inside = "", special, False
         if located:  # (most steps locate nothing)
-            linked = self._link(state, system, trial, located, special)
+            linked = link_located(state, system, trial, located, special)
             end, n_points, status, message = (
                 linked.prev,
                 linked.n_points,
@@ -456,7 +522,7 @@ class Tracer:
         values = judged.values if status is None else state.test_values  # (irrelevant once ended)
         if not inside:
             if status is None and steps >= o.max_steps:
-                status, message = Status.MAX_STEPS, self._max_steps(state, system, trial)
+                status, message = Status.MAX_STEPS, max_steps_message(o, state, system, trial)
                 end_special = (*(end_special or ()), endpoint_record("max_steps"))
             grown = grown_scales(system.scales, trial.res.z, self._scales)
             t1 = trial.t
@@ -492,63 +558,6 @@ class Tracer:
             stalled=state.stalled + 1 if trial.ds < STALL_FACTOR * o.ds_min else 0,
         )
 
-    def _link(
-        self,
-        state: TracerState,
-        system: CurveSystem,
-        trial: Trial,
-        located: Sequence[Found],
-        special: tuple[Record, ...] | None,
-    ) -> Linked:
-        """The located points linked in after the last point, in order, up to a terminal one
-        (the step's end, for a step aimed at a bound)."""
-        last = state.last
-        prev, n_points = last, state.n_points
-        status: Status | None = None
-        message, end_special, inside = "", special, False
-        for f in located:
-            tt, loc = f.test, f.located
-            records: tuple[Record, ...] = (tt.record(system, loc, (last.s, last.s + trial.h)),)
-            if tt.terminal:
-                ending = tt.ending(loc)
-                status, message = ending.status, ending.message
-                records += ending.records
-            if tt is trial.aimed:  # the step's own end point
-                end_special = records
-                break
-            prev = located_point(system, last, loc, records, f.bracket, prev, trial)
-            n_points += 1
-            if tt.terminal:
-                inside = True  # a terminal point located inside the step, before its end
-                break
-        return Linked.of(
-            prev=prev,
-            n_points=n_points,
-            status=status,
-            message=message,
-            end_special=end_special,
-            inside=inside,
-        )
-
-    def _max_steps(self, state: TracerState, system: CurveSystem, trial: Trial) -> str:
-        """The message (and warning) of a branch ended by ``max_steps``."""
-        o, ds = self.options, trial.ds
-        message = (
-            f"the branch stopped after max_steps={o.max_steps} steps at "
-            f"{format_values(system.values(trial.res.z))}, before reaching a bound or a "
-            f"terminal event: it is incomplete (the last step was ds={ds:.3g}). "
-            + (
-                "The steps were cut far below ds: the step's guards keep rejecting "
-                "longer steps (check the Jacobian against the residual: "
-                "check_jacobian; or give typical sizes, scales=...)"
-                if state.stalled or ds < 1e-3 * o.ds
-                else "Raise max_steps, or ds_max if the steps are at it, or give "
-                "bounds that end the branch"
-            )
-        )
-        warnings.warn(message, MaxStepsWarning, stacklevel=4)
-        return message
-
     def _diverged(
         self, state: TracerState, system: CurveSystem, trial: Trial, k: int
     ) -> TracerState:
@@ -568,8 +577,18 @@ class Tracer:
     # ------------------------------------------------------------------ result
 
     def result(self, state: TracerState) -> Branch:
-        """Assemble the :class:`~..results._branch.Branch` (column arrays and special points)
-        of a state (finished or not)."""
+        """Assemble the branch of a state (finished or not).
+
+        Parameters
+        ----------
+        state : TracerState
+            A state of this tracer.
+
+        Returns
+        -------
+        Branch
+            Its column arrays and special points.
+        """
         info = {
             "direction": self.direction,
             "rtol": self.options.rtol,
@@ -578,21 +597,6 @@ class Tracer:
         }
         kinds = frozenset(t.kind for t in self.tests)
         return assemble_branch(state, info, kinds)
-
-
-def _array(x: ArrayLike | None) -> np.ndarray | None:
-    return None if x is None else np.asarray(x, dtype=float)
-
-
-def _by_index(system: CurveSystem, scales: Mapping[str, float] | None) -> dict[int, float]:
-    """Scales by name (of a curve a start lies on) as ``{component index: scale}``, for the
-    components of ``system`` they name."""
-    out = {}
-    for name, size in (scales or {}).items():
-        k = system.index(name)
-        if k is not None and math.isfinite(size) and size > 0.0:
-            out[k] = float(size)
-    return out
 
 
 __all__ = ["Tracer", "TracerState"]

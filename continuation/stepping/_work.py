@@ -13,10 +13,12 @@ location of its special points, bounded by their own iteration limits).
 from __future__ import annotations
 
 import math
+import warnings
 from collections.abc import Mapping
 from enum import IntEnum
+from typing import Any
 
-from .._errors import StalledError, format_values
+from .._errors import MaxStepsWarning, StalledError, format_values
 
 
 class Solve(IntEnum):
@@ -103,4 +105,26 @@ def stalled(out: OutOfWork, values: Mapping[str, float], ds: float) -> StalledEr
     return StalledError(message, values=values, ds=ds, tried=work.describe())
 
 
-__all__ = ["OutOfWork", "Solve", "StepWork", "stalled"]
+def max_steps_message(options: Any, state: Any, system: Any, trial: Any) -> str:
+    """The message (and warning) of a branch ended by ``max_steps`` (``options``: the
+    tracer's; ``state``, ``system``, ``trial``: the step's)."""
+    max_steps, ds0, ds = options.max_steps, options.ds, trial.ds
+    values, stalled_steps = system.values(trial.res.z), state.stalled
+    message = (
+        f"the branch stopped after max_steps={max_steps} steps at "
+        f"{format_values(values)}, before reaching a bound or a "
+        f"terminal event: it is incomplete (the last step was ds={ds:.3g}). "
+        + (
+            "The steps were cut far below ds: the step's guards keep rejecting "
+            "longer steps (check the Jacobian against the residual: "
+            "check_jacobian; or give typical sizes, scales=...)"
+            if stalled_steps or ds < 1e-3 * ds0
+            else "Raise max_steps, or ds_max if the steps are at it, or give "
+            "bounds that end the branch"
+        )
+    )
+    warnings.warn(message, MaxStepsWarning, stacklevel=4)
+    return message
+
+
+__all__ = ["OutOfWork", "Solve", "StepWork", "max_steps_message", "stalled"]

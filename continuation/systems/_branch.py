@@ -26,7 +26,24 @@ _FLOAT = np.dtype(float)  # (the one float64 dtype numpy's arrays carry: tested 
 
 
 class BranchSystem(CurveSystem):
-    """``G(u, p_free) = R(u, p)``: one free parameter, the others held at their values."""
+    """``G(u, p_free) = R(u, p)``: one free parameter, the others held at their values.
+
+    Parameters
+    ----------
+    problem : Problem or ContinuationProblem
+        The equations.
+    free : str
+        The free parameter.
+    params : mapping of str to float, optional
+        Every parameter's value (default: ``problem.params``).
+    state_weight : float or None, optional
+        Each unknown's weight in the arclength norm (None: ``1/n``).
+
+    Raises
+    ------
+    ProblemDefinitionError
+        ``free`` is not a parameter of the problem.
+    """
 
     def __init__(
         self,
@@ -130,7 +147,20 @@ class BranchSystem(CurveSystem):
         return r
 
     def bordered_jacobian(self, z, row):
-        """``[∂R/∂u, ∂R/∂p_free]``, with ``row`` appended as a last row unless it is None."""
+        """Return ``[∂R/∂u, ∂R/∂p_free]``, with ``row`` appended as a last row.
+
+        Parameters
+        ----------
+        z : numpy.ndarray, shape (n + 1,)
+            The unknowns and the free parameter.
+        row : numpy.ndarray, shape (n + 1,), or None
+            The bordering row (None: none).
+
+        Returns
+        -------
+        numpy.ndarray or scipy.sparse matrix, shape (n + 1, n + 1) or (n, n + 1)
+            The (bordered) Jacobian.
+        """
         try:
             j, fp = self._derivatives_at(z)
         except _OUT_OF_DOMAIN as exc:  # as for the residual: a matrix the corrector finds NaN
@@ -139,9 +169,23 @@ class BranchSystem(CurveSystem):
         return self._assembled(z, j, fp, row)
 
     def accurate_jacobian(self, z):
-        """``∂G/∂z`` at ``z`` with the differenced parts extrapolated to a higher order
-        (:func:`~..problem._problem.extrapolated_derivatives`); the Jacobian itself where the
-        derivatives are exact or cannot be differenced there (a non-finite value)."""
+        """Return ``∂G/∂z`` at ``z`` with the differenced parts extrapolated.
+
+        The differences are extrapolated to a higher order
+        (:func:`~..problem._problem.extrapolated_derivatives`); the Jacobian itself is
+        returned where the derivatives are exact or cannot be differenced there (a
+        non-finite value).
+
+        Parameters
+        ----------
+        z : numpy.ndarray, shape (n + 1,)
+            The unknowns and the free parameter.
+
+        Returns
+        -------
+        numpy.ndarray or scipy.sparse matrix, shape (n, n + 1)
+            The Jacobian.
+        """
         if self.derivatives_exact and not isinstance(self.problem, Problem):
             return self.jacobian(z)
         u = z[:-1]
@@ -181,9 +225,20 @@ class BranchSystem(CurveSystem):
         return a
 
     def scalar_residual(self, z) -> float | None:
-        """The residual of a problem of one unknown at ``z`` as a float; None where it is not
-        a finite float array of one value (or raises an ArithmeticError): the general path
-        (:meth:`residual`) then says what is wrong."""
+        """Evaluate the residual of a problem of one unknown at ``z`` as a float.
+
+        Parameters
+        ----------
+        z : numpy.ndarray, shape (n + 1,)
+            The unknowns and the free parameter.
+
+        Returns
+        -------
+        float or None
+            The residual; None where it is not a finite float array of one value (or
+            raises an ArithmeticError): the general path (:meth:`residual`) then says what
+            is wrong.
+        """
         try:
             r = self._residual_at(z)
         except _OUT_OF_DOMAIN as exc:
@@ -195,8 +250,18 @@ class BranchSystem(CurveSystem):
         return None
 
     def scalar_jacobian(self, z) -> tuple[float, float] | None:
-        """``(∂R/∂u, ∂R/∂p_free)`` of a problem of one unknown at ``z`` as floats; None as
-        for :meth:`scalar_residual`."""
+        """Evaluate ``(∂R/∂u, ∂R/∂p_free)`` of a problem of one unknown at ``z`` as floats.
+
+        Parameters
+        ----------
+        z : numpy.ndarray, shape (n + 1,)
+            The unknowns and the free parameter.
+
+        Returns
+        -------
+        tuple of (float, float) or None
+            The two derivatives; None as for :meth:`scalar_residual`.
+        """
         try:
             j, fp = self._derivatives_at(z)
         except _OUT_OF_DOMAIN as exc:
@@ -211,11 +276,23 @@ class BranchSystem(CurveSystem):
         return None
 
     def checked(self, z) -> BranchSystem:
-        """This system, or a copy with :attr:`scalar` off when the user's functions return
-        anything but float arrays of one value at ``z`` (lists, other dtypes): the float
-        path would give way to the array path at every call, each time after a call made
-        for nothing. (Values that are not finite, or an ArithmeticError, say nothing of the
-        types: the system is kept.)"""
+        """Return this system, or a copy with :attr:`scalar` off.
+
+        The float path is turned off when the user's functions return anything but float
+        arrays of one value at ``z`` (lists, other dtypes): it would give way to the array
+        path at every call, each time after a call made for nothing. (Values that are not
+        finite, or an ArithmeticError, say nothing of the types: the system is kept.)
+
+        Parameters
+        ----------
+        z : numpy.ndarray, shape (n + 1,)
+            The unknowns and the free parameter.
+
+        Returns
+        -------
+        BranchSystem
+            This system, or the copy.
+        """
         if not self.scalar:
             return self
         try:

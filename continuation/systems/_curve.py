@@ -24,10 +24,12 @@ from ..numerics._scaling import out_of_range
 
 
 class CurveSystem:
-    """The contract of what the tracer follows: ``G(z) = 0``, ``m`` equations in the ``m + 1``
-    components of ``z``; stated here once, for every kind of curve (a problem's branch,
-    :class:`~._branch.BranchSystem`; a fold curve, :class:`~._fold.FoldSystem`; a system of
-    one's own).
+    """The contract of what the tracer follows: ``G(z) = 0``, ``m`` equations in ``m + 1``.
+
+    ``G`` has ``m`` equations in the ``m + 1`` components of ``z``; the contract is stated
+    here once, for every kind of curve (a problem's branch,
+    :class:`~cusp.continuation.BranchSystem`; a fold curve, :class:`~._fold.FoldSystem`; a
+    system of one's own).
 
     A subclass sets these attributes (in ``__init__``)
         ``names`` (one per component of ``z``), ``dim`` (= m + 1), ``scales`` (each
@@ -84,74 +86,237 @@ class CurveSystem:
     LAPACK's per-call costs, which dominate on such tiny systems."""
 
     def residual(self, z: np.ndarray) -> np.ndarray:  # pragma: no cover - interface
-        """``G(z)``, shape (m,)."""
+        """Evaluate ``G(z)``.
+
+        Parameters
+        ----------
+        z : numpy.ndarray, shape (m + 1,)
+            The curve's components.
+
+        Returns
+        -------
+        numpy.ndarray, shape (m,)
+            The residual.
+        """
         raise NotImplementedError
 
     def jacobian(self, z: np.ndarray) -> Any:  # pragma: no cover - interface
-        """``∂G/∂z`` at ``z``, shape (m, m + 1), dense or sparse."""
+        """Evaluate ``∂G/∂z`` at ``z``.
+
+        Parameters
+        ----------
+        z : numpy.ndarray, shape (m + 1,)
+            The curve's components.
+
+        Returns
+        -------
+        numpy.ndarray or scipy.sparse matrix, shape (m, m + 1)
+            The Jacobian, dense or sparse.
+        """
         raise NotImplementedError
 
     def values(self, z: np.ndarray) -> dict[str, float]:  # pragma: no cover - interface
-        """Every unknown and parameter at ``z``, by name."""
+        """Return every unknown and parameter at ``z``, by name.
+
+        Parameters
+        ----------
+        z : numpy.ndarray, shape (m + 1,)
+            The curve's components.
+
+        Returns
+        -------
+        dict of str to float
+            The values, fixed parameters included.
+        """
         raise NotImplementedError
 
     def scalar_residual(self, z: np.ndarray) -> float | None:
-        """``G(z)`` of a curve of one equation as a float, or None where the float path
-        cannot give it (the array path then does)."""
+        """Evaluate ``G(z)`` of a curve of one equation as a float.
+
+        Parameters
+        ----------
+        z : numpy.ndarray, shape (m + 1,)
+            The curve's components.
+
+        Returns
+        -------
+        float or None
+            The residual, or None where the float path cannot give it (the array path then
+            does).
+        """
         return None
 
     def scalar_jacobian(self, z: np.ndarray) -> tuple[float, float] | None:
-        """``∂G/∂z`` of a curve of one equation as two floats, or None as
-        :meth:`scalar_residual`."""
+        """Evaluate ``∂G/∂z`` of a curve of one equation as two floats.
+
+        Parameters
+        ----------
+        z : numpy.ndarray, shape (m + 1,)
+            The curve's components.
+
+        Returns
+        -------
+        tuple of (float, float) or None
+            The two derivatives, or None as :meth:`scalar_residual`.
+        """
         return None
 
     def checked(self, z: np.ndarray) -> CurveSystem:
-        """This system after a look at what its functions return at ``z`` (a curve's start):
-        one whose float path cannot be used there (its functions return other types) comes
-        back with :attr:`scalar` off, so that no call is made twice."""
+        """Return this system after a look at what its functions return at ``z``.
+
+        Called at a curve's start: a system whose float path cannot be used there (its
+        functions return other types) comes back with :attr:`scalar` off, so that no call
+        is made twice.
+
+        Parameters
+        ----------
+        z : numpy.ndarray, shape (m + 1,)
+            The curve's components.
+
+        Returns
+        -------
+        CurveSystem
+            This system, or a copy with the float path off.
+        """
         return self
 
     def index(self, name: str) -> int | None:
+        """Return the index of a component in ``z``.
+
+        Parameters
+        ----------
+        name : str
+            A component's name.
+
+        Returns
+        -------
+        int or None
+            Its index in ``names``, or None if it is not a component.
+        """
         try:
             return self.names.index(name)
         except ValueError:
             return None
 
     def split(self, z: np.ndarray) -> tuple[np.ndarray, dict[str, float]]:
-        """The unknowns ``u`` of the problem and every value (unknowns and parameters) at
-        ``z``: the arguments of a user's event function."""
+        """Return the problem's unknowns and every value at ``z``.
+
+        These are the arguments of a user's event function.
+
+        Parameters
+        ----------
+        z : numpy.ndarray, shape (m + 1,)
+            The curve's components.
+
+        Returns
+        -------
+        u : numpy.ndarray, shape (n,)
+            The unknowns of the problem (``z`` itself without a problem).
+        values : dict of str to float
+            Every unknown and parameter, by name.
+        """
         vals = self.values(z)
         problem = self.problem
         u = np.array([vals[name] for name in problem.unknowns]) if problem is not None else z
         return u, vals
 
     def bordered_jacobian(self, z: np.ndarray, row: np.ndarray) -> Any:
-        """The square matrix ``[∂G/∂z; row]``."""
+        """Return the square matrix ``[∂G/∂z; row]``.
+
+        Parameters
+        ----------
+        z : numpy.ndarray, shape (m + 1,)
+            The curve's components.
+        row : numpy.ndarray, shape (m + 1,)
+            The bordering row.
+
+        Returns
+        -------
+        numpy.ndarray or scipy.sparse matrix, shape (m + 1, m + 1)
+            The bordered Jacobian.
+        """
         return bordered(self.jacobian(z), row)
 
     def residual_floor(self, dg: Any, z: np.ndarray, magnitudes: Any = None) -> float:
-        """The residual size attributable to rounding at ``z`` (``dg``: ∂G/∂z there, or a
-        nearby one): Newton accepts a tiny update with a residual up to ``max(tol, this)``.
-        The last column (a parameter) is left out: a parameter derivative differenced
-        across a jump of the residual would inflate it. ``magnitudes``: the components'
-        magnitudes there, if known better than by their typical sizes (a located point's
-        :func:`~..detection._folds.local_magnitudes`)."""
+        """Return the residual size attributable to rounding at ``z``.
+
+        Newton accepts a tiny update with a residual up to ``max(tol, this)``. The last
+        column (a parameter) is left out: a parameter derivative differenced across a jump
+        of the residual would inflate it.
+
+        Parameters
+        ----------
+        dg : numpy.ndarray or scipy.sparse matrix, shape (m, m + 1)
+            ∂G/∂z at ``z``, or at a nearby point.
+        z : numpy.ndarray, shape (m + 1,)
+            The curve's components.
+        magnitudes : numpy.ndarray, shape (m + 1,), optional
+            The components' magnitudes there, if known better than by their typical sizes
+            (a located point's :func:`~..detection._folds.local_magnitudes`).
+
+        Returns
+        -------
+        float
+            The rounding floor of the residual's max-norm.
+        """
         return rounding_floor(dg[:, :-1], z, self.scales if magnitudes is None else magnitudes)
 
     def refreshed(self, z: np.ndarray) -> CurveSystem:
-        """The system to use after the accepted point ``z`` (augmented systems update their
-        borders there and return a new system; this one is unchanged)."""
+        """Return the system to use after the accepted point ``z``.
+
+        Augmented systems update their borders there and return a new system; this one is
+        unchanged.
+
+        Parameters
+        ----------
+        z : numpy.ndarray, shape (m + 1,)
+            The curve's components.
+
+        Returns
+        -------
+        CurveSystem
+            The system valid beyond ``z``.
+        """
         return self
 
     def with_values(self, values: Mapping[str, float]) -> CurveSystem:
-        """This system with its fixed parameters taken from ``values`` where given (starting
-        from a special point of another curve)."""
+        """Return this system with its fixed parameters taken from ``values`` where given.
+
+        Used when starting from a special point of another curve.
+
+        Parameters
+        ----------
+        values : mapping of str to float
+            Values by name (unknowns and parameters).
+
+        Returns
+        -------
+        CurveSystem
+            The system with those parameter values.
+        """
         return self
 
     def with_scales(self, scales: np.ndarray) -> CurveSystem:
-        """This system with the typical sizes ``scales`` (one per component of z, > 0): the
-        arclength weights become ``base_weights / scales²`` and a :class:`Problem`'s finite
-        differences step relative to them."""
+        """Return this system with the typical sizes ``scales``.
+
+        The arclength weights become ``base_weights / scales²`` and a
+        :class:`~cusp.continuation.Problem`'s finite differences step relative to them.
+
+        Parameters
+        ----------
+        scales : numpy.ndarray, shape (m + 1,)
+            One typical size per component of ``z``, > 0.
+
+        Returns
+        -------
+        CurveSystem
+            The rescaled copy (this system is left as it is).
+
+        Raises
+        ------
+        ProblemDefinitionError
+            A size outside [1e-150, 1e150], where the arclength metric cannot be formed.
+        """
         scales = np.array(scales, dtype=float)
         k = out_of_range(scales)
         if k is not None:  # its square or reciprocal square would overflow
@@ -172,13 +337,35 @@ class CurveSystem:
         """Hand the typical sizes to the problem's finite differences (a :class:`Problem`)."""
 
     def start_vector(self, u: np.ndarray) -> np.ndarray:
-        """The curve vector ``z`` of the unknowns ``u`` at the system's parameter values."""
+        """Return the curve vector ``z`` of the unknowns ``u`` at the system's parameters.
+
+        Parameters
+        ----------
+        u : numpy.ndarray, shape (n,)
+            The problem's unknowns.
+
+        Returns
+        -------
+        numpy.ndarray, shape (m + 1,)
+            The curve vector.
+
+        Raises
+        ------
+        ProblemDefinitionError
+            For a system that starts only from a full curve vector (this base class).
+        """
         raise ProblemDefinitionError(
             f"{type(self).__name__} starts from a full curve vector: use Tracer.init_at(z0)"
         )
 
     def fixed_values(self) -> dict[str, float]:
-        """Parameters held fixed on this curve (reported as constant columns)."""
+        """Return the parameters held fixed on this curve.
+
+        Returns
+        -------
+        dict of str to float
+            Their values, reported as constant columns of the branch.
+        """
         return {}
 
 

@@ -40,7 +40,7 @@ def _sections() -> list[str]:
             listed = f"{_lit('model')} and the parameters of its body (below)"
         elif name == "sweep":
             listed = (
-                "the varied fields by their dotted names (``\"surface.mu\" = [...]`` or "
+                'the varied fields by their dotted names (``"surface.mu" = [...]`` or '
                 "``{ start, stop, num, spacing }``), or ``cases`` (a CSV file): see Sweeps"
             )
         else:
