@@ -333,3 +333,36 @@ def test_the_physics_pages_fig6_values_are_the_codes():
     assert f"= {deep:.4f} (`docs/gallery/fig8/summary.json`)" in text
     energies = [_exponential(mu, 850.0).energy["snap_back"] for mu in (0.5, 0.1, 0.01)]
     assert "{:.6g}, {:.6g} and {:.6g} N·µm for μ = 0.5, 0.1 and 0.01".format(*energies) in text
+
+
+def test_the_verification_pages_numbers_are_the_codes():
+    """docs/verification.md quotes the comparison's points and tolerances as
+    ``cusp.verification`` defines them, and the value of Eq 12's reading b at F̂_T = 0.0217
+    against the derived F̂_ST = F̂_T − P(5/2, x), x = −ln(1 − F̂_T) (mpmath, 40 digits)."""
+    import inspect
+
+    import mpmath
+
+    from cusp.verification import FT_HAT_EXTREMES, FT_HAT_INTERIOR, IMPLEMENTATION_RTOL
+    from cusp.verification.printed import check_printed
+
+    text = _page("verification.md")
+    kw = inspect.signature(check_printed).parameters
+    points, dps = kw["points"].default, kw["dps"].default
+    # printed.py's numeric verdict: tolerance 10^-(dps - 10)
+    assert f"{points} points at {dps} digits" in text and f"below 1e-{dps - 10} relative" in text
+    interior = "{" + ", ".join(f"{v:g}" for v in FT_HAT_INTERIOR) + "}"
+    assert f"at F̂_T ∈ {interior}" in text, interior
+    shown = {1e-300: "1e-300", 1e-100: "1e-100", 1e-14: "1e-14", 1e-9: "1e-9",
+             1 - 1e-9: "1 − 1e-9", 1 - 2.0**-40: "1 − 2⁻⁴⁰", 1 - 2.0**-52: "1 − 2⁻⁵²"}  # fmt: skip
+    assert "extremes {" + ", ".join(shown[v] for v in FT_HAT_EXTREMES) + "}" in text
+    assert IMPLEMENTATION_RTOL == 1e-13 and "a fixed **1e-13 relative**" in text
+    with mpmath.workdps(40):
+        F = mpmath.mpf("0.0217")
+        X = mpmath.sqrt(-mpmath.log(1 - F))
+        poly = (4 * X**3 + 6 * X) / (3 * mpmath.sqrt(mpmath.pi))
+        derived = F + (1 - F) * poly - mpmath.erf(X)  # = F − P(5/2, X²)
+        assert abs(derived - (F - mpmath.gammainc(2.5, 0, X**2, regularized=True))) < 1e-35
+        reading_b = F + (1 - F) * poly + mpmath.erf(X)  # the brace opened after "F̂_T −"
+    quoted = f"{float(reading_b):.3f} instead of {float(derived):.4f} at F̂_T = 0.0217"
+    assert quoted in text, quoted
