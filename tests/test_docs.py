@@ -258,9 +258,17 @@ def test_the_frictionless_limit_numbers_are_the_codes():
 
 
 def test_the_readmes_numbers_are_the_codes():
-    """README.md's comments quote C of the Fig 6 path, the CO-oxidation cusp and the range
-    of ``rtol`` as the code computes and allows them."""
-    from cusp.continuation import RTOL_DEFAULT, RTOL_MAX, RTOL_MIN, fold_curve
+    """README.md's comments quote C of the Fig 6 path, the CO-oxidation cusp, the range of
+    ``rtol`` and the point and energy accuracy of its default as the code computes and
+    allows them."""
+    from cusp.continuation import (
+        RTOL_DEFAULT,
+        RTOL_MAX,
+        RTOL_MIN,
+        fold_curve,
+        point_tol,
+        quadrature_tol,
+    )
     from cusp.examples import co_oxidation
 
     def cut(x: float, digits: int) -> str:  # "0.528..." : the digits shown, then "..."
@@ -280,6 +288,8 @@ def test_the_readmes_numbers_are_the_codes():
         return f"{x:.0e}".replace("e-0", "e-")
 
     assert f"(default {e(RTOL_DEFAULT)}; [{e(RTOL_MIN)}, {e(RTOL_MAX)}])" in text
+    points, energies = point_tol(RTOL_DEFAULT), quadrature_tol(RTOL_DEFAULT)
+    assert f"(the default: points to {e(points)}, energies to {e(energies)};" in text
 
 
 def test_the_limits_table_is_the_codes():
@@ -366,3 +376,24 @@ def test_the_verification_pages_numbers_are_the_codes():
         reading_b = F + (1 - F) * poly + mpmath.erf(X)  # the brace opened after "F̂_T −"
     quoted = f"{float(reading_b):.3f} instead of {float(derived):.4f} at F̂_T = 0.0217"
     assert quoted in text, quoted
+
+
+def test_the_sweep_pages_numbers_are_the_codes():
+    """docs/sweeps.md's table of limits, the chunk size and the case key, as ``cusp.app``
+    defines them."""
+    from cusp.app import _sweep_spec, sweep
+
+    text = _page("sweeps.md")
+
+    def spaced(n: int) -> str:  # 100 000 as the page writes it
+        return f"{n:,}".replace(",", " ")
+
+    assert f"a list | 1 to {spaced(_sweep_spec.MAX_VALUES)} finite numbers" in text
+    assert f"an integer, 1 to {spaced(_sweep_spec.MAX_VALUES)})" in text
+    assert f"at most {spaced(_sweep_spec.MAX_SWEEP_CASES)} cases" in text
+    assert (
+        f"default about {['', 'one', 'two', 'three', 'four', 'five'][sweep.CHUNKS_PER_WORKER]}"
+        f" chunks a worker, at most {sweep.MAX_CHUNK} cases" in text
+    )
+    key = _sweep_spec.case_key({"surface": {"mu": 0.1}})
+    assert re.fullmatch("[0-9a-f]{16}", key) and "16 hex digits of a SHA-256" in text
