@@ -397,3 +397,89 @@ def test_the_sweep_pages_numbers_are_the_codes():
     )
     key = _sweep_spec.case_key({"surface": {"mu": 0.1}})
     assert re.fullmatch("[0-9a-f]{16}", key) and "16 hex digits of a SHA-256" in text
+
+
+def _sci(x: float, digits: int) -> str:
+    """1.36·10⁻²⁰ as docs/physics.md writes it (the mantissa to ``digits`` decimals)."""
+    mantissa, exponent = f"{x:.{digits}e}".split("e")
+    sup = str.maketrans("-0123456789", "⁻⁰¹²³⁴⁵⁶⁷⁸⁹")
+    return f"{mantissa.replace('-', '−')}·10{str(int(exponent)).translate(sup)}"
+
+
+def test_the_physics_pages_numerical_traps_are_the_codes():
+    """docs/physics.md outside its Fig 6 table: the traps of §4 (the erf form of P(5/2, x)
+    at x = 1e-8 in double precision against mpmath; 1 − gammainc at x = 50 against
+    Q(5/2, 50); the bracket of Q(5/2, x) − e^{−x} for F̂_T > 1/2, least at x = ln 2 and
+    growing), the Fig 5 crossings (closed forms Eqs 12, 15, 28, 29 with mpmath root finding
+    at 40 digits), d0 − d at g_A = 1e-9 µm on the Gaussian scene (Eq 5) and ε/f of §7."""
+    import mpmath
+    from scipy.special import gammainc
+
+    from cusp.app.cases import build_body
+    from cusp.app.run import resolve_scene
+    from cusp.app.scene import load_scene
+    from cusp.models import GaussianRoughSurface
+
+    text = _page("physics.md")
+    x = 1e-8  # the erf form, as double-precision code would write it
+    erf_form = math.erf(math.sqrt(x)) - math.exp(-x) * (4 * x**1.5 + 6 * math.sqrt(x)) / (
+        3 * math.sqrt(math.pi)
+    )
+    with mpmath.workdps(40):
+        exact = float(mpmath.gammainc(2.5, 0, x, regularized=True))
+        q50 = float(mpmath.gammainc(2.5, 50, mpmath.inf, regularized=True))
+    assert erf_form < 0 < exact
+    percent = round(abs(erf_form - exact) / exact * 100, -1)
+    assert (
+        f"gives {_sci(erf_form, 2)} instead of {_sci(exact, 3)} (error {percent:.0f} %, wrong sign)"
+        in text
+    )
+    assert 1.0 - gammainc(2.5, 50.0) == 0.0
+    assert f"(at x = 50 it returns 0; Q(5/2, 50) = {_sci(q50, 2)})" in text
+    with mpmath.workdps(40):
+
+        def bracket(x):  # e^x Q(5/2, x) − 1 = erfcx(√x) + (4x^{3/2} + 6x^{1/2})/(3√π) − 1
+            return mpmath.exp(x) * mpmath.gammainc(2.5, x, mpmath.inf, regularized=True) - 1
+
+        grid = [mpmath.log(2) * (1 + k / 10) for k in range(0, 200)]
+        values = [bracket(v) for v in grid]
+        assert values == sorted(values) and values[0] >= 0.85 > values[0] - 0.01
+    assert "a bracket ≥ 0.85" in text  # 0.8516... at x = ln 2
+
+    with mpmath.workdps(40):
+
+        def x_of(F):
+            return -mpmath.log(1 - F)
+
+        def cyl_force(F):  # Eq 28
+            return (
+                2 / mpmath.pi * (mpmath.sqrt((1 - F) * F) + mpmath.atan(mpmath.sqrt((1 - F) / F)))
+                + F
+                - 1
+            )
+
+        def exp_force(F):  # Eq 12: F̂_T − P(5/2, x)
+            return F - mpmath.gammainc(2.5, 0, x_of(F), regularized=True)
+
+        xf = float(
+            mpmath.findroot(lambda F: cyl_force(F) - exp_force(F), (0.96, 0.98), solver="illinois")
+        )
+        xa = float(
+            mpmath.findroot(
+                lambda F: mpmath.sqrt(1 - F) - (1 - F) * (1 + x_of(F)),
+                (0.9, 0.94),
+                solver="illinois",
+            )
+        )  # Eq 29 against Eq 15
+    assert f"mpmath root finding ({xf:.7f}…, {xa:.7f}…)" in text, (xf, xa)
+    assert f"F̂_ST on 0 < F̂_T < {xf:.5f} and for Â_ST on 0 < F̂_T < {xa:.5f};" in text
+
+    path, source = resolve_scene("gaussian")
+    gaussian = load_scene(path, source=source)
+    surface = build_body(gaussian, gaussian.surface["mu"])
+    assert isinstance(surface, GaussianRoughSurface)
+    d0_d = surface.stick_threshold(1e-9) / surface.sigma  # g_N0 = 2(1 − ν)g_A/(μ(2 − ν))
+    d0_d = f"{d0_d:.1e}".replace("e-0", "e-")
+    assert f"is {d0_d} σ* (Eq 5;" in text, d0_d
+    eps_f = f"{2.0**-52 / 1e-8:.1e}".replace("e-0", "e-")
+    assert f"(ε/f ≈ {eps_f} at f = 1e-8)" in text, eps_f
