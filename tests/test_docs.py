@@ -483,3 +483,27 @@ def test_the_physics_pages_numerical_traps_are_the_codes():
     assert f"is {d0_d} σ* (Eq 5;" in text, d0_d
     eps_f = f"{2.0**-52 / 1e-8:.1e}".replace("e-0", "e-")
     assert f"(ε/f ≈ {eps_f} at f = 1e-8)" in text, eps_f
+
+
+def test_the_rtol_table_is_the_codes():
+    """docs/continuation.md's table of what ``rtol`` sets: the default column and the
+    bounds, as ``ContinuationOptions`` derives them (at the default, at the loosest and at
+    the tightest ``rtol``)."""
+    from cusp.continuation import RTOL_DEFAULT, RTOL_MAX, RTOL_MIN, ContinuationOptions
+
+    def e(x: float) -> str:  # 1e-3 as the page writes it
+        return f"{x:.0e}".replace("e-0", "e-")
+
+    text = _page("continuation.md")
+    d, loose, tight = (ContinuationOptions(rtol=r) for r in (RTOL_DEFAULT, RTOL_MAX, RTOL_MIN))
+    assert f"(in `[{e(RTOL_MIN)}, {e(RTOL_MAX)}]`, default {e(RTOL_DEFAULT)})" in text
+    rows = {
+        "within `rtol` of the curve": d.rtol,
+        "(`step_tol`)": d.step_tol,
+        f"within [{e(tight.tol)}, {e(loose.tol)}]": d.tol,
+        f"at least {e(tight.locate_tol)}": d.locate_tol,
+        f"at least {e(tight.quad_tol)}": d.quad_tol,
+    }
+    for phrase, value in rows.items():
+        assert f"{phrase} | {e(value)} |" in text, (phrase, value)
+    assert d.step_tol == (d.rtol / 1000) ** 2 and d.tol == 100 * d.step_tol
