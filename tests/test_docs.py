@@ -421,6 +421,9 @@ def test_the_physics_pages_numerical_traps_are_the_codes():
     from cusp.models import GaussianRoughSurface
 
     text = _page("physics.md")
+    # 1 − F̂_T rounds to 1 at F̂_T ≤ 2⁻⁵⁴ (half the spacing 2⁻⁵³ of the doubles below 1)
+    assert 1.0 - 2.0**-54 == 1.0 and 1.0 - math.nextafter(2.0**-54, 1.0) < 1.0
+    assert f"at or below 2⁻⁵⁴ ≈ {_sci(2.0**-54, 1)} it rounds to 1" in text
     x = 1e-8  # the erf form, as double-precision code would write it
     erf_form = math.erf(math.sqrt(x)) - math.exp(-x) * (4 * x**1.5 + 6 * math.sqrt(x)) / (
         3 * math.sqrt(math.pi)
