@@ -10,7 +10,7 @@ Everything is closed form. With x := g_N0/σ* = g_T/(μλ):
 None of these depends on the load level, so ratios and the loading curve need no load scale;
 A_r ∝ F_N. Numerics: the erf form of P printed in the paper cancels for small x (and
 1 − P for large x), so F̂_T − P is used for F̂_T ≤ 1/2 and Q − (1 − F̂_T) above (1 − F̂_T is
-exact there) written as e^{−x}[erfcx(√x) + (4x^{3/2} + 6x^{1/2})/(3√π) − 1], a bracket ≥ 0.87
+exact there) written as e^{−x}[erfcx(√x) + (4x^{3/2} + 6x^{1/2})/(3√π) − 1], a bracket ≥ 0.85
 with no cancellation. No quadrature is imported.
 """
 

@@ -258,9 +258,17 @@ def test_the_frictionless_limit_numbers_are_the_codes():
 
 
 def test_the_readmes_numbers_are_the_codes():
-    """README.md's comments quote C of the Fig 6 path, the CO-oxidation cusp and the range
-    of ``rtol`` as the code computes and allows them."""
-    from cusp.continuation import RTOL_DEFAULT, RTOL_MAX, RTOL_MIN, fold_curve
+    """README.md's comments quote C of the Fig 6 path, the CO-oxidation cusp, the range of
+    ``rtol`` and the point and energy accuracy of its default as the code computes and
+    allows them."""
+    from cusp.continuation import (
+        RTOL_DEFAULT,
+        RTOL_MAX,
+        RTOL_MIN,
+        fold_curve,
+        point_tol,
+        quadrature_tol,
+    )
     from cusp.examples import co_oxidation
 
     def cut(x: float, digits: int) -> str:  # "0.528..." : the digits shown, then "..."
@@ -280,6 +288,8 @@ def test_the_readmes_numbers_are_the_codes():
         return f"{x:.0e}".replace("e-0", "e-")
 
     assert f"(default {e(RTOL_DEFAULT)}; [{e(RTOL_MIN)}, {e(RTOL_MAX)}])" in text
+    points, energies = point_tol(RTOL_DEFAULT), quadrature_tol(RTOL_DEFAULT)
+    assert f"(the default: points to {e(points)}, energies to {e(energies)};" in text
 
 
 def test_the_limits_table_is_the_codes():
@@ -333,3 +343,170 @@ def test_the_physics_pages_fig6_values_are_the_codes():
     assert f"= {deep:.4f} (`docs/gallery/fig8/summary.json`)" in text
     energies = [_exponential(mu, 850.0).energy["snap_back"] for mu in (0.5, 0.1, 0.01)]
     assert "{:.6g}, {:.6g} and {:.6g} N·µm for μ = 0.5, 0.1 and 0.01".format(*energies) in text
+
+
+def test_the_verification_pages_numbers_are_the_codes():
+    """docs/verification.md quotes the comparison's points and tolerances as
+    ``cusp.verification`` defines them, and the value of Eq 12's reading b at F̂_T = 0.0217
+    against the derived F̂_ST = F̂_T − P(5/2, x), x = −ln(1 − F̂_T) (mpmath, 40 digits)."""
+    import inspect
+
+    import mpmath
+
+    from cusp.verification import FT_HAT_EXTREMES, FT_HAT_INTERIOR, IMPLEMENTATION_RTOL
+    from cusp.verification.printed import check_printed
+
+    text = _page("verification.md")
+    kw = inspect.signature(check_printed).parameters
+    points, dps = kw["points"].default, kw["dps"].default
+    # printed.py's numeric verdict: tolerance 10^-(dps - 10)
+    assert f"{points} points at {dps} digits" in text and f"below 1e-{dps - 10} relative" in text
+    interior = "{" + ", ".join(f"{v:g}" for v in FT_HAT_INTERIOR) + "}"
+    assert f"at F̂_T ∈ {interior}" in text, interior
+    shown = {1e-300: "1e-300", 1e-100: "1e-100", 1e-14: "1e-14", 1e-9: "1e-9",
+             1 - 1e-9: "1 − 1e-9", 1 - 2.0**-40: "1 − 2⁻⁴⁰", 1 - 2.0**-52: "1 − 2⁻⁵²"}  # fmt: skip
+    assert "extremes {" + ", ".join(shown[v] for v in FT_HAT_EXTREMES) + "}" in text
+    assert f"a fixed **{IMPLEMENTATION_RTOL:.0e} relative**" in text
+    with mpmath.workdps(40):
+        F = mpmath.mpf("0.0217")
+        X = mpmath.sqrt(-mpmath.log(1 - F))
+        poly = (4 * X**3 + 6 * X) / (3 * mpmath.sqrt(mpmath.pi))
+        derived = F + (1 - F) * poly - mpmath.erf(X)  # = F − P(5/2, X²)
+        assert abs(derived - (F - mpmath.gammainc(2.5, 0, X**2, regularized=True))) < 1e-35
+        reading_b = F + (1 - F) * poly + mpmath.erf(X)  # the brace opened after "F̂_T −"
+    quoted = f"{float(reading_b):.3f} instead of {float(derived):.4f} at F̂_T = 0.0217"
+    assert quoted in text, quoted
+
+
+def test_the_sweep_pages_numbers_are_the_codes():
+    """docs/sweeps.md's table of limits, the chunk size and the case key, as ``cusp.app``
+    defines them."""
+    from cusp.app import _sweep_spec, sweep
+
+    text = _page("sweeps.md")
+
+    def spaced(n: int) -> str:  # 100 000 as the page writes it
+        return f"{n:,}".replace(",", " ")
+
+    assert f"a list | 1 to {spaced(_sweep_spec.MAX_VALUES)} finite numbers" in text
+    assert f"an integer, 1 to {spaced(_sweep_spec.MAX_VALUES)})" in text
+    assert f"at most {spaced(_sweep_spec.MAX_SWEEP_CASES)} cases" in text
+    assert (
+        f"default about {['', 'one', 'two', 'three', 'four', 'five'][sweep.CHUNKS_PER_WORKER]}"
+        f" chunks a worker, at most {sweep.MAX_CHUNK} cases" in text
+    )
+    key = _sweep_spec.case_key({"surface": {"mu": 0.1}})
+    assert re.fullmatch("[0-9a-f]{16}", key) and "16 hex digits of a SHA-256" in text
+
+
+def _sci(x: float, digits: int) -> str:
+    """1.36·10⁻²⁰ as docs/physics.md writes it (the mantissa to ``digits`` decimals)."""
+    mantissa, exponent = f"{x:.{digits}e}".split("e")
+    sup = str.maketrans("-0123456789", "⁻⁰¹²³⁴⁵⁶⁷⁸⁹")
+    return f"{mantissa.replace('-', '−')}·10{str(int(exponent)).translate(sup)}"
+
+
+def test_the_physics_pages_numerical_traps_are_the_codes():
+    """docs/physics.md outside its Fig 6 table: the traps of §4 (the erf form of P(5/2, x)
+    at x = 1e-8 in double precision against mpmath; 1 − gammainc at x = 50 against
+    Q(5/2, 50); the bracket of Q(5/2, x) − e^{−x} for F̂_T > 1/2, least at x = ln 2 and
+    growing), the Fig 5 crossings (closed forms Eqs 12, 15, 28, 29 with mpmath root finding
+    at 40 digits), d0 − d at g_A = 1e-9 µm on the Gaussian scene (Eq 5) and ε/f of §7."""
+    import mpmath
+    from scipy.special import gammainc
+
+    from cusp.app.cases import build_body
+    from cusp.app.run import resolve_scene
+    from cusp.app.scene import load_scene
+    from cusp.models import GaussianRoughSurface
+
+    text = _page("physics.md")
+    # 1 − F̂_T rounds to 1 at F̂_T ≤ 2⁻⁵⁴ (half the spacing 2⁻⁵³ of the doubles below 1)
+    assert 1.0 - 2.0**-54 == 1.0 and 1.0 - math.nextafter(2.0**-54, 1.0) < 1.0
+    assert f"at or below 2⁻⁵⁴ ≈ {_sci(2.0**-54, 1)} it rounds to 1" in text
+    x = 1e-8  # the erf form, as double-precision code would write it
+    erf_form = math.erf(math.sqrt(x)) - math.exp(-x) * (4 * x**1.5 + 6 * math.sqrt(x)) / (
+        3 * math.sqrt(math.pi)
+    )
+    with mpmath.workdps(40):
+        exact = float(mpmath.gammainc(2.5, 0, x, regularized=True))
+        q50 = float(mpmath.gammainc(2.5, 50, mpmath.inf, regularized=True))
+    assert erf_form < 0 < exact
+    percent = round(abs(erf_form - exact) / exact * 100, -1)
+    assert (
+        f"gives {_sci(erf_form, 2)} instead of {_sci(exact, 3)} (error {percent:.0f} %, wrong sign)"
+        in text
+    )
+    assert 1.0 - gammainc(2.5, 50.0) == 0.0
+    assert f"(at x = 50 it returns 0; Q(5/2, 50) = {_sci(q50, 2)})" in text
+    with mpmath.workdps(40):
+
+        def bracket(x):  # e^x Q(5/2, x) − 1 = erfcx(√x) + (4x^{3/2} + 6x^{1/2})/(3√π) − 1
+            return mpmath.exp(x) * mpmath.gammainc(2.5, x, mpmath.inf, regularized=True) - 1
+
+        grid = [mpmath.log(2) * (1 + k / 10) for k in range(0, 200)]
+        values = [bracket(v) for v in grid]
+        assert values == sorted(values) and values[0] >= 0.85 > values[0] - 0.01
+    assert "a bracket ≥ 0.85" in text  # 0.8516... at x = ln 2
+
+    with mpmath.workdps(40):
+
+        def x_of(F):
+            return -mpmath.log(1 - F)
+
+        def cyl_force(F):  # Eq 28
+            return (
+                2 / mpmath.pi * (mpmath.sqrt((1 - F) * F) + mpmath.atan(mpmath.sqrt((1 - F) / F)))
+                + F
+                - 1
+            )
+
+        def exp_force(F):  # Eq 12: F̂_T − P(5/2, x)
+            return F - mpmath.gammainc(2.5, 0, x_of(F), regularized=True)
+
+        xf = float(
+            mpmath.findroot(lambda F: cyl_force(F) - exp_force(F), (0.96, 0.98), solver="illinois")
+        )
+        xa = float(
+            mpmath.findroot(
+                lambda F: mpmath.sqrt(1 - F) - (1 - F) * (1 + x_of(F)),
+                (0.9, 0.94),
+                solver="illinois",
+            )
+        )  # Eq 29 against Eq 15
+    assert f"mpmath root finding ({xf:.7f}…, {xa:.7f}…)" in text, (xf, xa)
+    assert f"F̂_ST on 0 < F̂_T < {xf:.5f} and for Â_ST on 0 < F̂_T < {xa:.5f};" in text
+
+    path, source = resolve_scene("gaussian")
+    gaussian = load_scene(path, source=source)
+    surface = build_body(gaussian, gaussian.surface["mu"])
+    assert isinstance(surface, GaussianRoughSurface)
+    d0_d = surface.stick_threshold(1e-9) / surface.sigma  # g_N0 = 2(1 − ν)g_A/(μ(2 − ν))
+    d0_d = f"{d0_d:.1e}".replace("e-0", "e-")
+    assert f"is {d0_d} σ* (Eq 5;" in text, d0_d
+    eps_f = f"{2.0**-52 / 1e-8:.1e}".replace("e-0", "e-")
+    assert f"(ε/f ≈ {eps_f} at f = 1e-8)" in text, eps_f
+
+
+def test_the_rtol_table_is_the_codes():
+    """docs/continuation.md's table of what ``rtol`` sets: the default column and the
+    bounds, as ``ContinuationOptions`` derives them (at the default, at the loosest and at
+    the tightest ``rtol``)."""
+    from cusp.continuation import RTOL_DEFAULT, RTOL_MAX, RTOL_MIN, ContinuationOptions
+
+    def e(x: float) -> str:  # 1e-3 as the page writes it
+        return f"{x:.0e}".replace("e-0", "e-")
+
+    text = _page("continuation.md")
+    d, loose, tight = (ContinuationOptions(rtol=r) for r in (RTOL_DEFAULT, RTOL_MAX, RTOL_MIN))
+    assert f"(in `[{e(RTOL_MIN)}, {e(RTOL_MAX)}]`, default {e(RTOL_DEFAULT)})" in text
+    rows = {
+        "within `rtol` of the curve": d.rtol,
+        "(`step_tol`)": d.step_tol,
+        f"within [{e(tight.tol)}, {e(loose.tol)}]": d.tol,
+        f"at least {e(tight.locate_tol)}": d.locate_tol,
+        f"at least {e(tight.quad_tol)}": d.quad_tol,
+    }
+    for phrase, value in rows.items():
+        assert f"{phrase} | {e(value)} |" in text, (phrase, value)
+    assert d.step_tol == (d.rtol / 1000) ** 2 and d.tol == 100 * d.step_tol

@@ -322,6 +322,8 @@ def test_painleve_two_solutions_from_one_guess():
         assert abs(e[0] / e[1] - 4.0) <= 0.04, errors
     assert slopes[0] == pytest.approx(slopes[2], abs=1e-8)  # the same solution at both n
     assert slopes[0] > 0.9 and slopes[1] < -3.7  # one rising, one dipping below zero
+    # as docs/continuation.md quotes them (solve_bvp at tol 1e-10, to 5 decimals)
+    assert [f"{s:.5f}" for s in slopes[:2]] == ["0.92438", "-3.79199"], slopes
 
 
 def test_plot_draws_every_branch_and_the_points():
