@@ -4,7 +4,7 @@
 The levels are measured from the separation d_A under F_N0, so that small differences keep
 their digits: p = (d − d_A)/u, q = (d0 − d_A)/u, with u = σ*·c [µm] and c = max(1, g_A/(μλ))
 (q − p of order one at A). At a slip g_A = 1e-9 µm on the Gaussian scene (σ* = 2 µm,
-d_A = 2.5 µm), d0 − d is 4e-8 σ*: stored as absolute levels it kept ~8 digits, formed as
+d_A = 2.5 µm), d0 − d is 4.1e-9 σ*: stored as absolute levels it kept ~8 digits, formed as
 a difference of logs of J fewer (F_A was 2.6e-8 off). Here every relation is formed from
 differences the surface evaluates without cancellation (:class:`~.rough.RoughSurface`):
 
