@@ -70,6 +70,7 @@ Units: lengths µm, forces N, energies N·µm (= µJ).
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass, field
 from typing import Any
@@ -80,7 +81,6 @@ from cusp.continuation import Branch, ContinuationOptions, Problem, point_tol, p
 
 from . import _path_guards as guards
 from ._loci_energy import path_energies, path_points
-from ._memo import Latest
 from ._path_folds import path_folds
 from ._path_guards import PathError
 from ._path_records import (
@@ -396,15 +396,15 @@ class ContactLoss:
             params[const_name] = float(constant)
         cols = [i for i in range(6) if i != ci]
 
-        def evaluate(key):  # (key: the unknowns' bits, the control, mu, the leg constant)
-            x = np.insert(np.frombuffer(key[0]), ci, key[1])
-            return self._equations(x, key[2], leg, key[3])
-
-        kept = Latest(evaluate, _MEMO)  # (C and D share the reloading leg: see Latest)
+        # residual, Jacobian and parameter column come from one evaluation, kept for the
+        # latest points by their bits (C and D share the reloading leg); callers get copies
+        @functools.lru_cache(maxsize=_MEMO)
+        def evaluated_at(bits: bytes, at: float, mu: float, c):
+            return self._equations(np.insert(np.frombuffer(bits), ci, at), mu, leg, c)
 
         def evaluated(u, p):
             c = p[const_name] if const_name else None
-            return kept((np.asarray(u, dtype=float).tobytes(), p[control], p["mu"], c))
+            return evaluated_at(np.asarray(u, dtype=float).tobytes(), p[control], p["mu"], c)
 
         def residual(u, p):
             return evaluated(u, p)[0].copy()

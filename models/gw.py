@@ -138,22 +138,14 @@ def _far_left_series(n: float, t: np.ndarray) -> np.ndarray:
     t is < 1e-87, and the binomial series of (1 + S/|t|)^n averaged over S (odd moments
     vanish, E S^{2k} = (2k − 1)!!) is asymptotic with terms below 1e-18 by k = 14."""
     if t.size <= 4:  # (one level at a time: Python floats, the same IEEE operations)
-        return np.array([_far_left_scalar(n, x) for x in t.tolist()]).reshape(t.shape)
-    inv2 = 1.0 / (t * t)
-    total = np.ones_like(t)
-    term = np.ones_like(t)
-    coef = 1.0  # C(n, 2k) (2k − 1)!!, from the previous one
-    for k in range(1, _K_LEFT):
-        coef *= (n - 2 * k + 2) * (n - 2 * k + 1) / ((2 * k) * (2 * k - 1)) * (2 * k - 1)
-        term = term * inv2
-        total = total + coef * term
-    return total
+        return np.array([_far_left_sum(n, x) for x in t.tolist()]).reshape(t.shape)
+    return _far_left_sum(n, t)
 
 
-def _far_left_scalar(n: float, t: float) -> float:
-    """:func:`_far_left_series` at one t, in Python floats."""
+def _far_left_sum(n: float, t):
+    """The sum of :func:`_far_left_series` for a float or an array ``t`` (the one recurrence)."""
     inv2 = 1.0 / (t * t)
-    total = term = coef = 1.0
+    total = term = coef = 1.0  # coef: C(n, 2k) (2k − 1)!!, from the previous one
     for k in range(1, _K_LEFT):
         coef *= (n - 2 * k + 2) * (n - 2 * k + 1) / ((2 * k) * (2 * k - 1)) * (2 * k - 1)
         term = term * inv2
