@@ -316,6 +316,17 @@ def scaling(t_case: float, costs: dict[str, float]) -> list[str]:
     c_best = min(range(1, n // w + 1), key=lambda c: total(c)[0])
     t_best, _ = total(c_best)
     limit = "the driver" if math.ceil(n / c_auto) * s > compute_auto else "the workers"
+    if c_min > n // w:
+        fit = (
+            f"So at 10⁴ cases a chunk size that keeps the driver 10 % busy ({c_min}) exceeds "
+            f"the cases a worker has ({n // w}): a sweep that large on {w} workers is bound by "
+            "the driver's cost per chunk."
+        )
+    else:
+        fit = (
+            f"So at 10⁴ cases chunks of {c_min} keep the driver at most 10 % busy and still "
+            f"give each worker some ({n // w} cases a worker)."
+        )
     return [
         f"W workers each finish a chunk of c cases every c·t seconds (t = {t_case * 1e3:.1f} "
         f"ms, the exponential case); the scheduler and this driver (which writes every part) "
@@ -330,12 +341,10 @@ def scaling(t_case: float, costs: dict[str, float]) -> list[str]:
         f"{t_auto:.0f} s, limited by {limit} (the driver is "
         f"{w * s / (c_auto * t_case):.0%} busy at this t and s); the model's best is "
         f"`--chunk-size {c_best}`, about {t_best:.0f} s, against an ideal "
-        f"{n * t_case / w:.0f} s. So at 10⁴ cases a chunk size that keeps the driver 10 % "
-        f"busy ({c_min}) exceeds the cases a worker has ({n // w}): a sweep that large "
-        f"on 100 workers is bound by the driver's cost per chunk; at 10⁵ cases the best "
+        f"{n * t_case / w:.0f} s. {fit} At 10⁵ cases the best "
         f"chunk ({c_big}) reaches {eff_big:.0%} of the ideal. s was measured on this "
-        "loaded 2-CPU machine (a part's fsync, a LocalCluster sharing the CPUs) and is "
-        "smaller on an idle one.",
+        "2-CPU machine (a part's fsync; a LocalCluster whose scheduler shares the CPUs with "
+        "its workers and this driver): a scheduler on a machine of its own serves faster.",
     ]
 
 
