@@ -27,7 +27,6 @@ from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 
 import numpy as np
-import scipy.linalg as sla
 import scipy.sparse as sps
 import scipy.sparse.linalg as spla
 from numpy.typing import ArrayLike
@@ -242,8 +241,9 @@ def _newton_step(prob: ContinuationProblem, p: dict, u: np.ndarray) -> np.ndarra
     try:
         if sps.issparse(jac):
             step = spla.splu(sps.csc_matrix(jac)).solve(-r)
-        else:
-            step = sla.solve(np.asarray(jac, dtype=float), -r)
+        else:  # (LAPACK gesv: no warning for an ill-conditioned J, which Newton may
+            # still cross, e.g. beside a fold; an exactly singular one raises)
+            step = np.linalg.solve(np.asarray(jac, dtype=float), -r)
     except (np.linalg.LinAlgError, RuntimeError, ValueError):
         return None
     return step if np.all(np.isfinite(step)) else None
