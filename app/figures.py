@@ -118,8 +118,26 @@ _mathtext_users = [0, None]  # (contexts open, matplotlib's method while they ar
 
 
 @functools.lru_cache(maxsize=MATHTEXT_KEPT)
-def _parsed(parse, parser, s, dpi, prop, antialiased, load_glyph_flags):
+def _parsed(parse, parser, s, dpi, prop, antialiased, load_glyph_flags, rc):
+    # (rc: the mathtext.* settings the parse reads, part of the key only)
     return parse(parser.parser, s, dpi, prop, antialiased, load_glyph_flags)
+
+
+def _mathtext_settings() -> tuple:
+    """The ``mathtext.*`` rcParams (fonts of the fontsets, default style, fallback): a parse
+    kept under other settings is not reused."""
+    import matplotlib
+
+    rc = matplotlib.rcParams
+    return tuple(repr(rc[k]) for k in _mathtext_keys())
+
+
+@functools.cache
+def _mathtext_keys() -> tuple[str, ...]:
+    """(matplotlib's rcParams accept no new keys: their names are fixed at import)"""
+    import matplotlib
+
+    return tuple(k for k in sorted(matplotlib.rcParams) if k.startswith("mathtext."))
 
 
 class _ByOutput:
@@ -148,7 +166,8 @@ def shared_mathtext():
     canvas and every SVG file makes a new one: a scene's figures parsed their title, axis
     labels and log-scale tick labels again for each figure and format (3–15 ms each, a fifth
     of the drawing). Inside, the parses are kept by what determines them (output type,
-    string, dpi, font, antialiasing, hinting), :data:`MATHTEXT_KEPT` of them, across
+    string, dpi, font, antialiasing, hinting, the ``mathtext.*`` settings),
+    :data:`MATHTEXT_KEPT` of them, across
     renderers and calls; the bytes drawn are the same. Without the private method this
     relies on (another matplotlib), nothing changes. Thread-safe; nests.
     """
@@ -160,7 +179,7 @@ def shared_mathtext():
         if _mathtext_users[0] == 0 and inner is not None:
 
             def cached(self, s, dpi, prop, antialiased, load_glyph_flags):
-                args = (s, dpi, prop, antialiased, load_glyph_flags)
+                args = (s, dpi, prop, antialiased, load_glyph_flags, _mathtext_settings())
                 return _parsed(inner, _ByOutput(self), *args)
 
             _mathtext_users[1] = original

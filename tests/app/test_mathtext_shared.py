@@ -100,3 +100,17 @@ def test_restored_when_drawing_fails():
     with pytest.raises(RuntimeError, match="boom"), figures.shared_mathtext():
         raise RuntimeError("boom")
     assert _parse_method() is before
+
+
+def test_a_kept_parse_is_not_reused_under_other_mathtext_settings():
+    """The same strings under another ``mathtext.*`` setting (the roman font of a custom
+    fontset) give the bytes matplotlib's own parsing gives under it, not the kept ones."""
+    figures._parsed.cache_clear()
+    sans = {"mathtext.fontset": "custom", "mathtext.rm": "sans", "mathtext.it": "sans:italic"}
+    with matplotlib.rc_context(sans):
+        figures.encode(_figure())  # kept under the sans-serif fonts
+    serif = {"mathtext.fontset": "custom", "mathtext.rm": "serif", "mathtext.it": "serif:italic"}
+    with matplotlib.rc_context(serif):  # the same fontset name, other fonts
+        plain = _plain_bytes(_figure())
+        shared = figures.encode(_figure())
+    assert shared == plain
