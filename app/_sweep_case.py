@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import functools
 import math
+import threading
 import time
 import warnings
 from typing import Any
@@ -75,9 +76,22 @@ def _version() -> str:
     return version()
 
 
+#: one case at a time in a process: a case's warnings are recorded by
+#: ``warnings.catch_warnings``, which swaps process-wide state, so two cases run by two
+#: threads of one worker (a Dask worker of several threads) would take each other's
+#: warnings into their rows (the GIL runs pure-Python cases one at a time anyway)
+_ONE_CASE = threading.Lock()
+
+
 def run_case(index: int, key: str, data: dict[str, Any], source: str) -> tuple[dict, list]:
     """Case ``index`` (scene ``data``, key ``key``) run as ``cusp run --no-plots`` runs a
-    scene: its row, and the rows of its loci (``[manifold]`` scenes; else [])."""
+    scene: its row, and the rows of its loci (``[manifold]`` scenes; else []). Cases run
+    one at a time in a process (:data:`_ONE_CASE`)."""
+    with _ONE_CASE:
+        return _run_case(index, key, data, source)
+
+
+def _run_case(index: int, key: str, data: dict[str, Any], source: str) -> tuple[dict, list]:
     import numpy as np
 
     from .run import NumericalFailure, run_scene

@@ -25,7 +25,10 @@ the same bytes every time.
 
 from __future__ import annotations
 
+import contextlib
+import functools
 import io
+import threading
 
 import numpy as np
 
@@ -100,11 +103,96 @@ def leg_curve(res, leg: str, per_step: int = ARC_SAMPLES) -> dict[str, np.ndarra
 def encode(fig, dpi: int = 150) -> dict[str, bytes]:
     """``fig`` as PNG and SVG bytes (:func:`figure_bytes`), laid out once: the constrained
     layout is computed, then frozen for both formats."""
-    engine = fig.get_layout_engine()
-    if engine is not None:
-        engine.execute(fig)
-        fig.set_layout_engine("none")
-    return {fmt: figure_bytes(fig, fmt, dpi=dpi) for fmt in ("png", "svg")}
+    with shared_mathtext():
+        engine = fig.get_layout_engine()
+        if engine is not None:
+            engine.execute(fig)
+            fig.set_layout_engine("none")
+        return {fmt: figure_bytes(fig, fmt, dpi=dpi) for fmt in ("png", "svg")}
+
+
+#: parsed mathtext strings kept across renderers by :func:`shared_mathtext`
+MATHTEXT_KEPT = 512
+_mathtext_lock = threading.Lock()
+_mathtext_users = [0, None]  # (contexts open, matplotlib's method while they are)
+
+
+@functools.lru_cache(maxsize=MATHTEXT_KEPT)
+def _parsed(parse, parser, s, dpi, prop, antialiased, load_glyph_flags, rc):
+    # (rc: the mathtext.* settings the parse reads, part of the key only)
+    return parse(parser.parser, s, dpi, prop, antialiased, load_glyph_flags)
+
+
+def _mathtext_settings() -> tuple:
+    """The ``mathtext.*`` rcParams (fonts of the fontsets, default style, fallback): a parse
+    kept under other settings is not reused."""
+    import matplotlib
+
+    rc = matplotlib.rcParams
+    return tuple(repr(rc[k]) for k in _mathtext_keys())
+
+
+@functools.cache
+def _mathtext_keys() -> tuple[str, ...]:
+    """(matplotlib's rcParams accept no new keys: their names are fixed at import)"""
+    import matplotlib
+
+    return tuple(k for k in sorted(matplotlib.rcParams) if k.startswith("mathtext."))
+
+
+class _ByOutput:
+    """A mathtext parser as a cache key: parsers of one output type give the same parse (the
+    grammar is shared by their class)."""
+
+    __slots__ = ("parser",)
+
+    def __init__(self, parser):
+        self.parser = parser
+
+    def __hash__(self) -> int:
+        return hash(self.parser._output_type)
+
+    def __eq__(self, other) -> bool:
+        return (
+            isinstance(other, _ByOutput) and self.parser._output_type == other.parser._output_type
+        )
+
+
+@contextlib.contextmanager
+def shared_mathtext():
+    """Parse each mathtext string once for all renderers while inside.
+
+    Matplotlib keeps the parses of a renderer's own parser only, and every figure's Agg
+    canvas and every SVG file makes a new one: a scene's figures parsed their title, axis
+    labels and log-scale tick labels again for each figure and format (3–15 ms each, a fifth
+    of the drawing). Inside, the parses are kept by what determines them (output type,
+    string, dpi, font, antialiasing, hinting, the ``mathtext.*`` settings),
+    :data:`MATHTEXT_KEPT` of them, across
+    renderers and calls; the bytes drawn are the same. Without the private method this
+    relies on (another matplotlib), nothing changes. Thread-safe; nests.
+    """
+    from matplotlib.mathtext import MathTextParser
+
+    with _mathtext_lock:
+        original = MathTextParser.__dict__.get("_parse_cached")
+        inner = getattr(original, "__wrapped__", None)
+        if _mathtext_users[0] == 0 and inner is not None:
+
+            def cached(self, s, dpi, prop, antialiased, load_glyph_flags):
+                args = (s, dpi, prop, antialiased, load_glyph_flags, _mathtext_settings())
+                return _parsed(inner, _ByOutput(self), *args)
+
+            _mathtext_users[1] = original
+            MathTextParser._parse_cached = cached  # type: ignore[method-assign]
+        _mathtext_users[0] += 1
+    try:
+        yield
+    finally:
+        with _mathtext_lock:
+            _mathtext_users[0] -= 1
+            if _mathtext_users[0] == 0 and _mathtext_users[1] is not None:
+                MathTextParser._parse_cached = _mathtext_users[1]  # type: ignore[method-assign]
+                _mathtext_users[1] = None
 
 
 def title_problem(title: str) -> str | None:

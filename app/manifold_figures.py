@@ -3,9 +3,9 @@ to PNG and SVG bytes like :mod:`cusp.app.figures`.
 
 * ``manifold-surface``: the response surface in 3-D, the path (g_T, F_T) at height μ (or
   F'_N) for :data:`SURFACE_PATHS` values across the traced range (single contact-loss runs,
-  made only for this figure) joined into a shaded surface coloured by the height (with its
-  colour bar), folded along the loci of A and B (the edges of the pleat, drawn on it; those
-  of C and D dashed);
+  made only for this figure, in steps up to :data:`SURFACE_DS_MAX`) joined into a shaded
+  surface coloured by the height (with its colour bar), folded along the loci of A and B
+  (the edges of the pleat, drawn on it; those of C and D dashed);
 * ``loci-control-planes``: the loci of A, B, C, D in the planes (g_T, μ) and (F_T, μ),
   the located events marked;
 * ``loci-energies``: the snap-back and snap-through energies along the loci;
@@ -43,6 +43,11 @@ SURFACE_PATHS = 12
 #: the viewpoint of the response surface (elevation, azimuth) [°]: from the side of larger
 #: F_T, where the pleat between the loci of A and B faces the viewer
 SURFACE_VIEW = (25.0, 40.0)
+#: the largest step of the surface's paths (nondimensional arclength, as ``ds_max`` of
+#: :class:`cusp.continuation.ContinuationOptions`) where the scene's [solver] gives none: the
+#: paths are drawn from their dense output, within the scene's ``rtol``, so their steps need
+#: not be as short as the run's (0.05), which draws its raw points in its CSV
+SURFACE_DS_MAX = 0.5
 #: points of each leg (OA, AB, BC) across the response surface
 SURFACE_SAMPLES = {"OA": 36, "AB": 16, "BC": 36}
 #: how the events and boundaries are named in the figures
@@ -115,8 +120,11 @@ def _path_at(scene, parameter: str, height: float) -> Any:
         mu = height
     else:
         load = height
+    options = solver_options(scene)
+    if "ds_max" not in scene.solver:
+        options = options.replace(ds_max=SURFACE_DS_MAX)
     try:
-        return make_model(scene, build_body(scene, mu), load).run(solver_options(scene))
+        return make_model(scene, build_body(scene, mu), load).run(options)
     except (SceneError, PathError, ContinuationError):
         return None
 

@@ -228,7 +228,8 @@ def _sweep(scene, out, keys, workers, chunk, client, quiet, t0) -> dict[str, Any
     done = done_cases(out, keys)
     _write_manifest(out, scene, sw)
     todo = [i for i in range(len(sw)) if i not in done]
-    parallel = sum(client.nthreads().values()) if client is not None else workers
+    parallel = len(client.nthreads()) if client is not None else workers  # (one case at a
+    # time in a process: a Dask worker's threads do not add to it)
     size = chunk if chunk is not None else chunk_size(len(todo), parallel)
     groups = [todo[k : k + size] for k in range(0, len(todo), size)]
     chunks = [[(i, keys[i], sw.case_data(i)) for i in g] for g in groups]

@@ -400,7 +400,9 @@ class ContactLoss:
         # latest points by their bits (C and D share the reloading leg); callers get copies
         @functools.lru_cache(maxsize=_MEMO)
         def evaluated_at(bits: bytes, at: float, mu: float, c):
-            return self._equations(np.insert(np.frombuffer(bits), ci, at), mu, leg, c)
+            x = list(np.frombuffer(bits))  # (the unknowns, float64 scalars, as np.insert
+            x.insert(ci, np.float64(at))  # gave them, at a tenth of its cost)
+            return self._equations(x, mu, leg, c)
 
         def evaluated(u, p):
             c = p[const_name] if const_name else None

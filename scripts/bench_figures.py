@@ -62,6 +62,9 @@ def load_app(rev: str, into: Path, name: str):
 def render_all(figures, manifold_figures, run, scene) -> dict[str, tuple[float, float]]:
     """(wall, CPU) seconds of each figure of ``scene``, rendered by the given modules."""
     out = {}
+    kept = getattr(figures, "_parsed", None)  # the mathtext parses kept across figures
+    if kept is not None:
+        kept.cache_clear()  # as in a fresh `cusp run`: no string parsed yet
     for name in scene.figures:
         w, c = time.perf_counter(), time.process_time()
         if name in PATH_FIGURES:

@@ -23,6 +23,7 @@ mean square, so a discretisation's deflation does not depend on its number of no
 
 from __future__ import annotations
 
+import warnings
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 
@@ -243,10 +244,19 @@ def _newton_step(prob: ContinuationProblem, p: dict, u: np.ndarray) -> np.ndarra
         if sps.issparse(jac):
             step = spla.splu(sps.csc_matrix(jac)).solve(-r)
         else:
-            step = sla.solve(np.asarray(jac, dtype=float), -r)
+            step = _dense_solve(np.asarray(jac, dtype=float), -r)
     except (np.linalg.LinAlgError, RuntimeError, ValueError):
         return None
     return step if np.all(np.isfinite(step)) else None
+
+
+def _dense_solve(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """``a⁻¹b`` by scipy's ``solve``, without its warning for an ill-conditioned ``a``
+    (``LinAlgWarning``: Newton beside a singular root meets such a J on every step, and
+    crosses it; an exactly singular one still raises)."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", sla.LinAlgWarning)
+        return sla.solve(a, b)
 
 
 def _log_gradient(u: np.ndarray, roots: list, s: _Settings) -> np.ndarray:

@@ -208,8 +208,8 @@ detect_folds, detect_branch_points, locate_tol, max_locate_iterations : optional
     tests = list(events) + (_codim2_events(curve) if codim2 else [])
     sizes = {**_scales(problem, hopf_point, aug.unknowns), **dict(scales or {})}
     halves = [
-        trace(aug, z0, free=p1, direction=d, bounds=bounds, targets=targets, events=tests,
-              scales=sizes, options=options, throw=throw)
+        _traced(curve, aug, z0, free=p1, direction=d, bounds=bounds, targets=targets,
+                events=tests, scales=sizes, options=options, throw=throw)
         for d in ((1, -1) if direction == "both" else (int(direction),))
     ]  # fmt: skip
     if len(halves) == 1:
@@ -218,6 +218,26 @@ detect_folds, detect_branch_points, locate_tol, max_locate_iterations : optional
     else:
         out = join_halves(halves[1], halves[0], start_kind=Kind.HOPF, start_label="start (hopf)")
     return _relabel(out, curve, pars)
+
+
+_DIFFERENCED = (
+    " (The Hopf system holds the problem's Jacobian, here by finite differences: Newton "
+    "cannot bring the system's residual below their rounding noise, which grows with the "
+    "residual's size; where it nears tol it stalls the corrector or trips a step guard. "
+    "Give the problem its jacobian=, or derivatives='complex' for a residual that takes "
+    "complex numbers.)"
+)
+
+
+def _traced(curve: _Curve, aug: ContinuationProblem, z0: np.ndarray, **kw: Any) -> Branch:
+    """One half of the curve (:func:`trace`); the failure of a curve whose Jacobian is
+    differenced says what that costs."""
+    try:
+        return trace(aug, z0, **kw)
+    except ContinuationError as exc:
+        if not curve.system.exact:
+            exc.args = (f"{exc.args[0]}{_DIFFERENCED}", *exc.args[1:])
+        raise
 
 
 HOPF_OPTIONS = ContinuationOptions(detect_branch_points=False)

@@ -21,6 +21,7 @@ results file, a truncated or damaged one, and one written in a newer format.
 from __future__ import annotations
 
 import dataclasses
+import errno
 import json
 import math
 import os
@@ -218,10 +219,23 @@ def decode_branch(r: Reader, t: Mapping[str, Any]) -> Any:
     )
 
 
+def _target(path: str | os.PathLike[str]) -> Path:
+    """``path`` as the file to write, or the error that names it (not the temporary file)."""
+    if not os.fspath(path):
+        raise ValueError("path must name a results file (.npz), got ''")
+    out = Path(path)
+    if out.is_dir():
+        raise IsADirectoryError(errno.EISDIR, "cannot write results: a directory", str(out))
+    if not out.parent.is_dir():
+        why = "cannot write results: no such directory"
+        raise FileNotFoundError(errno.ENOENT, why, str(out.parent))
+    return out
+
+
 def write_results(path: str | os.PathLike[str], kind: str, tree: Any, w: Writer) -> Path:
     """Write a results file atomically: the archive goes to a temporary file beside
     ``path``, which then replaces it. Returns the path."""
-    path = Path(path)
+    path = _target(path)
     meta = {
         "format": FORMAT,
         "format_version": FORMAT_VERSION,

@@ -379,3 +379,46 @@ def test_a_second_sweep_into_a_directory_in_use_is_refused(grid, tmp_path, capsy
         os.close(fd)
     assert "another cusp sweep is writing into it" in capsys.readouterr().err
     assert not (out / "results.parquet").exists()
+
+
+def test_cases_run_by_threads_of_one_worker_run_one_at_a_time(monkeypatch):
+    """A Dask worker of several threads runs chunks side by side in one process; a case's
+    warnings are recorded process-wide (warnings.catch_warnings) into its row's message, so
+    two cases at once would take each other's warnings: they run one at a time."""
+    import threading
+
+    from cusp.app import _sweep_case, run
+
+    active, most = [0], [0]
+    guard = threading.Lock()
+    barrier = threading.Barrier(4, timeout=5)
+
+    def fake_run_scene(scene, plots):  # a slow case
+        with guard:
+            active[0] += 1
+            most[0] = max(most[0], active[0])
+        time.sleep(0.05)  # (the other threads would come in here if they could)
+        with guard:
+            active[0] -= 1
+        raise run.NumericalFailure(f"case {scene.loading['normal_load']:g} stops here")
+
+    monkeypatch.setattr(run, "run_scene", fake_run_scene)
+    rows: dict[int, dict] = {}
+
+    def one(i: int) -> None:
+        data = {
+            "surface": {"model": "rough-exponential", "sigma": 2.0, "nu": 0.3, "mu": 0.1},
+            "loading": {"normal_load": 1000.0 + i, "max_slip": 0.34, "reduced_normal_load": 850.0},
+        }
+        barrier.wait()
+        rows[i] = _sweep_case.run_case(i, f"k{i}", data, "t.toml")[0]
+
+    threads = [threading.Thread(target=one, args=(i,)) for i in range(4)]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    assert most[0] == 1
+    assert {i: r["message"] for i, r in rows.items()} == {
+        i: f"case {1000 + i} stops here" for i in range(4)
+    }

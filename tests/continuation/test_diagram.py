@@ -256,6 +256,18 @@ def test_deflation_roots_of_a_polynomial():
     assert found.runs == 4  # three found, the fourth run fails: no root left
 
 
+def test_deflation_beside_a_singular_jacobian_finds_the_roots_quietly():
+    """two_modes at λ = 2: the trivial root (0, 0) is a branch point (J = diag(1, 0)); Newton
+    steps beside it meet an ill-conditioned J (scipy's solve warned, a LinAlgWarning that the
+    suite's filterwarnings turns into an error). The roots from the closed forms: x² = λ − 1
+    = 1 with y = 0, and the trivial one (reached linearly: the root is singular)."""
+    out = deflate(two_modes(), [[1.0, 0.0], [0.0, 1.0]], params={"lam": 2.0})
+    sols = sorted(out.solutions, key=lambda u: -u[0])
+    assert len(sols) == 2
+    assert np.allclose(sols[0], [1.0, 0.0], atol=1e-12)
+    assert np.allclose(sols[1], [0.0, 0.0], atol=1e-10)
+
+
 def test_deflation_jacobian_is_sherman_morrison():
     """The deflated update δ/(1 − g·δ) equals the Newton update of M·R with the Jacobian
     M J + R ∇Mᵀ formed explicitly (mpmath at 40 digits, M differentiated symbolically by

@@ -98,3 +98,39 @@ def test_hopf_curve_refuses_other_points():
     br = trace(prob, [-0.2, 0.0], free="b1", bounds={"b1": (0.0, 1.0)})
     with pytest.raises(ProblemDefinitionError, match="hopf_point"):
         hopf_curve(prob, br.special_points[0], free=("b1", "b2"))
+
+
+def _brusselator(**derivatives) -> Problem:
+    # x' = a − (b + 1)x + x²y, y' = bx − x²y: equilibrium (a, b/a), Hopf at b = 1 + a²
+    # (trace 0: b − 1 − a² = 0; det = a² > 0), ω = a
+    def residual(u, p):
+        x, y = u
+        return np.array([p["a"] - (p["b"] + 1) * x + x * x * y, p["b"] * x - x * x * y])
+
+    return Problem(residual, ["x", "y"], {"a": 2.0, "b": 3.0}, mass=True, **derivatives)
+
+
+def test_brusselator_hopf_curve_far_out_with_exact_derivatives():
+    """b = 1 + a² traced over a ∈ [0.1, 50] (b from 1.01 to 2501) by complex steps."""
+    prob = _brusselator(derivatives="complex")
+    br = trace(prob, [2.0, 1.5], free="b", bounds={"b": (3, 7)}, stability=True)
+    (h,) = br.special("hopf")
+    curve = hopf_curve(prob, h, free=("b", "a"), bounds={"a": (0.1, 50.0)})
+    assert curve.status == "bound"
+    a, b = curve["a"], curve["b"]
+    assert a.min() == pytest.approx(0.1) and a.max() == pytest.approx(50.0)
+    np.testing.assert_allclose(b, 1 + a * a, rtol=1e-9)
+    np.testing.assert_allclose(curve["omega"], a, rtol=1e-9)
+
+
+def test_a_differenced_jacobian_failure_says_so():
+    """The same curve with the Jacobian by finite differences: its rounding noise (about
+    4e-10 at a = 2.56, against 1e-10 = tol) stops the curve near a = 2.57; the error says
+    why and what to give."""
+    from cusp.continuation import ContinuationError
+
+    prob = _brusselator()
+    br = trace(prob, [2.0, 1.5], free="b", bounds={"b": (3, 7)}, stability=True)
+    (h,) = br.special("hopf")
+    with pytest.raises(ContinuationError, match=r"finite differences.*jacobian="):
+        hopf_curve(prob, h, free=("b", "a"), bounds={"a": (0.1, 50.0)})

@@ -213,6 +213,20 @@ def test_a_missing_file_is_file_not_found(tmp_path):
 # --- atomic writes ------------------------------------------------------------------------------
 
 
+def test_a_path_that_cannot_be_written_names_itself(cusp_branch, tmp_path):
+    """The error names the path the user gave (or its missing directory), not the temporary
+    file beside it, and nothing is left behind."""
+    with pytest.raises(ValueError, match="path must name a results file .*got ''"):
+        cusp_branch.save("")
+    with pytest.raises(IsADirectoryError, match="a directory.*" + tmp_path.name):
+        cusp_branch.save(tmp_path)
+    missing = tmp_path / "absent" / "b.npz"
+    with pytest.raises(FileNotFoundError, match="no such directory.*absent'") as info:
+        cusp_branch.save(missing)
+    assert info.value.filename == str(missing.parent)
+    assert list(tmp_path.iterdir()) == []
+
+
 def test_a_failed_save_leaves_the_old_file(cusp_branch, tmp_path, monkeypatch):
     """A save that fails half-way leaves the file that was there whole, and no temporary
     file behind."""
