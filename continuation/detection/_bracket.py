@@ -112,8 +112,13 @@ class Span:
         """Built by keyword, fast: a class called with keywords first gathers them in a
         dict (three times the cost of this call, on every step)."""
         self = object.__new__(cls)
-        self.z_a, self.t_a, self.z_b, self.t_b = z_a, t_a, z_b, t_b
-        self.h, self.cos_b, self.s_a = h, cos_b, s_a
+        self.z_a = z_a
+        self.t_a = t_a
+        self.z_b = z_b
+        self.t_b = t_b
+        self.h = h
+        self.cos_b = cos_b
+        self.s_a = s_a
         return self
 
 

@@ -73,8 +73,12 @@ class Evaluation:
         """Built by keyword, fast: a class called with keywords first gathers them in a
         dict (three times the cost of this call, on every step)."""
         self = object.__new__(cls)
-        self.trial, self.system, self.values = trial, system, values
-        self.crossings, self.bracket, self.deferred = crossings, bracket, deferred
+        self.trial = trial
+        self.system = system
+        self.values = values
+        self.crossings = crossings
+        self.bracket = bracket
+        self.deferred = deferred
         return self
 
     def with_bracket(self, bracket: Bracket | None, deferred: bool = False) -> Evaluation:

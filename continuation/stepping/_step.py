@@ -171,8 +171,15 @@ class Trial:
         """Built by keyword, fast: a class called with keywords first gathers them in a
         dict (three times the cost of this call, on every step)."""
         self = object.__new__(cls)
-        self.res, self.t, self.factor, self.ds, self.h, self.rt = res, t, factor, ds, h, rt
-        self.rejected, self.corner, self.aimed = rejected, corner, aimed
+        self.res = res
+        self.t = t
+        self.factor = factor
+        self.ds = ds
+        self.h = h
+        self.rt = rt
+        self.rejected = rejected
+        self.corner = corner
+        self.aimed = aimed
         self.interpolation_error = interpolation_error
         return self
 
@@ -234,7 +241,9 @@ class Predictor:
         """Built by keyword, fast: a class called with keywords first gathers them in a
         dict (three times the cost of this call, on every step)."""
         self = object.__new__(cls)
-        self.secant, self.direction, self.row = secant, direction, row
+        self.secant = secant
+        self.direction = direction
+        self.row = row
         return self
 
 
