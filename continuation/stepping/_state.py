@@ -21,6 +21,11 @@ from ..detection._tests import Record, TestFunction
 from ..results._branch import Branch, SpecialPoint
 from ..systems._curve import CurveSystem
 
+# records are made by a static method of() and this bound object.__new__: a class method's
+# binding and the lookup of __new__ on object cost a third of a record (callgrind), and the
+# stepper makes several records a step
+_new = object.__new__
+
 
 @dataclass(slots=True, eq=False)
 class Point:
@@ -49,9 +54,8 @@ class Point:
     """The distance from the arc of the step that reached this point to the curve (0 at the
     start; a point located inside a step carries that step's)."""
 
-    @classmethod
+    @staticmethod
     def of(
-        cls,
         *,
         z: np.ndarray,
         t: np.ndarray,
@@ -66,7 +70,7 @@ class Point:
     ) -> Point:
         """Built by keyword, fast: a class called with keywords first gathers them in a
         dict (three times the cost of this call, on every step)."""
-        self = object.__new__(cls)
+        self = _new(Point)
         self.z = z
         self.t = t
         self.s = s
@@ -121,9 +125,8 @@ class TracerState:
     stalled: int = 0
     """Consecutive steps taken with ds near ds_min."""
 
-    @classmethod
+    @staticmethod
     def of(
-        cls,
         *,
         last: Point,
         system: CurveSystem,
@@ -167,7 +170,7 @@ class TracerState:
         TracerState
             The new state.
         """
-        self = object.__new__(cls)
+        self = _new(TracerState)
         self.last = last
         self.system = system
         self.ds = ds
