@@ -21,6 +21,11 @@ from ..systems._curve import CurveSystem
 from ._state import Point, TracerState
 from ._step import Trial, wnorm
 
+# records are made by a static method of() and this bound object.__new__: a class method's
+# binding and the lookup of __new__ on object cost a third of a record (callgrind), and the
+# stepper makes several records a step
+_new = object.__new__
+
 logger = logging.getLogger(__name__)
 
 SPLIT_DEPTH = 3
@@ -59,9 +64,8 @@ class Evaluation:
     bracket: Bracket | None = None
     deferred: bool = False
 
-    @classmethod
+    @staticmethod
     def of(
-        cls,
         *,
         trial: Trial,
         system: CurveSystem,
@@ -72,9 +76,13 @@ class Evaluation:
     ) -> Evaluation:
         """Built by keyword, fast: a class called with keywords first gathers them in a
         dict (three times the cost of this call, on every step)."""
-        self = object.__new__(cls)
-        self.trial, self.system, self.values = trial, system, values
-        self.crossings, self.bracket, self.deferred = crossings, bracket, deferred
+        self = _new(Evaluation)
+        self.trial = trial
+        self.system = system
+        self.values = values
+        self.crossings = crossings
+        self.bracket = bracket
+        self.deferred = deferred
         return self
 
     def with_bracket(self, bracket: Bracket | None, deferred: bool = False) -> Evaluation:

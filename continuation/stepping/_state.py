@@ -10,7 +10,6 @@ from __future__ import annotations
 
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
-from operator import attrgetter
 from typing import Any
 
 import numpy as np
@@ -21,6 +20,11 @@ from ..detection._spectrum import PartialSign, SignWithSpectrum
 from ..detection._tests import Record, TestFunction
 from ..results._branch import Branch, SpecialPoint
 from ..systems._curve import CurveSystem
+
+# records are made by a static method of() and this bound object.__new__: a class method's
+# binding and the lookup of __new__ on object cost a third of a record (callgrind), and the
+# stepper makes several records a step
+_new = object.__new__
 
 
 @dataclass(slots=True, eq=False)
@@ -50,9 +54,8 @@ class Point:
     """The distance from the arc of the step that reached this point to the curve (0 at the
     start; a point located inside a step carries that step's)."""
 
-    @classmethod
+    @staticmethod
     def of(
-        cls,
         *,
         z: np.ndarray,
         t: np.ndarray,
@@ -67,15 +70,17 @@ class Point:
     ) -> Point:
         """Built by keyword, fast: a class called with keywords first gathers them in a
         dict (three times the cost of this call, on every step)."""
-        self = object.__new__(cls)
-        self.z, self.t, self.s, self.iterations = z, t, s, iterations
-        self.rejected, self.residual_norm, self.ds, self.special = (
-            rejected,
-            residual_norm,
-            ds,
-            special,
-        )
-        self.prev, self.interpolation_error = prev, interpolation_error
+        self = _new(Point)
+        self.z = z
+        self.t = t
+        self.s = s
+        self.iterations = iterations
+        self.rejected = rejected
+        self.residual_norm = residual_norm
+        self.ds = ds
+        self.special = special
+        self.prev = prev
+        self.interpolation_error = interpolation_error
         return self
 
 
@@ -120,9 +125,8 @@ class TracerState:
     stalled: int = 0
     """Consecutive steps taken with ds near ds_min."""
 
-    @classmethod
+    @staticmethod
     def of(
-        cls,
         *,
         last: Point,
         system: CurveSystem,
@@ -166,10 +170,16 @@ class TracerState:
         TracerState
             The new state.
         """
-        self = object.__new__(cls)
-        self.last, self.system, self.ds, self.test_values = last, system, ds, test_values
-        self.steps, self.status, self.message = steps, status, message
-        self.n_points, self.stalled = n_points, stalled
+        self = _new(TracerState)
+        self.last = last
+        self.system = system
+        self.ds = ds
+        self.test_values = test_values
+        self.steps = steps
+        self.status = status
+        self.message = message
+        self.n_points = n_points
+        self.stalled = stalled
         return self
 
     def replaced(self, **changes: Any) -> TracerState:
@@ -188,15 +198,6 @@ class TracerState:
         fields = {name: getattr(self, name) for name in self.__slots__}
         fields.update(changes)
         return TracerState.of(**fields)
-
-
-# the columns of a list of points, read in C (map over an attrgetter: no Python loop)
-_Z, _T, _S = attrgetter("z"), attrgetter("t"), attrgetter("s")
-_ITERATIONS, _REJECTED, _DS = attrgetter("iterations"), attrgetter("rejected"), attrgetter("ds")
-_RESIDUAL_NORM, _INTERPOLATION_ERROR = (
-    attrgetter("residual_norm"),
-    attrgetter("interpolation_error"),
-)
 
 
 def _rows(state: TracerState) -> list[Point]:
@@ -218,10 +219,9 @@ def assemble_branch(
     points = _rows(state)
     system = state.system
     n_pts = len(points)
-    zs = list(map(_Z, points))
+    zs, ts, ss, iterations, rejected, residual_norm, ds, errors = _columns(points)
     Z = np.concatenate(zs).reshape(n_pts, -1)
-    T = np.concatenate(list(map(_T, points))).reshape(n_pts, -1)
-    ss = list(map(_S, points))
+    T = np.concatenate(ts).reshape(n_pts, -1)
     names = system.names
     columns = {name: Z[:, i].copy() for i, name in enumerate(names)}
     fixed = {
@@ -251,7 +251,7 @@ def assemble_branch(
         special_points=specials,
         status=status,
         message=message,
-        stats=_statistics(points),
+        stats=_statistics(iterations, rejected, residual_norm, ds, errors),
         info={
             "steps": state.steps,
             **info,
@@ -262,14 +262,36 @@ def assemble_branch(
     )
 
 
-def _statistics(points: Sequence[Point]) -> dict[str, np.ndarray]:
-    """The per-point arrays of a branch's ``stats``."""
+def _columns(points: Sequence[Point]) -> list[tuple[Any, ...]]:
+    """The points' fields as columns: z, t, s, iterations, rejected, residual_norm, ds and
+    interpolation_error."""
+    # (one comprehension of rows, transposed by zip in C: cheaper than a comprehension per
+    # column, and those than map(attrgetter(name), points), a generic lookup per row)
+    return list(
+        zip(
+            *[
+                (p.z, p.t, p.s, p.iterations, p.rejected, p.residual_norm, p.ds,
+                 p.interpolation_error)
+                for p in points
+            ]
+        )
+    )  # fmt: skip
+
+
+def _statistics(
+    iterations: Sequence[int],
+    rejected: Sequence[int],
+    residual_norm: Sequence[float],
+    ds: Sequence[float],
+    interpolation_error: Sequence[float],
+) -> dict[str, np.ndarray]:
+    """The per-point arrays of a branch's ``stats``, from the points' columns."""
     return {
-        "newton_iterations": np.array(list(map(_ITERATIONS, points))),
-        "rejected_steps": np.array(list(map(_REJECTED, points))),
-        "residual_norm": np.array(list(map(_RESIDUAL_NORM, points))),
-        "ds": np.array(list(map(_DS, points))),
-        "interpolation_error": np.array(list(map(_INTERPOLATION_ERROR, points))),
+        "newton_iterations": np.array(iterations),
+        "rejected_steps": np.array(rejected),
+        "residual_norm": np.array(residual_norm),
+        "ds": np.array(ds),
+        "interpolation_error": np.array(interpolation_error),
     }
 
 

@@ -52,6 +52,11 @@ if TYPE_CHECKING:
 
 logger = logging.getLogger(__name__)
 
+# records are made by a static method of() and this bound object.__new__: a class method's
+# binding and the lookup of __new__ on object cost a third of a record (callgrind), and the
+# stepper makes several records a step
+_new = object.__new__
+
 SINGULAR_CUT = 0.4
 """The cut of a step whose Newton matrix is singular: a trial point on a singular point of
 the curve (a step of exactly the distance to a branch point); halving would land on it again
@@ -153,9 +158,8 @@ class Trial:
     aimed: BoundTest | None = None
     interpolation_error: float = 0.0
 
-    @classmethod
+    @staticmethod
     def of(
-        cls,
         *,
         res: NewtonResult,
         t: np.ndarray,
@@ -170,9 +174,16 @@ class Trial:
     ) -> Trial:
         """Built by keyword, fast: a class called with keywords first gathers them in a
         dict (three times the cost of this call, on every step)."""
-        self = object.__new__(cls)
-        self.res, self.t, self.factor, self.ds, self.h, self.rt = res, t, factor, ds, h, rt
-        self.rejected, self.corner, self.aimed = rejected, corner, aimed
+        self = _new(Trial)
+        self.res = res
+        self.t = t
+        self.factor = factor
+        self.ds = ds
+        self.h = h
+        self.rt = rt
+        self.rejected = rejected
+        self.corner = corner
+        self.aimed = aimed
         self.interpolation_error = interpolation_error
         return self
 
@@ -223,9 +234,8 @@ class Predictor:
     direction: np.ndarray
     row: np.ndarray
 
-    @classmethod
+    @staticmethod
     def of(
-        cls,
         *,
         secant: np.ndarray | None,
         direction: np.ndarray,
@@ -233,8 +243,10 @@ class Predictor:
     ) -> Predictor:
         """Built by keyword, fast: a class called with keywords first gathers them in a
         dict (three times the cost of this call, on every step)."""
-        self = object.__new__(cls)
-        self.secant, self.direction, self.row = secant, direction, row
+        self = _new(Predictor)
+        self.secant = secant
+        self.direction = direction
+        self.row = row
         return self
 
 

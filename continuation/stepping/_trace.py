@@ -21,7 +21,7 @@ from ..problem._problem import ContinuationProblem, as_problem
 from ..results._branch import Branch, SpecialPoint
 from ..results._stability import with_stability
 from ._state import TracerState, resumed_state
-from ._tracer import DEFAULT_OPTIONS, Tracer
+from ._tracer import DEFAULT_OPTIONS, Tracer, branch_system
 
 logger = logging.getLogger("cusp.continuation")
 
@@ -161,10 +161,11 @@ detect_folds, detect_branch_points, locate_tol, max_locate_iterations : optional
         options, params, scales, direction = continued(u0, options, params, scales, direction)
     elif isinstance(u0, Mapping):
         u0, params = point_start(as_problem(problem), u0, params)
-    tracer = Tracer(
-        problem, free=free, params=params, bounds=bounds, targets=targets, events=events,
-        monitor=monitor, scales=scales, direction=1 if direction is None else direction,
-        throw=throw, options=with_overrides(options, DEFAULT_OPTIONS, locals()),
+    options = with_overrides(options, DEFAULT_OPTIONS, locals())
+    tracer = Tracer.for_system(
+        branch_system(problem, free, params, options), options=options, bounds=bounds,
+        targets=targets, events=events, monitor=monitor, scales=scales,
+        direction=1 if direction is None else direction, throw=throw,
     )  # fmt: skip
     branch = tracer.result(run(tracer, first_state(tracer, u0), watch))
     if wanted is None:

@@ -134,9 +134,8 @@ locate_tol, max_locate_iterations : optional
         if not isinstance(free, str):
             raise ProblemDefinitionError(f"free must be a parameter name, got {free!r}")
         options = with_overrides(options, DEFAULT_OPTIONS, locals())
-        system = BranchSystem(problem, free, params, options.state_weight)
         self._configure(
-            system,
+            branch_system(problem, free, params, options),
             options,
             bounds=bounds,
             targets=targets,
@@ -599,4 +598,20 @@ locate_tol, max_locate_iterations : optional
         return assemble_branch(state, info, kinds)
 
 
-__all__ = ["Tracer", "TracerState"]
+def branch_system(
+    problem: ContinuationProblem,
+    free: str,
+    params: Mapping[str, float] | None,
+    options: ContinuationOptions,
+) -> BranchSystem:
+    """The curve system of the branch of ``problem`` in ``free`` (``params`` overriding its
+    parameters): a :class:`Tracer`'s, which :func:`~._trace.trace` makes itself, its option
+    keywords merged once (:func:`~.._options.with_overrides` reads an entry point's
+    ``locals()``: a dict of its fifty arguments, a few µs a trace)."""
+    problem = as_problem(problem)
+    if not isinstance(free, str):
+        raise ProblemDefinitionError(f"free must be a parameter name, got {free!r}")
+    return BranchSystem(problem, free, params, options.state_weight)
+
+
+__all__ = ["Tracer", "TracerState", "branch_system"]

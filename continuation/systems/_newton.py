@@ -39,6 +39,11 @@ from ._curve import CurveSystem
 if TYPE_CHECKING:
     from .._options import ContinuationOptions
 
+# records are made by a static method of() and this bound object.__new__: a class method's
+# binding and the lookup of __new__ on object cost a third of a record (callgrind), and the
+# stepper makes several records a step
+_new = object.__new__
+
 #: the smallest update tolerance with differenced derivatives (they keep the updates from
 #: getting much smaller); the two update tolerances are √step_tol (the error left is then
 #: about step_tol) and step_tol itself (AUTO's test, see :func:`newton`)
@@ -115,9 +120,8 @@ class NewtonResult:
     contraction: float = 0.0
     first_update: float = math.inf
 
-    @classmethod
+    @staticmethod
     def of(
-        cls,
         *,
         z: np.ndarray,
         converged: bool,
@@ -130,10 +134,15 @@ class NewtonResult:
     ) -> NewtonResult:
         """A result built by keyword, fast (a class called with keywords builds a dict of
         them first: 1.2 µs against 0.4 µs here, on the corrector's every call)."""
-        self = object.__new__(cls)
-        self.z, self.converged, self.iterations = z, converged, iterations
-        self.residual_norm, self.lu, self.reason = residual_norm, lu, reason
-        self.contraction, self.first_update = contraction, first_update
+        self = _new(NewtonResult)
+        self.z = z
+        self.converged = converged
+        self.iterations = iterations
+        self.residual_norm = residual_norm
+        self.lu = lu
+        self.reason = reason
+        self.contraction = contraction
+        self.first_update = first_update
         return self
 
 
@@ -402,7 +411,8 @@ def _on_floats(
     bordered matrix factored by :class:`~..numerics._linalg.PairLU`, the same tests (the
     rounding floor ``100·eps·|∂G/∂u|·|u|`` included). None where a value is not finite, a
     callback returns anything but a float array of the right shape, or a matrix is
-    singular: the array path then decides (and says why)."""
+    singular: the array path then decides (and says why). Its result is made here rather
+    than by :func:`_finished`: a call less for every corrector of a step."""
     # (g0, given, is the system's residual: a float array of one value)
     g = system.scalar_residual(z0) if g0 is None else g0.item()
     if g is None or not abs(g) < math.inf:
@@ -415,10 +425,7 @@ def _on_floats(
     z, rn, a11, lu = z0, abs(g), 0.0, None
     sn_prev = sn_first = math.inf
     reason, chord, k, theta = _MAX_ITERATIONS, False, 0, 0.0
-
-    def floor() -> float:  # CurveSystem.residual_floor of the Jacobian row at the new point
-        return 100 * _EPS * abs(a11) * abs(x)
-
+    floor = lambda: 100 * _EPS * abs(a11) * abs(x)  # noqa: E731 (the row's residual_floor)
     for k in range(1, settings.max_iterations + 1):
         if not chord:
             jac = system.scalar_jacobian(z)
@@ -453,7 +460,10 @@ def _on_floats(
         rn, g = rn_new, g_new
         chord = not chord and sn <= settings.sq_step_tol
         sn_prev = sn
-    return _finished(z, k, rn, lu, reason, theta, sn_first)
+    return NewtonResult.of(
+        z=z, converged=reason is _CONVERGED, iterations=k, residual_norm=rn, lu=lu,
+        reason=reason, contraction=theta, first_update=sn_first,
+    )  # fmt: skip
 
 
 def _finished(
