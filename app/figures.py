@@ -29,6 +29,7 @@ import contextlib
 import functools
 import io
 import threading
+from typing import Any
 
 import numpy as np
 
@@ -114,7 +115,8 @@ def encode(fig, dpi: int = 150) -> dict[str, bytes]:
 #: parsed mathtext strings kept across renderers by :func:`shared_mathtext`
 MATHTEXT_KEPT = 512
 _mathtext_lock = threading.Lock()
-_mathtext_users = [0, None]  # (contexts open, matplotlib's method while they are)
+_mathtext_open: dict[str, Any] = {"contexts": 0, "original": None}  # (matplotlib's method
+# while contexts are open)
 
 
 @functools.lru_cache(maxsize=MATHTEXT_KEPT)
@@ -128,7 +130,7 @@ def _mathtext_settings() -> tuple:
     kept under other settings is not reused."""
     import matplotlib
 
-    rc = matplotlib.rcParams
+    rc: Any = matplotlib.rcParams
     return tuple(repr(rc[k]) for k in _mathtext_keys())
 
 
@@ -176,23 +178,23 @@ def shared_mathtext():
     with _mathtext_lock:
         original = MathTextParser.__dict__.get("_parse_cached")
         inner = getattr(original, "__wrapped__", None)
-        if _mathtext_users[0] == 0 and inner is not None:
+        if _mathtext_open["contexts"] == 0 and inner is not None:
 
             def cached(self, s, dpi, prop, antialiased, load_glyph_flags):
                 args = (s, dpi, prop, antialiased, load_glyph_flags, _mathtext_settings())
                 return _parsed(inner, _ByOutput(self), *args)
 
-            _mathtext_users[1] = original
-            MathTextParser._parse_cached = cached  # type: ignore[method-assign]
-        _mathtext_users[0] += 1
+            _mathtext_open["original"] = original
+            setattr(MathTextParser, "_parse_cached", cached)  # noqa: B010 (private to mpl)
+        _mathtext_open["contexts"] += 1
     try:
         yield
     finally:
         with _mathtext_lock:
-            _mathtext_users[0] -= 1
-            if _mathtext_users[0] == 0 and _mathtext_users[1] is not None:
-                MathTextParser._parse_cached = _mathtext_users[1]  # type: ignore[method-assign]
-                _mathtext_users[1] = None
+            _mathtext_open["contexts"] -= 1
+            if _mathtext_open["contexts"] == 0 and _mathtext_open["original"] is not None:
+                setattr(MathTextParser, "_parse_cached", _mathtext_open["original"])  # noqa: B010
+                _mathtext_open["original"] = None
 
 
 def title_problem(title: str) -> str | None:
