@@ -26,44 +26,21 @@ from __future__ import annotations
 import argparse
 import importlib
 import importlib.util
-import subprocess
-import sys
 import tempfile
 import time
 from pathlib import Path
 
+from cusp._scripts.revisions import load_folder
 from cusp._scripts.tools import run_ours, trace_problems
-
-ROOT = Path(__file__).resolve().parents[1]
 
 
 def load_revision(rev: str | None, into: Path, name: str):
     """The engine at git revision ``rev`` (None: the working tree, as installed), imported as
-    module ``name`` from its ``continuation/`` folder extracted under ``into`` (a package
-    loaded from its folder's ``__init__.py``: the import path is left as it is)."""
+    module ``name`` from its ``continuation/`` folder extracted under ``into``
+    (:func:`cusp._scripts.revisions.load_folder`)."""
     if rev is None:
         return importlib.import_module("cusp.continuation")
-    target = into / name
-    target.mkdir()
-    archive = subprocess.run(
-        ["git", "archive", rev, "continuation"], cwd=ROOT, check=True, capture_output=True
-    ).stdout
-    subprocess.run(
-        ["tar", "-x", "--strip-components=1", "-C", str(target)], input=archive, check=True
-    )
-    spec = importlib.util.spec_from_file_location(
-        name, target / "__init__.py", submodule_search_locations=[str(target)]
-    )
-    if spec is None or spec.loader is None:
-        raise RuntimeError(f"cannot load the engine of revision {rev!r} from {target}")
-    module = importlib.util.module_from_spec(spec)
-    sys.modules[name] = module  # its relative imports resolve through the package's name
-    try:
-        spec.loader.exec_module(module)
-    except BaseException:
-        del sys.modules[name]
-        raise
-    return module
+    return load_folder(rev, "continuation", into, name)
 
 
 def main(argv=None) -> int:

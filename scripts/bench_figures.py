@@ -19,44 +19,22 @@ Usage (from the repository root): ``python scripts/bench_figures.py [--base REV]
 from __future__ import annotations
 
 import argparse
-import importlib.util
 import os
 import platform
 import statistics
-import subprocess
 import sys
 import tempfile
 import time
 from pathlib import Path
 
 from cusp._scripts.report import commit_and_load, write_report
+from cusp._scripts.revisions import load_folder
 
 ROOT = Path(__file__).resolve().parents[1]
 DOC = ROOT / "docs" / "benchmarks" / "figures.md"
 #: the revision before issue 32's figure work (main at the start of it)
 BASE = "462af82"
 PATH_FIGURES = ("fig9", "force-slip", "force-slip-detail", "force-area")
-
-
-def load_app(rev: str, into: Path, name: str):
-    """The ``app/`` package of git revision ``rev``, imported as ``name``."""
-    target = into / name
-    target.mkdir()
-    archive = subprocess.run(
-        ["git", "archive", rev, "app"], cwd=ROOT, check=True, capture_output=True
-    ).stdout
-    subprocess.run(
-        ["tar", "-x", "--strip-components=1", "-C", str(target)], input=archive, check=True
-    )
-    spec = importlib.util.spec_from_file_location(
-        name, target / "__init__.py", submodule_search_locations=[str(target)]
-    )
-    if spec is None or spec.loader is None:
-        raise RuntimeError(f"cannot load app/ of revision {rev!r} from {target}")
-    module = importlib.util.module_from_spec(spec)
-    sys.modules[name] = module
-    spec.loader.exec_module(module)
-    return module
 
 
 def render_all(figures, manifold_figures, run, scene) -> dict[str, tuple[float, float]]:
@@ -85,7 +63,7 @@ def measure(base: str, rounds: int) -> tuple[dict, dict, str]:
     run, _ = run_scene(scene, plots=False)
     sides = {}
     with tempfile.TemporaryDirectory() as tmp:
-        old = load_app(base, Path(tmp), "cusp_app_base")
+        old = load_folder(base, "app", Path(tmp), "cusp_app_base")
         importlib.import_module("cusp_app_base.figures")
         importlib.import_module("cusp_app_base.manifold_figures")
         from cusp.app import figures, manifold_figures
